@@ -1,0 +1,2 @@
+//! Output: CSV tables, `summary.json` files and SVG figures (plotters' SVG backend, no system
+//! fonts), plus the run picture of a simulated walk.
