@@ -387,8 +387,7 @@ impl CaptureStep {
         // 2. Step time from the lateral pendulum.
         let energy_y = lipm.energy(cy, zy);
         let inward = l * cy.vel < 0.0;
-        let crossing = (inward && energy_y > 0.0)
-            || (inward && l * cy.pos < 0.0)
+        let crossing = (inward && (energy_y > 0.0 || l * cy.pos < 0.0))
             || (l * cy.pos < 0.0 && energy_y < 0.0);
         let stalling = energy_y < lipm.energy(LipmState::new(target[1].pos, 0.0), zy);
         let mut t_step = if crossing {

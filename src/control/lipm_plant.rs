@@ -82,8 +82,8 @@ impl LipmPlant {
     }
 
     fn advance(&mut self, zmp_rel: [f64; 2], t: f64) {
-        for i in 0..2 {
-            let z = zmp_rel[i].clamp(-self.half_foot[i], self.half_foot[i]) + self.foot[i];
+        for (i, zr) in zmp_rel.into_iter().enumerate() {
+            let z = zr.clamp(-self.half_foot[i], self.half_foot[i]) + self.foot[i];
             self.last_zmp[i] = z;
             self.com[i] = self.lipm.state_after(self.com[i], z, t);
         }
