@@ -11,7 +11,8 @@
 //!   forward kinematics and `R` the IMU attitude without yaw.
 //! - **CoM velocity**: the finite difference of that position between ticks, low-pass filtered
 //!   (first order, time constant `velocity_time_constant`). Each foot keeps its own previous
-//!   relative position, so the difference stays continuous across a support exchange.
+//!   relative position; on the tick of a support exchange the velocity is held (the new
+//!   support's previous position was taken while it swung).
 //! - **Support foot**: the foot carrying the load, with hysteresis: the support passes to the
 //!   other foot only when it carries more than `switch_fraction` of the total normal force, the
 //!   total exceeds `min_total_force`, and the current support has lasted `min_support_time`.
@@ -263,9 +264,11 @@ impl StateEstimator {
             }
         };
 
-        // Velocity: filtered difference relative to the (new) support foot.
+        // Velocity: filtered difference relative to the support foot. At an exchange the new
+        // support's previous position is from its swing, so the velocity is held for a tick.
         let velocity = match &self.memory {
             None => Vector3::zeros(),
+            Some(m) if touch_down.is_some() => m.velocity,
             Some(m) => {
                 let dt = sensors.time - m.time;
                 let i = support.index();
