@@ -234,3 +234,71 @@ fn report_recovery_and_mismatch_figures() {
         }
     }
 }
+
+/// With the analytic footstep switched off the step is the nominal step in place plus dF:
+/// stepping in place stays in place, a push is not absorbed (the learner must do it), and a
+/// dF equal to the analytic step restores the analytic behaviour.
+#[test]
+fn analytic_footstep_switch() {
+    let off = CaptureStepConfig {
+        analytic_footstep: false,
+        ..CaptureStepConfig::default()
+    };
+    let r = GaitReference::default();
+    let quiet = run(off, 3.0, r, f64::INFINITY, [0.0; 2], 5.0, 0.001);
+    assert!(!quiet.fell);
+    assert!(quiet.touch_downs.iter().all(|t| t.step[0].abs() < 1e-3));
+    let pushed = run(off, 3.0, r, 1.0, [0.5, 0.0], 8.0, DT);
+    assert!(
+        pushed.fell,
+        "without footstep control a 0.5 m/s push must topple the plant"
+    );
+
+    // dF = analytic step: identical decisions.
+    let mut analytic = CaptureStep::new(CaptureStepConfig::default()).unwrap();
+    let mut learner_only = CaptureStep::new(off).unwrap();
+    let s = start_state(&analytic, Side::Right, &r);
+    let com = steplearn::control::capture_step::ComState {
+        time: 0.0,
+        support: Side::Right,
+        axes: [LipmState::new(s[0].pos + 0.03, s[0].vel + 0.4), s[1]],
+    };
+    let a = analytic.update(&com, &r, 0.0).unwrap();
+    let b = learner_only.update(&com, &r, a.step[0]).unwrap();
+    assert!((a.step[0] - b.step[0]).abs() < 1e-12 && (a.footstep[0] - b.footstep[0]).abs() < 1e-12);
+    assert_eq!((a.zmp, a.time_to_step), (b.zmp, b.time_to_step));
+}
+
+/// Walking sideways (lateral command) alternates long and short lateral steps without falling.
+#[test]
+fn lateral_command_walks_sideways() {
+    let r = GaitReference {
+        step_x: 0.1,
+        lateral: 0.5,
+    };
+    let out = run(
+        CaptureStepConfig::default(),
+        3.0,
+        r,
+        f64::INFINITY,
+        [0.0; 2],
+        8.0,
+        DT,
+    );
+    assert!(!out.fell);
+    // Steady state: a long step (2 x 0.16 m) and a short one (2 x 0.12 m) per gait cycle:
+    // 0.08 m of lateral travel per pair of steps.
+    let tail = &out.touch_downs[out.touch_downs.len() - 4..];
+    let per_pair = (tail.iter().map(|t| t.step[1]).sum::<f64>()) / 2.0;
+    let mean_x = tail.iter().map(|t| t.step[0]).sum::<f64>() / 4.0;
+    let spread_x = tail
+        .iter()
+        .map(|t| (t.step[0] - mean_x).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "lateral command 0.5, F_R 0.10: lateral travel per step pair {per_pair:.4} m (nominal 0.08), sagittal step mean {mean_x:.4} m, alternation +-{spread_x:.4} m"
+    );
+    assert!((per_pair - 0.08).abs() < 0.005, "{per_pair}");
+    // Long and short steps last differently, so sagittal steps alternate around F_R.
+    assert!((mean_x - 0.1).abs() < 0.01, "{mean_x}");
+}

@@ -274,6 +274,11 @@ impl CaptureStep {
         self.lipm
     }
 
+    /// Lateral apex offset `alpha` (m), derived from the config.
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+
     /// Switches the analytic sagittal footstep on or off (see [`CaptureStepConfig`]).
     pub fn set_analytic_footstep(&mut self, on: bool) {
         self.config.analytic_footstep = on;
