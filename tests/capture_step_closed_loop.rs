@@ -4,6 +4,7 @@
 //! -- --nocapture`.
 
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 use steplearn::control::Side;
 use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
 use steplearn::control::lipm::{Lipm, LipmState};
@@ -30,9 +31,11 @@ fn start_state(cs: &CaptureStep, support: Side, r: &GaitReference) -> [LipmState
 }
 
 /// Runs `duration` s with the plant's own C; a push `dv` at time `push_at`.
+#[allow(clippy::too_many_arguments)]
 fn run(
     cfg: CaptureStepConfig,
     plant_c: f64,
+    step_gain: f64,
     reference: GaitReference,
     push_at: f64,
     dv: [f64; 2],
@@ -48,6 +51,7 @@ fn run(
         support,
         start_state(&cs, support, &reference),
     );
+    plant.step_gain = [step_gain, 1.0];
     let mut out = Run {
         touch_downs: Vec::new(),
         max_zmp_fraction: 0.0,
@@ -92,6 +96,12 @@ fn steps_to_recover(r: &Run, push_at: f64, f_r: f64, tol: f64) -> Option<usize> 
 
 /// With 1 ms ticks the nominal gait repeats within 1 mm (at 5 ms ticks the support exchange
 /// falls between ticks and the step clock restarts up to one tick late: about 1-2 mm).
+/// Whether the sagittal steps repeat (every step within 2 mm of the mean).
+fn steady(tail: &[&PlantTouchDown]) -> bool {
+    let mean = tail.iter().map(|t| t.step[0]).sum::<f64>() / tail.len() as f64;
+    tail.len() >= 4 && tail.iter().all(|t| (t.step[0] - mean).abs() < 0.002)
+}
+
 #[test]
 fn nominal_gait_is_a_fixed_point() {
     for f_r in [-0.1, 0.0, 0.1, 0.2] {
@@ -102,6 +112,7 @@ fn nominal_gait_is_a_fixed_point() {
         let out = run(
             CaptureStepConfig::default(),
             3.0,
+            1.0,
             r,
             f64::INFINITY,
             [0.0; 2],
@@ -119,7 +130,7 @@ fn nominal_gait_is_a_fixed_point() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 64, rng_seed: RngSeed::Fixed(3), ..ProptestConfig::default() })]
 
     /// From perturbed states the controller returns to the nominal gait within a few steps,
     /// Z never leaves the foot, and the step size converges to F_R.
@@ -131,7 +142,7 @@ proptest! {
         dvy in -0.15f64..0.15,
     ) {
         let r = GaitReference { step_x: f_r, lateral: 0.0 };
-        let out = run(CaptureStepConfig::default(), 3.0, r, push_at, [dvx, dvy], 12.0, DT);
+        let out = run(CaptureStepConfig::default(), 3.0, 1.0, r, push_at, [dvx, dvy], 12.0, DT);
         prop_assert!(!out.fell);
         prop_assert!(out.max_zmp_fraction <= 1.0);
         let n = steps_to_recover(&out, push_at, f_r, 0.01);
@@ -157,7 +168,7 @@ fn report_recovery_and_mismatch_figures() {
                     step_x: f_r,
                     lateral: 0.0,
                 };
-                let out = run(cfg, 3.0, r, push_at, [dvx, 0.0], 12.0, DT);
+                let out = run(cfg, 3.0, 1.0, r, push_at, [dvx, 0.0], 12.0, DT);
                 assert!(!out.fell, "fell: F_R {f_r} dv {dvx} at {push_at}");
                 let n = steps_to_recover(&out, push_at, f_r, 0.01).expect("settles");
                 worst = worst.max(n);
@@ -184,6 +195,7 @@ fn report_recovery_and_mismatch_figures() {
             let out = run(
                 cfg,
                 3.0,
+                1.0,
                 in_place,
                 1.0 + 0.11 * k as f64,
                 [dvx, 0.0],
@@ -210,7 +222,7 @@ fn report_recovery_and_mismatch_figures() {
                 step_x: f_r,
                 lateral: 0.0,
             };
-            let out = run(cfg, plant_c, r, 2.0, [0.5, 0.0], 14.0, DT);
+            let out = run(cfg, plant_c, 1.0, r, 2.0, [0.5, 0.0], 14.0, DT);
             assert!(!out.fell, "mismatch C {plant_c} F_R {f_r} fell");
             let tail: Vec<_> = out.touch_downs.iter().filter(|t| t.time > 8.0).collect();
             let mean_x = tail.iter().map(|t| t.step[0]).sum::<f64>() / tail.len() as f64;
@@ -225,11 +237,42 @@ fn report_recovery_and_mismatch_figures() {
                 mean_x - f_r,
                 out.max_zmp_fraction
             );
-            // Bounded: the steady step stays within 5 cm of the reference, lateral within 3 cm.
+            // Bounded: a steady gait (steps repeat) within 5 cm of the reference, lateral
+            // within 3 cm of nominal; the remaining error is the model's, for the learner.
+            assert!(steady(&tail), "C {plant_c} F_R {f_r}: not steady");
             assert!(max_dev < 0.05, "C {plant_c} F_R {f_r}: {max_dev}");
             assert!(
                 (mean_y - 0.24).abs() < 0.03,
                 "C {plant_c}: lateral {mean_y}"
+            );
+        }
+    }
+
+    // Execution error: the plant lands the foot at gain x the commanded sagittal step.
+    for gain in [0.8, 0.9, 1.1, 1.2] {
+        for f_r in [-0.1, 0.0, 0.2] {
+            let r = GaitReference {
+                step_x: f_r,
+                lateral: 0.0,
+            };
+            let out = run(cfg, 3.0, gain, r, 2.0, [0.5, 0.0], 14.0, DT);
+            assert!(!out.fell, "step gain {gain} F_R {f_r} fell");
+            let tail: Vec<_> = out.touch_downs.iter().filter(|t| t.time > 8.0).collect();
+            let mean_x = tail.iter().map(|t| t.step[0]).sum::<f64>() / tail.len() as f64;
+            let max_dev = tail
+                .iter()
+                .map(|t| (t.step[0] - f_r).abs())
+                .fold(0.0, f64::max);
+            println!(
+                "step gain {gain} (sagittal), F_R {f_r:+.2}: steady step x mean {mean_x:+.4} (error {:+.4}, max |err| {max_dev:.4})",
+                mean_x - f_r
+            );
+            // Bounded: a steady gait whose steps stay clear of the step-length limit; the
+            // error grows with the execution error (reported above, for the learner to fix).
+            assert!(steady(&tail), "gain {gain} F_R {f_r}: not steady");
+            assert!(
+                mean_x.abs() < 0.8 * cfg.max_step_x,
+                "gain {gain} F_R {f_r}: {mean_x}"
             );
         }
     }
@@ -245,10 +288,10 @@ fn analytic_footstep_switch() {
         ..CaptureStepConfig::default()
     };
     let r = GaitReference::default();
-    let quiet = run(off, 3.0, r, f64::INFINITY, [0.0; 2], 5.0, 0.001);
+    let quiet = run(off, 3.0, 1.0, r, f64::INFINITY, [0.0; 2], 5.0, 0.001);
     assert!(!quiet.fell);
     assert!(quiet.touch_downs.iter().all(|t| t.step[0].abs() < 1e-3));
-    let pushed = run(off, 3.0, r, 1.0, [0.5, 0.0], 8.0, DT);
+    let pushed = run(off, 3.0, 1.0, r, 1.0, [0.5, 0.0], 8.0, DT);
     assert!(
         pushed.fell,
         "without footstep control a 0.5 m/s push must topple the plant"
@@ -279,6 +322,7 @@ fn lateral_command_walks_sideways() {
     let out = run(
         CaptureStepConfig::default(),
         3.0,
+        1.0,
         r,
         f64::INFINITY,
         [0.0; 2],

@@ -1,6 +1,7 @@
 //! Property tests of the closed-form LIPM identities.
 
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 use steplearn::control::lipm::{Lipm, LipmState};
 
 fn lipm() -> impl Strategy<Value = Lipm> {
@@ -12,7 +13,7 @@ fn state() -> impl Strategy<Value = LipmState> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(ProptestConfig { cases: 512, rng_seed: RngSeed::Fixed(1), ..ProptestConfig::default() })]
 
     /// Running forward `T` with the ZMP solved for target `s` lands exactly on `s`.
     #[test]

@@ -38,6 +38,9 @@ pub struct LipmPlant {
     pub com: [LipmState; 2],
     /// The ZMP applied during the last advance, in the world (x, y).
     pub last_zmp: [f64; 2],
+    /// Execution error of the step: the new foot lands at `step_gain * S` from the old foot
+    /// instead of the commanded step `S` (per axis; 1 = exact).
+    pub step_gain: [f64; 2],
 }
 
 impl LipmPlant {
@@ -58,6 +61,7 @@ impl LipmPlant {
             foot: [0.0, 0.0],
             com,
             last_zmp: [0.0, 0.0],
+            step_gain: [1.0, 1.0],
         }
     }
 
@@ -99,10 +103,10 @@ impl LipmPlant {
         }
         self.advance(decision.zmp, t_step);
         let old = self.foot;
-        self.foot = [
-            self.com[0].pos + decision.footstep[0],
-            self.com[1].pos + decision.footstep[1],
-        ];
+        self.foot = [0, 1].map(|i| {
+            let step = self.com[i].pos + decision.footstep[i] - old[i];
+            old[i] + self.step_gain[i] * step
+        });
         self.support = self.support.other();
         let touch_down = PlantTouchDown {
             time: self.time,
