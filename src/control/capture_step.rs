@@ -22,6 +22,28 @@
 //! `l = -support.sign()` is the side of the support foot the CoM travels on (+1 on the right
 //! foot, where the CoM is to its left).
 //!
+//! ```
+//! use steplearn::control::Side;
+//! use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
+//! use steplearn::control::lipm::LipmState;
+//! use steplearn::control::lipm_plant::LipmPlant;
+//!
+//! let mut controller = CaptureStep::new(CaptureStepConfig::default())?;
+//! let reference = GaitReference { step_x: 0.1, lateral: 0.0 };
+//! // An ideal pendulum walker standing on its left foot, CoM 12 cm to the right of it.
+//! let start = [LipmState::new(0.0, 0.0), LipmState::new(-0.12, 0.25)];
+//! let mut plant = LipmPlant::new(controller.lipm(), 0.30, 0.11, Side::Left, start);
+//! let mut steps = Vec::new();
+//! while plant.time < 5.0 {
+//!     let decision = controller.update(&plant.com_state(), &reference, 0.0)?;
+//!     if let Some(touch_down) = plant.step(&decision, 0.005) {
+//!         steps.push(touch_down.step[0]);
+//!     }
+//! }
+//! assert!((steps.last().unwrap() - 0.1).abs() < 0.01);
+//! # Ok::<(), steplearn::control::capture_step::CaptureStepError>(())
+//! ```
+//!
 //! ## Deriving the target from a step size
 //! Nominal walking is symmetric: the CoM passes the lateral apex `l alpha` at mid-step and
 //! reaches the support exchange `l xi` after `tau = acosh(xi / alpha) / C`. Sagittally the CoM
