@@ -145,6 +145,9 @@ proptest! {
         let out = run(CaptureStepConfig::default(), 3.0, 1.0, r, push_at, [dvx, dvy], 12.0, DT);
         prop_assert!(!out.fell);
         prop_assert!(out.max_zmp_fraction <= 1.0);
+        // No step is shorter than the minimum step duration (0.3 s), up to one tick.
+        let min_dt = out.touch_downs.windows(2).map(|w| w[1].time - w[0].time).fold(f64::INFINITY, f64::min);
+        prop_assert!(min_dt >= 0.3 - DT - 1e-9, "shortest step {}", min_dt);
         let n = steps_to_recover(&out, push_at, f_r, 0.01);
         prop_assert!(n.is_some_and(|n| n <= 6), "recovery steps {:?}", n);
         let last = out.touch_downs.last().unwrap();
@@ -185,7 +188,8 @@ fn report_recovery_and_mismatch_figures() {
     );
     assert!(worst <= 6);
 
-    // Capturable range in place with the step length limited to 0.5 m: the largest forward
+    // Capturable range in place with the step length limited to 0.5 m and steps lasting at
+    // least 0.3 s: the largest forward
     // velocity push (all of 5 gait phases) that does not make the plant fall.
     let in_place = GaitReference::default();
     let mut largest = 0.0;

@@ -10,7 +10,8 @@
 //!    `2 tau` at every support exchange), clamped to the foot;
 //! 3. step time `T`: when the lateral pendulum reaches `s_y` (with fallbacks while the CoM is
 //!    crossing towards the support leg or stalling), shortened so that the sagittal CoM stays
-//!    within a maximum excursion;
+//!    within a maximum excursion, and never shorter than what remains of the minimum step
+//!    duration (the swing leg's speed limit);
 //! 4. sagittal ZMP `Z_x` that brings `c_x` to `s_x` at `T`, clamped to the foot;
 //! 5. achievable end-of-step state `c'`: the LIPM run forward by `T` with `Z`;
 //! 6. footstep `F` relative to the CoM at the end of the step:
@@ -121,6 +122,9 @@ pub struct CaptureStepConfig {
     pub max_com_x: f64,
     /// Longest step time the controller outputs (s).
     pub max_step_time: f64,
+    /// Shortest duration of a whole step, from the support exchange (s): the swing leg's
+    /// speed limit. The step time is never shorter than what remains of it.
+    pub min_step_duration: f64,
     /// Below this nominal remaining time the lateral ZMP is held, not recomputed (s).
     pub zmp_hold_time: f64,
     /// Bound on the reference step size `|F_R|` (m).
@@ -143,6 +147,7 @@ impl Default for CaptureStepConfig {
             zmp_y: 0.02,
             max_com_x: 0.30,
             max_step_time: 1.0,
+            min_step_duration: 0.3,
             zmp_hold_time: 0.05,
             max_reference_step: 0.30,
             max_step_x: 0.50,
@@ -173,6 +178,18 @@ impl CaptureStepConfig {
         pos("max_step_time", self.max_step_time)?;
         pos("max_reference_step", self.max_reference_step)?;
         pos("max_step_x", self.max_step_x)?;
+        if !(self.min_step_duration.is_finite()
+            && self.min_step_duration >= 0.0
+            && self.min_step_duration <= self.nominal_step_time)
+        {
+            return Err(invalid(
+                "min_step_duration",
+                format!(
+                    "must be in [0, nominal_step_time], got {}",
+                    self.min_step_duration
+                ),
+            ));
+        }
         if !(self.zmp_hold_time.is_finite() && self.zmp_hold_time >= 0.0) {
             return Err(invalid(
                 "zmp_hold_time",
@@ -259,6 +276,7 @@ pub struct StepDecision {
 struct Memory {
     support: Side,
     time: f64,
+    support_since: f64,
     nominal_remaining: f64,
     time_to_step: f64,
     zmp_y: f64,
@@ -395,6 +413,7 @@ impl CaptureStep {
                 let mem = Memory {
                     support,
                     time: com.time,
+                    support_since: com.time,
                     nominal_remaining: 2.0 * tau,
                     time_to_step: 2.0 * tau,
                     zmp_y: 0.0,
@@ -444,7 +463,8 @@ impl CaptureStep {
         if cx.pos.abs() > cfg.max_com_x {
             t_step = 0.0;
         }
-        t_step = t_step.clamp(0.0, cfg.max_step_time);
+        let min_left = cfg.min_step_duration - (com.time - mem.support_since);
+        t_step = t_step.max(min_left).clamp(0.0, cfg.max_step_time);
         mem.time_to_step = t_step;
 
         // 3. Sagittal ZMP towards the target at the step time.
