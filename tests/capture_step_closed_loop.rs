@@ -219,6 +219,34 @@ fn report_recovery_and_mismatch_figures() {
     );
     assert!(largest >= 0.8);
 
+    // Lateral pushes during the first right support (0.55 s .. 1.1 s): to the left (away from
+    // the support leg) and to the right (towards it: the CoM crosses over the support foot, the
+    // hard case, since the framework has no cross-over steps and waits).
+    for dir in [1.0, -1.0] {
+        let mut largest = 0.0;
+        for i in 1..=30 {
+            let dvy = 0.05 * i as f64;
+            let all_ok = (0..5).all(|k| {
+                let at = 0.6 + 0.09 * k as f64;
+                let out = run(cfg, 3.0, 1.0, in_place, at, [0.0, dir * dvy], 10.0, DT);
+                !out.fell && steps_to_recover(&out, at, 0.0, 0.01).is_some()
+            });
+            if !all_ok {
+                break;
+            }
+            largest = dvy;
+        }
+        println!(
+            "in place, lateral push {} during left support: largest recovered at all 5 phases dv = {largest:.2} m/s",
+            if dir > 0.0 {
+                "to the left (inward)"
+            } else {
+                "to the right (outward)"
+            }
+        );
+        assert!(largest >= 0.15);
+    }
+
     // Model mismatch: the plant's C differs from the controller's 3.0.
     for plant_c in [2.6, 2.8, 3.2, 3.4] {
         for f_r in [-0.1, 0.0, 0.2] {
