@@ -237,11 +237,11 @@ fn report_recovery_and_mismatch_figures() {
             largest = dvy;
         }
         println!(
-            "in place, lateral push {} during left support: largest recovered at all 5 phases dv = {largest:.2} m/s",
+            "in place, lateral push {} during right support: largest recovered at all 5 phases dv = {largest:.2} m/s",
             if dir > 0.0 {
-                "to the left (inward)"
+                "to the left (outward)"
             } else {
-                "to the right (outward)"
+                "to the right (inward, crossing)"
             }
         );
         assert!(largest >= 0.15);
