@@ -3,7 +3,11 @@
 //! Data flows one way: [`Sensors`] -> state estimation -> Capture Step balance control ->
 //! footstep learner -> step motion generator -> [`JointTargets`].
 
+pub mod capture_step;
+pub mod estimator;
 mod io;
 pub mod kinematics;
+pub mod lipm;
+pub mod lipm_plant;
 
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
