@@ -16,6 +16,7 @@
 
 pub mod approx;
 pub mod control;
+pub mod experiments;
 pub mod report;
 pub mod rules;
 pub mod sim;
