@@ -4,6 +4,7 @@
 mod atomic;
 mod error;
 pub mod fall_rate;
+pub mod figures;
 pub mod summary;
 
 pub use atomic::write_atomic;
