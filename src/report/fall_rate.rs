@@ -22,6 +22,14 @@ impl LogisticFit {
         1.0 / (1.0 + (-(self.intercept + self.slope * impulse)).exp())
     }
 
+    /// `n` evenly spaced impulses over [lo, hi] and the fitted probabilities there (for
+    /// [`crate::report::figures::FallCurve`]).
+    pub fn curve(&self, lo: f64, hi: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let x = crate::control::learner::linspace(lo, hi, n);
+        let p = x.iter().map(|&v| self.probability(v)).collect();
+        (x, p)
+    }
+
     /// The impulse where the probability is 1/2: -a / b.
     pub fn impulse_at_half(&self) -> f64 {
         -self.intercept / self.slope
@@ -288,6 +296,9 @@ mod tests {
         let fit = est.fit.unwrap();
         assert!((fit.slope - 1.0 / 1.5).abs() < 0.08, "{fit:?}");
         assert!((fit.probability(est.impulse_ns) - 0.5).abs() < 1e-9);
+        let (x, p) = fit.curve(0.0, 20.0, 5);
+        assert_eq!(x, vec![0.0, 5.0, 10.0, 15.0, 20.0]);
+        assert!(p.windows(2).all(|w| w[0] < w[1]) && p[0] < 0.01 && p[4] > 0.99);
         // same data, same answer
         assert_eq!(impulse_at_50pct_fall(&samples).unwrap(), est);
     }

@@ -304,20 +304,13 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
         Some((label, s)) => {
             let (x2, y2) = series_bounds(std::slice::from_ref(&s))?;
             xr = union(xr, x2);
-            Some((label, s, y2))
+            Some((label, s, padded(y2)))
         }
         None => None,
     };
     let (xr, yr) = (padded(xr), padded(yr));
-    render(path, (900, 500), |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(plot.title, ("sans-serif", 22))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(65)
-            .right_y_label_area_size(if secondary.is_some() { 65 } else { 0 })
-            .build_cartesian_2d(xr.clone(), yr.clone())
-            .map_err(plot_err)?;
+    // Draws the mesh, event lines and left-axis series on the primary coordinates.
+    let draw_primary = |chart: &mut Chart| -> Result<(), ReportError> {
         chart
             .configure_mesh()
             .x_desc(plot.x_label)
@@ -338,11 +331,26 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
                     PathElement::new(vec![(x + 10, y - 6), (x + 10, y + 6)], event_style)
                 });
         }
-        draw_series(&mut chart, plot.series, 0)?;
+        draw_series(chart, plot.series, 0)
+    };
+    render(path, (900, 500), |root| {
+        let chart = ChartBuilder::on(root)
+            .caption(plot.title, ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .right_y_label_area_size(if secondary.is_some() { 65 } else { 0 })
+            .build_cartesian_2d(xr.clone(), yr.clone())
+            .map_err(plot_err)?;
         let Some((label, s, y2)) = secondary else {
+            let mut chart = chart;
+            draw_primary(&mut chart)?;
             return draw_legend(&mut chart);
         };
-        let mut chart = chart.set_secondary_coord(xr, padded(y2));
+        // The secondary coordinates must be attached before the mesh is drawn, or the
+        // primary labels are drawn on the right axis too.
+        let mut chart = chart.set_secondary_coord(xr, y2);
+        draw_primary(&mut chart)?;
         chart
             .configure_secondary_axes()
             .y_desc(label)
@@ -578,6 +586,9 @@ pub fn heat_map_grid(path: &Path, grid: &HeatMapGrid) -> Result<(), ReportError>
             .disable_mesh()
             .disable_x_axis()
             .y_labels(7)
+            .y_label_formatter(&|v| format!("{:.3}", v + 0.0))
+            .y_label_style(("sans-serif", 12))
+            .axis_desc_style(("sans-serif", 14))
             .y_desc(grid.value_label)
             .draw()
             .map_err(plot_err)?;
