@@ -125,11 +125,7 @@ impl LearningRule for Fixed {
 }
 
 fn input(theta_e: f64, theta_e_dot: f64, f_r: f64) -> LearnerInput {
-    LearnerInput {
-        theta_e,
-        theta_e_dot,
-        f_r,
-    }
+    LearnerInput::new(theta_e, theta_e_dot, f_r)
 }
 
 fn table() -> BinTable {
@@ -535,4 +531,31 @@ fn learning_reduces_trunk_and_step_errors_on_a_toy_walker() {
     // measured: |theta_E| 0.038 -> 0.0059 (model 0.188), |F_E| 0.043 -> 0.0017 (model 0.055)
     assert!(th_last < 0.5 * th_first && fe_last < 0.5 * fe_first);
     assert!(th_last < 0.25 * th_model && fe_last < 0.25 * fe_model);
+}
+
+proptest::proptest! {
+    /// On a fresh table (first update of a bin moves it all the way), one touch-down leaves
+    /// exactly F_old + eta G = eta G at every recorded input, nothing elsewhere, whatever the
+    /// inputs, their number (subsampling included), eta and G.
+    #[test]
+    fn eq6_holds_for_any_step(
+        points in proptest::collection::vec((-0.5..0.5f64, -2.0..2.0f64, -0.1..0.2f64), 1..300),
+        eta in 0.01..3.0f64,
+        g in -1.0..1.0f64,
+    ) {
+        let cfg = LearnerConfig { eta, max_samples_per_step: 32, ..Default::default() };
+        let mut learner = FootstepLearner::new(table(), Fixed(g, AtomicUsize::new(0)), cfg).unwrap();
+        for &(a, b, c) in &points {
+            learner.query(input(a, b, c)).unwrap();
+        }
+        let kept: Vec<LearnerInput> = learner.recorded_inputs().collect();
+        proptest::prop_assert!(kept.len() <= 32 && kept.len() >= points.len().min(16));
+        let report = learner.touch_down(&StepOutcome::default()).unwrap();
+        proptest::prop_assert_eq!(report.samples, kept.len());
+        for x in &kept {
+            proptest::prop_assert_eq!(learner.predict(*x).unwrap(), eta * g);
+        }
+        let trained = learner.approximator().values.iter().filter(|v| **v != 0.0).count();
+        proptest::prop_assert!(trained <= kept.len());
+    }
 }

@@ -34,6 +34,15 @@ pub struct LearnerInput {
 }
 
 impl LearnerInput {
+    /// The input at (theta_E, theta_E_dot, F_R).
+    pub fn new(theta_e: f64, theta_e_dot: f64, f_r: f64) -> Self {
+        LearnerInput {
+            theta_e,
+            theta_e_dot,
+            f_r,
+        }
+    }
+
     /// The input as the approximator sees it: `[theta_E, theta_E_dot, F_R]`.
     pub fn to_array(self) -> [f64; LEARNER_INPUTS] {
         [self.theta_e, self.theta_e_dot, self.f_r]
