@@ -1,7 +1,9 @@
-//! The paper's experiments (section V) and the machinery that runs many of them: the sweep
-//! over approximator x rule x experiment x seed, sharding for clusters, and merging results.
+//! The paper's experiments (section V), generic over approximator and learning rule, and the
+//! harness that runs and sweeps them.
 
+pub mod aligned;
 mod kind;
+pub mod schedule;
 pub mod sweep;
 
 pub use kind::ExperimentKind;
