@@ -12,6 +12,13 @@
 //! ("not initialised", experiment D): that switch belongs to the controller, which either adds
 //! dF to the Capture Step footstep or uses dF as the whole step. The learner trains dF the same
 //! way in both cases.
+//!
+//! Stability note: near the reference, eq. (5) changes by p_theta p_F = 4.5 per metre of step
+//! error, and eta = 1 adds G (in metres) to dF. If the approximator moved a fraction r of the
+//! way to its targets per step, the step error would evolve as e <- (1 - 4.5 r) e, which
+//! oscillates for r > 0.22 and diverges for r > 0.44. LWPR's receptive fields average over
+//! their history, so r shrinks quickly; an approximator with a large fixed learning rate needs
+//! a smaller eta (see the toy-walker test in `tests/learner.rs`).
 
 use crate::approx::{ApproxError, FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
