@@ -16,7 +16,8 @@
 //! Stability note: near the reference, eq. (5) changes by p_theta p_F = 4.5 per metre of step
 //! error, and eta = 1 adds G (in metres) to dF. If the approximator moved a fraction r of the
 //! way to its targets per step, the step error would evolve as e <- (1 - 4.5 r) e, which
-//! oscillates for r > 0.22 and diverges for r > 0.44. LWPR's receptive fields average over
+//! overshoots for r > 0.22 and no longer settles for r > 0.44 (a limit cycle bounded by the
+//! saturation). LWPR's receptive fields average over
 //! their history, so r shrinks quickly; an approximator with a large fixed learning rate needs
 //! a smaller eta (see the toy-walker test in `tests/learner.rs`).
 
