@@ -17,9 +17,9 @@
 //! error, and eta = 1 adds G (in metres) to dF. If the approximator moved a fraction r of the
 //! way to its targets per step, the step error would evolve as e <- (1 - 4.5 r) e, which
 //! overshoots for r > 0.22 and no longer settles for r > 0.44 (a limit cycle bounded by the
-//! saturation). LWPR's receptive fields average over
-//! their history, so r shrinks quickly; an approximator with a large fixed learning rate needs
-//! a smaller eta (see the toy-walker test in `tests/learner.rs`).
+//! saturation). LWPR's receptive fields average over their history, so r shrinks quickly; an
+//! approximator with a large fixed learning rate needs a smaller eta (see the toy-walker test
+//! in `tests/learner.rs`).
 
 use crate::approx::{ApproxError, FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
