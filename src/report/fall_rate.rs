@@ -348,6 +348,25 @@ mod tests {
         assert!(impulse_at_50pct_fall(&[(f64::NAN, true)]).is_err());
     }
 
+    proptest::proptest! {
+        /// Shifting every impulse by c shifts the 50% estimate by c, with the same method.
+        #[test]
+        fn estimate_is_translation_equivariant(
+            pushes in proptest::collection::vec((0.0..20.0f64, proptest::bool::ANY), 1..60),
+            c in -5.0..5.0f64,
+        ) {
+            let a = impulse_at_50pct_fall(&pushes).unwrap();
+            let shifted: Vec<PushResult> = pushes.iter().map(|&(x, f)| (x + c, f)).collect();
+            let b = impulse_at_50pct_fall(&shifted).unwrap();
+            proptest::prop_assert_eq!(a.method, b.method);
+            proptest::prop_assert!((b.impulse_ns - a.impulse_ns - c).abs() < 1e-6,
+                "{a:?} vs {b:?}");
+            let lo = pushes.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+            let hi = pushes.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+            proptest::prop_assert!(a.impulse_ns >= lo && a.impulse_ns <= hi);
+        }
+    }
+
     #[test]
     fn bins_count_pushes_and_falls() {
         let samples = [
