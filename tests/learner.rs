@@ -559,3 +559,20 @@ proptest::proptest! {
         proptest::prop_assert!(trained <= kept.len());
     }
 }
+
+#[test]
+fn works_with_boxed_approximator_and_rule_chosen_at_run_time() {
+    use steplearn::rules::{RuleConfig, RuleKind};
+    let approx: Box<dyn FunctionApproximator> = Box::new(table());
+    let rule = RuleConfig::from(RuleKind::BalanceOnly).build().unwrap();
+    let mut learner = FootstepLearner::new(approx, rule, LearnerConfig::default()).unwrap();
+    learner.query(input(0.1, 0.0, 0.0)).unwrap();
+    let report = learner
+        .touch_down(&StepOutcome {
+            theta_e: 0.1,
+            ..Default::default()
+        })
+        .unwrap();
+    assert_eq!(report.gradient, 0.1);
+    assert!((learner.predict(input(0.1, 0.0, 0.0)).unwrap() - 0.1).abs() < 1e-15);
+}
