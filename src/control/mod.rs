@@ -7,6 +7,7 @@ pub mod capture_step;
 pub mod estimator;
 mod io;
 pub mod kinematics;
+pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
 

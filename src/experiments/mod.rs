@@ -2,4 +2,8 @@
 //! harness that runs and sweeps them.
 
 pub mod aligned;
+mod kind;
 pub mod schedule;
+pub mod sweep;
+
+pub use kind::ExperimentKind;

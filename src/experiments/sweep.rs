@@ -1,0 +1,771 @@
+//! The ablation sweep: every approximator x rule x experiment x seed as independent runs with
+//! stable ids, run in parallel (rayon), sharded for clusters, resumable, and merged into a table.
+//!
+//! Layout of a sweep directory: one sub-directory per run, named by [`RunSpec::id`], holding
+//! whatever the runner writes (CSV, SVG) plus `run.json` ([`RunRecord`]: the spec and the wall
+//! time) and, written last and atomically, `summary.json`. A run whose `summary.json` exists
+//! and parses is finished: a later sweep over the same directory skips it, so an interrupted
+//! sweep resumes where it stopped, and shards of one grid can share a directory.
+//!
+//! Results do not depend on the number of threads: each run sees only its spec (the seed
+//! included) and writes only its own directory.
+//!
+//! On a cluster, run shard `I` of `N` as one task (`--shard I/N`, 0-based, e.g. a Slurm array
+//! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call [`merge`] when all are done.
+
+use crate::experiments::ExperimentKind;
+use crate::report::summary::{ExperimentResult, Summary, write_csv};
+use crate::report::{ReportError, write_atomic};
+use crate::rules::RuleKind;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use thiserror::Error;
+
+/// Name of the result file of a run (its presence marks the run as finished).
+pub const SUMMARY_FILE: &str = "summary.json";
+/// Name of the bookkeeping file of a run.
+pub const RECORD_FILE: &str = "run.json";
+/// File names written by [`Merged::write`].
+pub const TABLE_FILES: [&str; 2] = ["ablation.md", "ablation.csv"];
+
+/// What can go wrong when setting up, running or merging a sweep (failures of single runs are
+/// reported per run in [`RunStatus::Failed`], not here).
+#[derive(Debug, Error)]
+pub enum SweepError {
+    /// A `--shard` argument is malformed or out of range.
+    #[error("invalid shard {given:?}: {reason} (expected I/N with 0 <= I < N, e.g. 3/10)")]
+    InvalidShard {
+        /// The argument.
+        given: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The grid is empty or holds a bad name.
+    #[error("invalid sweep grid: {0}")]
+    InvalidGrid(String),
+    /// The thread pool could not be built.
+    #[error("thread pool: {0}")]
+    ThreadPool(String),
+    /// Creating or reading the sweep directory failed, or writing the table failed.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+}
+
+/// One run: which experiment, approximator, rule and seed.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSpec {
+    /// The experiment.
+    pub experiment: ExperimentKind,
+    /// Approximator name (lowercase letters, digits and `-`).
+    pub approx: String,
+    /// The learning rule.
+    pub rule: RuleKind,
+    /// The seed.
+    pub seed: u64,
+}
+
+impl RunSpec {
+    /// The stable id, also the run's directory name: `experiment__approx__rule__sSEED`, e.g.
+    /// `stability__lwpr__pendulum-cart__s3`.
+    pub fn id(&self) -> String {
+        format!(
+            "{}__{}__{}__s{}",
+            self.experiment, self.approx, self.rule, self.seed
+        )
+    }
+
+    /// Whether `summary` is the result of this run.
+    fn matches(&self, summary: &Summary) -> bool {
+        summary.experiment() == self.experiment
+            && summary.approx == self.approx
+            && summary.rule == self.rule
+            && summary.seed == self.seed
+    }
+}
+
+/// Checks an approximator name for use in ids and paths.
+fn check_approx_name(name: &str) -> Result<(), SweepError> {
+    let ok = !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
+    if ok {
+        Ok(())
+    } else {
+        Err(SweepError::InvalidGrid(format!(
+            "approximator name {name:?} must be non-empty lowercase letters, digits or '-'"
+        )))
+    }
+}
+
+/// The grid of runs: the product of its four lists.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepGrid {
+    /// Experiments.
+    pub experiments: Vec<ExperimentKind>,
+    /// Approximator names.
+    pub approx: Vec<String>,
+    /// Rules.
+    pub rules: Vec<RuleKind>,
+    /// Seeds.
+    pub seeds: Vec<u64>,
+}
+
+impl SweepGrid {
+    /// The full ablation: all four experiments, every rule, the given approximators, seeds
+    /// `0..n_seeds`.
+    pub fn full(approx: &[&str], n_seeds: u64) -> Self {
+        SweepGrid {
+            experiments: ExperimentKind::ALL.to_vec(),
+            approx: approx.iter().map(|s| s.to_string()).collect(),
+            rules: RuleKind::ALL.to_vec(),
+            seeds: (0..n_seeds).collect(),
+        }
+    }
+
+    /// Every run, in a fixed order (experiment, approximator, rule, seed; each list in the
+    /// order given). Errors on an empty list, a bad approximator name or duplicates.
+    pub fn runs(&self) -> Result<Vec<RunSpec>, SweepError> {
+        for (what, len) in [
+            ("experiments", self.experiments.len()),
+            ("approx", self.approx.len()),
+            ("rules", self.rules.len()),
+            ("seeds", self.seeds.len()),
+        ] {
+            if len == 0 {
+                return Err(SweepError::InvalidGrid(format!("{what} is empty")));
+            }
+        }
+        for a in &self.approx {
+            check_approx_name(a)?;
+        }
+        let mut runs = Vec::new();
+        for &experiment in &self.experiments {
+            for approx in &self.approx {
+                for &rule in &self.rules {
+                    for &seed in &self.seeds {
+                        runs.push(RunSpec {
+                            experiment,
+                            approx: approx.clone(),
+                            rule,
+                            seed,
+                        });
+                    }
+                }
+            }
+        }
+        let mut ids: Vec<String> = runs.iter().map(RunSpec::id).collect();
+        ids.sort();
+        if let Some(w) = ids.windows(2).find(|w| w[0] == w[1]) {
+            return Err(SweepError::InvalidGrid(format!("duplicate run {}", w[0])));
+        }
+        Ok(runs)
+    }
+}
+
+/// Shard `index` of `count` (0-based): the runs at positions `index, index + count, ...` of
+/// the grid's order. Parsed from `"I/N"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, 0-based.
+    pub index: usize,
+    /// Number of shards (>= 1).
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole grid as one shard.
+    pub const ALL: Shard = Shard { index: 0, count: 1 };
+
+    /// Checks `index < count` and `count >= 1`.
+    pub fn new(index: usize, count: usize) -> Result<Self, SweepError> {
+        let given = format!("{index}/{count}");
+        if count == 0 {
+            return Err(SweepError::InvalidShard {
+                given,
+                reason: "the number of shards must be at least 1".into(),
+            });
+        }
+        if index >= count {
+            return Err(SweepError::InvalidShard {
+                given,
+                reason: format!("shard index must be below {count} (shards are 0-based)"),
+            });
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// The runs of this shard, in grid order.
+    pub fn select(&self, runs: &[RunSpec]) -> Vec<RunSpec> {
+        runs.iter()
+            .enumerate()
+            .filter(|(i, _)| i % self.count == self.index)
+            .map(|(_, r)| r.clone())
+            .collect()
+    }
+}
+
+impl std::str::FromStr for Shard {
+    type Err = SweepError;
+    fn from_str(s: &str) -> Result<Self, SweepError> {
+        let bad = |reason: &str| SweepError::InvalidShard {
+            given: s.to_string(),
+            reason: reason.to_string(),
+        };
+        let (i, n) = s.split_once('/').ok_or_else(|| bad("missing '/'"))?;
+        let parse = |part: &str| {
+            part.trim()
+                .parse::<usize>()
+                .map_err(|_| bad(&format!("{part:?} is not a non-negative integer")))
+        };
+        let (index, count) = (parse(i)?, parse(n)?);
+        Shard::new(index, count).map_err(|e| match e {
+            SweepError::InvalidShard { reason, .. } => bad(&reason),
+            other => other,
+        })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// The error a runner reports for one run.
+pub type RunError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Executes one run. It may write any files into `dir` (created for it, empty or holding a
+/// previous unfinished attempt) and returns the run's [`Summary`]; the sweep writes
+/// `summary.json` itself, last. It must depend only on `spec` (seed included), never on
+/// timing or thread count. Implemented for closures `Fn(&RunSpec, &Path) -> Result<Summary,
+/// RunError>`.
+pub trait Runner: Sync {
+    /// Runs `spec`, writing extra outputs into `dir`.
+    fn run(&self, spec: &RunSpec, dir: &Path) -> Result<Summary, RunError>;
+}
+
+impl<F> Runner for F
+where
+    F: Fn(&RunSpec, &Path) -> Result<Summary, RunError> + Sync,
+{
+    fn run(&self, spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
+        self(spec, dir)
+    }
+}
+
+/// `run.json`: bookkeeping of a finished run (kept out of `summary.json`, whose fields are
+/// fixed by the command-line contract).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunRecord {
+    /// [`RunSpec::id`].
+    pub id: String,
+    /// The spec.
+    pub spec: RunSpec,
+    /// Wall-clock time of the runner (s).
+    pub wall_time_s: f64,
+}
+
+/// How one run of a sweep ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RunStatus {
+    /// Ran and wrote its summary.
+    Done {
+        /// Wall-clock time (s).
+        wall_time_s: f64,
+    },
+    /// A valid `summary.json` was already there.
+    Skipped,
+    /// The runner failed or panicked, its summary did not match the spec, or an existing
+    /// `summary.json` is malformed (left untouched); no summary was written.
+    Failed(String),
+}
+
+/// One run's spec and status.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunOutcome {
+    /// The run.
+    pub spec: RunSpec,
+    /// How it ended.
+    pub status: RunStatus,
+}
+
+/// Settings of [`run_sweep`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SweepOptions {
+    /// Worker threads; `None` uses rayon's global pool.
+    pub threads: Option<usize>,
+}
+
+fn create_dir(path: &Path) -> Result<(), ReportError> {
+    std::fs::create_dir_all(path).map_err(|e| ReportError::io(path, e))
+}
+
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "non-string panic payload".into())
+}
+
+fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
+    let dir = out.join(spec.id());
+    let summary_path = dir.join(SUMMARY_FILE);
+    if summary_path.exists() {
+        return match Summary::read(&summary_path) {
+            Ok(_) => RunStatus::Skipped,
+            Err(e) => RunStatus::Failed(format!(
+                "existing result is unreadable and was left untouched (delete it to re-run): {e}"
+            )),
+        };
+    }
+    if let Err(e) = create_dir(&dir) {
+        return RunStatus::Failed(e.to_string());
+    }
+    let start = Instant::now();
+    let result = catch_unwind(AssertUnwindSafe(|| runner.run(spec, &dir)));
+    let wall_time_s = start.elapsed().as_secs_f64();
+    let summary = match result {
+        Ok(Ok(summary)) => summary,
+        Ok(Err(e)) => return RunStatus::Failed(format!("run failed: {e}")),
+        Err(payload) => {
+            return RunStatus::Failed(format!("run panicked: {}", panic_message(&*payload)));
+        }
+    };
+    if !spec.matches(&summary) {
+        return RunStatus::Failed(format!(
+            "runner returned the summary of another run ({} / {} / {} / seed {})",
+            summary.experiment(),
+            summary.approx,
+            summary.rule,
+            summary.seed
+        ));
+    }
+    let record = RunRecord {
+        id: spec.id(),
+        spec: spec.clone(),
+        wall_time_s,
+    };
+    let written = serde_json::to_string_pretty(&record)
+        .map_err(|e| ReportError::invalid(e.to_string()))
+        .and_then(|json| write_atomic(&dir.join(RECORD_FILE), json.as_bytes()))
+        .and_then(|()| summary.write(&summary_path));
+    match written {
+        Ok(()) => RunStatus::Done { wall_time_s },
+        Err(e) => RunStatus::Failed(format!("writing the result failed: {e}")),
+    }
+}
+
+/// Runs `runs` in parallel into `out` (created if needed), skipping finished runs. Returns one
+/// outcome per run, in the order of `runs`; `on_finished` is called (from worker threads) as
+/// each run ends, e.g. to advance a progress bar. A failing run does not stop the others.
+pub fn run_sweep(
+    runs: &[RunSpec],
+    out: &Path,
+    runner: &dyn Runner,
+    options: &SweepOptions,
+    on_finished: &(dyn Fn(&RunOutcome) + Sync),
+) -> Result<Vec<RunOutcome>, SweepError> {
+    create_dir(out)?;
+    let work = || -> Vec<RunOutcome> {
+        runs.par_iter()
+            .map(|spec| {
+                let outcome = RunOutcome {
+                    spec: spec.clone(),
+                    status: run_one(spec, out, runner),
+                };
+                on_finished(&outcome);
+                outcome
+            })
+            .collect()
+    };
+    match options.threads {
+        None => Ok(work()),
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| SweepError::ThreadPool(e.to_string()))?;
+            Ok(pool.install(work))
+        }
+    }
+}
+
+/// A file [`merge`] could not use.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MergeProblem {
+    /// The file.
+    pub path: PathBuf,
+    /// Why.
+    pub message: String,
+}
+
+/// Mean, standard deviation (n - 1) and count of some values.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Stat {
+    /// Mean (NaN when empty).
+    pub mean: f64,
+    /// Sample standard deviation (0 for one value, NaN when empty).
+    pub std: f64,
+    /// Number of values.
+    pub n: usize,
+}
+
+impl Stat {
+    /// Statistics of `values`.
+    pub fn of(values: &[f64]) -> Stat {
+        let n = values.len();
+        if n == 0 {
+            return Stat {
+                mean: f64::NAN,
+                std: f64::NAN,
+                n,
+            };
+        }
+        let mean = values.iter().sum::<f64>() / n as f64;
+        let std = if n > 1 {
+            (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
+        } else {
+            0.0
+        };
+        Stat { mean, std, n }
+    }
+
+    fn markdown(&self) -> String {
+        match self.n {
+            0 => "-".into(),
+            1 => format!("{:.2}", self.mean),
+            _ => format!("{:.2} ± {:.2}", self.mean, self.std),
+        }
+    }
+
+    fn csv(v: f64) -> String {
+        if v.is_finite() {
+            format!("{v}")
+        } else {
+            String::new()
+        }
+    }
+}
+
+/// One row of the ablation table: an approximator x rule pair over its seeds.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct AblationRow {
+    /// Approximator.
+    pub approx: String,
+    /// Rule name.
+    pub rule: String,
+    /// Experiment C: impulse at 50% falls (Ns) over seeds, open-loop.
+    pub i50_open_loop: Stat,
+    /// Same, Capture Step model.
+    pub i50_model: Stat,
+    /// Same, learned.
+    pub i50_learned: Stat,
+    /// Experiment C, learned controller: falls and pushes summed over seeds.
+    pub learned_falls_pushes: (u64, u64),
+    /// Experiment D: number of seeds.
+    pub robustness_seeds: usize,
+    /// Experiment D: seeds whose first absorbed push was among the first three.
+    pub absorbed_within_3: usize,
+    /// Experiment D: pushes until the first absorbed one, over the seeds where one was.
+    pub pushes_until_absorbed: Stat,
+    /// Experiment D: falls per run.
+    pub robustness_falls: Stat,
+    /// Wall time per run (s) over every finished run of this pair with a `run.json`.
+    pub run_time_s: Stat,
+}
+
+/// The merged results of a sweep directory.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Merged {
+    /// One row per approximator x rule, sorted by approximator then rule.
+    pub rows: Vec<AblationRow>,
+    /// Summaries read.
+    pub runs_read: usize,
+    /// Run directories without a `summary.json` (unfinished runs).
+    pub unfinished: Vec<PathBuf>,
+    /// Files that could not be read; they are left out of the table.
+    pub problems: Vec<MergeProblem>,
+}
+
+const CSV_HEADER: [&str; 20] = [
+    "approx",
+    "rule",
+    "stability_seeds",
+    "i50_open_loop_ns_mean",
+    "i50_open_loop_ns_std",
+    "i50_model_ns_mean",
+    "i50_model_ns_std",
+    "i50_learned_ns_mean",
+    "i50_learned_ns_std",
+    "learned_falls",
+    "learned_pushes",
+    "robustness_seeds",
+    "absorbed_within_3_pushes",
+    "pushes_until_absorbed_mean",
+    "pushes_until_absorbed_std",
+    "robustness_falls_mean",
+    "robustness_falls_std",
+    "runs_timed",
+    "run_time_s_mean",
+    "run_time_s_std",
+];
+
+impl Merged {
+    /// The ablation table in Markdown (mean ± std over seeds).
+    pub fn to_markdown(&self) -> String {
+        let mut s = String::from(
+            "| approx | rule | C: I50 open-loop (Ns) | C: I50 model (Ns) | C: I50 learned (Ns) \
+             | C: learned falls / pushes | D: absorbed within 3 pushes | D: pushes to first \
+             absorbed | D: falls | run time (s) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        );
+        for r in &self.rows {
+            let (falls, pushes) = r.learned_falls_pushes;
+            let fp = if r.i50_learned.n > 0 {
+                format!("{falls} / {pushes}")
+            } else {
+                "-".into()
+            };
+            let absorbed = if r.robustness_seeds > 0 {
+                format!("{} / {}", r.absorbed_within_3, r.robustness_seeds)
+            } else {
+                "-".into()
+            };
+            s.push_str(&format!(
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                r.approx,
+                r.rule,
+                r.i50_open_loop.markdown(),
+                r.i50_model.markdown(),
+                r.i50_learned.markdown(),
+                fp,
+                absorbed,
+                r.pushes_until_absorbed.markdown(),
+                r.robustness_falls.markdown(),
+                r.run_time_s.markdown(),
+            ));
+        }
+        s
+    }
+
+    /// The ablation table as CSV cells (header in [`Merged::write`]); empty cells for missing.
+    pub fn csv_rows(&self) -> Vec<Vec<String>> {
+        self.rows
+            .iter()
+            .map(|r| {
+                let mut row = vec![
+                    r.approx.clone(),
+                    r.rule.clone(),
+                    r.i50_learned.n.to_string(),
+                ];
+                for st in [&r.i50_open_loop, &r.i50_model, &r.i50_learned] {
+                    row.push(Stat::csv(st.mean));
+                    row.push(Stat::csv(st.std));
+                }
+                row.push(r.learned_falls_pushes.0.to_string());
+                row.push(r.learned_falls_pushes.1.to_string());
+                row.push(r.robustness_seeds.to_string());
+                row.push(r.absorbed_within_3.to_string());
+                for st in [&r.pushes_until_absorbed, &r.robustness_falls] {
+                    row.push(Stat::csv(st.mean));
+                    row.push(Stat::csv(st.std));
+                }
+                row.push(r.run_time_s.n.to_string());
+                row.push(Stat::csv(r.run_time_s.mean));
+                row.push(Stat::csv(r.run_time_s.std));
+                row
+            })
+            .collect()
+    }
+
+    /// Writes `ablation.md` and `ablation.csv` into `dir` (atomically).
+    pub fn write(&self, dir: &Path) -> Result<(), SweepError> {
+        write_atomic(&dir.join(TABLE_FILES[0]), self.to_markdown().as_bytes())?;
+        write_csv(&dir.join(TABLE_FILES[1]), &CSV_HEADER, &self.csv_rows())?;
+        Ok(())
+    }
+}
+
+#[derive(Default)]
+struct Collected {
+    i50: [Vec<f64>; 3],
+    learned_falls_pushes: (u64, u64),
+    robustness_seeds: usize,
+    absorbed_within_3: usize,
+    pushes_until_absorbed: Vec<f64>,
+    robustness_falls: Vec<f64>,
+    run_time_s: Vec<f64>,
+}
+
+/// Reads every run's `summary.json` (and `run.json`) under `dir` and builds the ablation table
+/// of experiments C and D with run times. Malformed files are listed in
+/// [`Merged::problems`] with their path and skipped; tracking and disturbance runs count in
+/// `runs_read` and run time only. Errors only if `dir` itself cannot be read.
+pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
+    let entries = std::fs::read_dir(dir).map_err(|e| ReportError::io(dir, e))?;
+    let mut run_dirs: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.is_dir())
+        .collect();
+    run_dirs.sort();
+    let mut merged = Merged::default();
+    let mut groups: BTreeMap<(String, RuleKind), Collected> = BTreeMap::new();
+    for run_dir in run_dirs {
+        let summary_path = run_dir.join(SUMMARY_FILE);
+        if !summary_path.exists() {
+            merged.unfinished.push(run_dir);
+            continue;
+        }
+        let summary = match Summary::read(&summary_path) {
+            Ok(s) => s,
+            Err(e) => {
+                merged.problems.push(MergeProblem {
+                    path: summary_path,
+                    message: e.to_string(),
+                });
+                continue;
+            }
+        };
+        merged.runs_read += 1;
+        let group = groups
+            .entry((summary.approx.clone(), summary.rule))
+            .or_default();
+        let record_path = run_dir.join(RECORD_FILE);
+        if record_path.exists() {
+            let record = std::fs::read_to_string(&record_path)
+                .map_err(|e| e.to_string())
+                .and_then(|t| serde_json::from_str::<RunRecord>(&t).map_err(|e| e.to_string()));
+            match record {
+                Ok(r) if r.wall_time_s.is_finite() && r.wall_time_s >= 0.0 => {
+                    group.run_time_s.push(r.wall_time_s)
+                }
+                Ok(r) => merged.problems.push(MergeProblem {
+                    path: record_path,
+                    message: format!("wall_time_s {} is not a duration", r.wall_time_s),
+                }),
+                Err(message) => merged.problems.push(MergeProblem {
+                    path: record_path,
+                    message,
+                }),
+            }
+        }
+        match summary.result {
+            ExperimentResult::Stability { controllers } => {
+                for (i, c) in [
+                    controllers.open_loop,
+                    controllers.model,
+                    controllers.learned,
+                ]
+                .iter()
+                .enumerate()
+                {
+                    group.i50[i].push(c.impulse_at_50pct_fall_ns);
+                }
+                group.learned_falls_pushes.0 += u64::from(controllers.learned.falls);
+                group.learned_falls_pushes.1 += u64::from(controllers.learned.pushes);
+            }
+            ExperimentResult::Robustness {
+                pushes_until_first_absorbed,
+                falls,
+            } => {
+                group.robustness_seeds += 1;
+                group.robustness_falls.push(f64::from(falls));
+                if let Some(n) = pushes_until_first_absorbed {
+                    group.pushes_until_absorbed.push(f64::from(n));
+                    group.absorbed_within_3 += usize::from(n <= 3);
+                }
+            }
+            ExperimentResult::Tracking { .. } | ExperimentResult::Disturbance { .. } => {}
+        }
+    }
+    merged.rows = groups
+        .into_iter()
+        .map(|((approx, rule), c)| AblationRow {
+            approx,
+            rule: rule.to_string(),
+            i50_open_loop: Stat::of(&c.i50[0]),
+            i50_model: Stat::of(&c.i50[1]),
+            i50_learned: Stat::of(&c.i50[2]),
+            learned_falls_pushes: c.learned_falls_pushes,
+            robustness_seeds: c.robustness_seeds,
+            absorbed_within_3: c.absorbed_within_3,
+            pushes_until_absorbed: Stat::of(&c.pushes_until_absorbed),
+            robustness_falls: Stat::of(&c.robustness_falls),
+            run_time_s: Stat::of(&c.run_time_s),
+        })
+        .collect();
+    Ok(merged)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shard_parsing_validates() {
+        assert_eq!("3/10".parse::<Shard>().unwrap(), Shard::new(3, 10).unwrap());
+        assert_eq!(" 0 / 1 ".parse::<Shard>().unwrap(), Shard::ALL);
+        for bad in [
+            "", "3", "3/0", "0/0", "10/10", "11/10", "-1/3", "a/3", "1/b", "1/2/3", "1.5/3",
+        ] {
+            let err = bad.parse::<Shard>().unwrap_err();
+            assert!(
+                matches!(err, SweepError::InvalidShard { .. }),
+                "{bad}: {err}"
+            );
+            assert!(err.to_string().contains("I/N"));
+        }
+        assert_eq!(Shard::new(2, 5).unwrap().to_string(), "2/5");
+    }
+
+    #[test]
+    fn shards_partition_the_grid() {
+        let runs = SweepGrid::full(&["lwpr", "rbf"], 3).runs().unwrap();
+        assert_eq!(runs.len(), 4 * 2 * 5 * 3);
+        for n in [1, 2, 7, 200] {
+            let mut all: Vec<RunSpec> = (0..n)
+                .flat_map(|i| Shard::new(i, n).unwrap().select(&runs))
+                .collect();
+            all.sort();
+            let mut want = runs.clone();
+            want.sort();
+            assert_eq!(all, want, "{n} shards");
+        }
+    }
+
+    #[test]
+    fn ids_are_stable_and_grids_validated() {
+        let spec = RunSpec {
+            experiment: ExperimentKind::Stability,
+            approx: "kernel-ridge".into(),
+            rule: RuleKind::RateDamped,
+            seed: 42,
+        };
+        assert_eq!(spec.id(), "stability__kernel-ridge__rate-damped__s42");
+        let mut grid = SweepGrid::full(&["lwpr"], 1);
+        grid.approx.push("Bad_Name".into());
+        assert!(matches!(grid.runs(), Err(SweepError::InvalidGrid(_))));
+        grid.approx = vec!["lwpr".into(), "lwpr".into()];
+        assert!(matches!(grid.runs(), Err(SweepError::InvalidGrid(_))));
+        grid.approx.clear();
+        assert!(matches!(grid.runs(), Err(SweepError::InvalidGrid(_))));
+    }
+
+    #[test]
+    fn stats_and_markdown() {
+        let s = Stat::of(&[1.0, 3.0]);
+        assert_eq!((s.mean, s.n), (2.0, 2));
+        assert!((s.std - 2f64.sqrt()).abs() < 1e-15);
+        assert_eq!(s.markdown(), "2.00 ± 1.41");
+        assert_eq!(Stat::of(&[]).markdown(), "-");
+        assert_eq!(Stat::csv(f64::NAN), "");
+    }
+}

@@ -1,0 +1,394 @@
+//! `summary.json`: the one-file result of a run, with exactly the fields the command line
+//! contract (issue 6) promises, read back by `merge`.
+//!
+//! ```json
+//! {"approx": "lwpr", "rule": "pendulum-cart", "seed": 3, "experiment": "stability",
+//!  "controllers": {"open_loop": {"pushes": 400, "falls": 150, "impulse_at_50pct_fall_ns": 6.1},
+//!                  "model": {...}, "learned": {...}}}
+//! ```
+
+use super::{ReportError, write_atomic};
+use crate::experiments::ExperimentKind;
+use crate::rules::RuleKind;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A pair of results for the Capture Step model alone and with learning.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelLearned<T> {
+    /// The Capture Step controller alone.
+    pub model: T,
+    /// With the learned offset.
+    pub learned: T,
+}
+
+/// Pushes, falls and the 50% fall impulse of one controller (experiment C).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControllerFalls {
+    /// Pushes applied.
+    pub pushes: u32,
+    /// Falls among them.
+    pub falls: u32,
+    /// Impulse (Ns) at which half the pushes make the robot fall, from
+    /// [`super::fall_rate::impulse_at_50pct_fall`] (with its documented fallbacks).
+    pub impulse_at_50pct_fall_ns: f64,
+}
+
+/// Experiment C's three controllers.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Controllers {
+    /// Walking in place at a fixed frequency, not reacting to pushes.
+    pub open_loop: ControllerFalls,
+    /// The Capture Step controller.
+    pub model: ControllerFalls,
+    /// Capture Step plus the learned offset.
+    pub learned: ControllerFalls,
+}
+
+/// The experiment-specific part of a summary; serialized flat next to the common fields, with
+/// the `"experiment"` name as its tag.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "experiment", rename_all = "lowercase")]
+pub enum ExperimentResult {
+    /// A: std of the step size error per time bin after a reference change.
+    Tracking {
+        /// Std of F_E (m) in consecutive bins of `bin_s` after each change.
+        step_error_std_m: ModelLearned<Vec<f64>>,
+        /// Bin width (s).
+        bin_s: f64,
+    },
+    /// B: recovery after 8 Ns pushes.
+    Disturbance {
+        /// Time (s) from the push until the step size is back at the reference.
+        return_time_s: ModelLearned<f64>,
+        /// Largest |theta_E| (rad) after the push.
+        max_tda_rad: ModelLearned<f64>,
+    },
+    /// C: falls vs impulse for three controllers.
+    Stability {
+        /// Per controller.
+        controllers: Controllers,
+    },
+    /// D: learning from scratch.
+    Robustness {
+        /// 1-based index of the first push absorbed without a fall; `null` if none was.
+        pushes_until_first_absorbed: Option<u32>,
+        /// Falls over the whole run.
+        falls: u32,
+    },
+}
+
+impl ExperimentResult {
+    /// Which experiment this is.
+    pub fn kind(&self) -> ExperimentKind {
+        match self {
+            ExperimentResult::Tracking { .. } => ExperimentKind::Tracking,
+            ExperimentResult::Disturbance { .. } => ExperimentKind::Disturbance,
+            ExperimentResult::Stability { .. } => ExperimentKind::Stability,
+            ExperimentResult::Robustness { .. } => ExperimentKind::Robustness,
+        }
+    }
+}
+
+/// The content of `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// Approximator name (`lwpr`, `rbf`, `grid`, `kernel-ridge`, ...).
+    pub approx: String,
+    /// Learning rule.
+    pub rule: RuleKind,
+    /// Seed of the run.
+    pub seed: u64,
+    /// `"experiment"` and the experiment's fields.
+    #[serde(flatten)]
+    pub result: ExperimentResult,
+}
+
+fn finite_non_negative(what: &str, v: f64) -> Result<(), ReportError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(ReportError::invalid(format!(
+            "{what} must be finite and >= 0, got {v}"
+        )))
+    }
+}
+
+impl ControllerFalls {
+    fn validate(&self, name: &str) -> Result<(), ReportError> {
+        if self.falls > self.pushes {
+            return Err(ReportError::invalid(format!(
+                "{name}: {} falls out of {} pushes",
+                self.falls, self.pushes
+            )));
+        }
+        finite_non_negative(
+            &format!("{name}.impulse_at_50pct_fall_ns"),
+            self.impulse_at_50pct_fall_ns,
+        )
+    }
+}
+
+impl Summary {
+    /// Which experiment this is.
+    pub fn experiment(&self) -> ExperimentKind {
+        self.result.kind()
+    }
+
+    /// Checks what JSON cannot: a non-empty approximator name and finite, non-negative
+    /// numbers (serde_json would write NaN as `null` and fail to read it back), falls <= pushes,
+    /// equal-length model/learned series and a positive bin width.
+    pub fn validate(&self) -> Result<(), ReportError> {
+        if self.approx.trim().is_empty() {
+            return Err(ReportError::invalid("approx name is empty"));
+        }
+        match &self.result {
+            ExperimentResult::Tracking {
+                step_error_std_m,
+                bin_s,
+            } => {
+                if !(bin_s.is_finite() && *bin_s > 0.0) {
+                    return Err(ReportError::invalid(format!(
+                        "bin_s must be finite and > 0, got {bin_s}"
+                    )));
+                }
+                if step_error_std_m.model.len() != step_error_std_m.learned.len() {
+                    return Err(ReportError::invalid(
+                        "step_error_std_m: model and learned have different lengths",
+                    ));
+                }
+                for v in step_error_std_m
+                    .model
+                    .iter()
+                    .chain(&step_error_std_m.learned)
+                {
+                    finite_non_negative("step_error_std_m", *v)?;
+                }
+            }
+            ExperimentResult::Disturbance {
+                return_time_s,
+                max_tda_rad,
+            } => {
+                finite_non_negative("return_time_s.model", return_time_s.model)?;
+                finite_non_negative("return_time_s.learned", return_time_s.learned)?;
+                finite_non_negative("max_tda_rad.model", max_tda_rad.model)?;
+                finite_non_negative("max_tda_rad.learned", max_tda_rad.learned)?;
+            }
+            ExperimentResult::Stability { controllers } => {
+                controllers.open_loop.validate("open_loop")?;
+                controllers.model.validate("model")?;
+                controllers.learned.validate("learned")?;
+            }
+            ExperimentResult::Robustness {
+                pushes_until_first_absorbed,
+                ..
+            } => {
+                if *pushes_until_first_absorbed == Some(0) {
+                    return Err(ReportError::invalid(
+                        "pushes_until_first_absorbed is 1-based, got 0",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Pretty JSON of a validated summary.
+    pub fn to_json(&self) -> Result<String, ReportError> {
+        self.validate()?;
+        serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))
+    }
+
+    /// Parses and validates a summary.
+    pub fn from_json(json: &str) -> Result<Self, ReportError> {
+        let s: Summary =
+            serde_json::from_str(json).map_err(|e| ReportError::invalid(e.to_string()))?;
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// Validates and writes the summary to `path` atomically (an invalid summary or a failed
+    /// write leaves any existing file untouched).
+    pub fn write(&self, path: &Path) -> Result<(), ReportError> {
+        let json = self.to_json()?;
+        write_atomic(path, json.as_bytes())
+    }
+
+    /// Reads and validates `path`; a malformed file is a [`ReportError::Parse`] naming it.
+    pub fn read(path: &Path) -> Result<Self, ReportError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ReportError::io(path, e))?;
+        Summary::from_json(&text).map_err(|e| ReportError::Parse {
+            path: path.to_path_buf(),
+            message: match e {
+                ReportError::Invalid(m) => m,
+                other => other.to_string(),
+            },
+        })
+    }
+}
+
+/// Writes a CSV table (header + rows of already formatted cells) to `path` atomically.
+pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<(), ReportError> {
+    let write = || -> Result<Vec<u8>, csv::Error> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.write_record(header)?;
+        for row in rows {
+            if row.len() != header.len() {
+                return Err(csv::Error::from(std::io::Error::other(format!(
+                    "row has {} cells, header {}",
+                    row.len(),
+                    header.len()
+                ))));
+            }
+            w.write_record(row)?;
+        }
+        w.into_inner()
+            .map_err(|e| csv::Error::from(std::io::Error::other(e.to_string())))
+    };
+    let bytes = write().map_err(|e| ReportError::invalid(format!("csv: {e}")))?;
+    write_atomic(path, &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn falls(pushes: u32, falls: u32, x: f64) -> ControllerFalls {
+        ControllerFalls {
+            pushes,
+            falls,
+            impulse_at_50pct_fall_ns: x,
+        }
+    }
+
+    fn stability() -> Summary {
+        Summary {
+            approx: "lwpr".into(),
+            rule: RuleKind::PendulumCart,
+            seed: 3,
+            result: ExperimentResult::Stability {
+                controllers: Controllers {
+                    open_loop: falls(400, 250, 4.5),
+                    model: falls(400, 120, 11.0),
+                    learned: falls(400, 90, 13.25),
+                },
+            },
+        }
+    }
+
+    #[test]
+    fn json_has_exactly_the_promised_fields() {
+        let v: serde_json::Value = serde_json::from_str(&stability().to_json().unwrap()).unwrap();
+        let mut keys: Vec<_> = v.as_object().unwrap().keys().cloned().collect();
+        keys.sort();
+        assert_eq!(
+            keys,
+            ["approx", "controllers", "experiment", "rule", "seed"]
+        );
+        assert_eq!(v["experiment"], "stability");
+        assert_eq!(v["rule"], "pendulum-cart");
+        assert_eq!(
+            v["controllers"]["open_loop"]["impulse_at_50pct_fall_ns"],
+            4.5
+        );
+        assert_eq!(v["controllers"]["learned"]["falls"], 90);
+
+        let others = [
+            (
+                ExperimentResult::Tracking {
+                    step_error_std_m: ModelLearned {
+                        model: vec![0.05, 0.03],
+                        learned: vec![0.04, 0.02],
+                    },
+                    bin_s: 0.5,
+                },
+                vec!["bin_s", "step_error_std_m"],
+            ),
+            (
+                ExperimentResult::Disturbance {
+                    return_time_s: ModelLearned {
+                        model: 3.0,
+                        learned: 2.0,
+                    },
+                    max_tda_rad: ModelLearned {
+                        model: 0.1,
+                        learned: 0.14,
+                    },
+                },
+                vec!["max_tda_rad", "return_time_s"],
+            ),
+            (
+                ExperimentResult::Robustness {
+                    pushes_until_first_absorbed: Some(3),
+                    falls: 2,
+                },
+                vec!["falls", "pushes_until_first_absorbed"],
+            ),
+        ];
+        for (result, fields) in others {
+            let s = Summary {
+                result,
+                ..stability()
+            };
+            let v: serde_json::Value = serde_json::from_str(&s.to_json().unwrap()).unwrap();
+            let mut keys: Vec<_> = v.as_object().unwrap().keys().cloned().collect();
+            keys.sort();
+            let mut want = vec!["approx", "experiment", "rule", "seed"];
+            want.extend(fields);
+            want.sort();
+            assert_eq!(keys, want);
+            assert_eq!(v["experiment"], s.experiment().name());
+            assert_eq!(Summary::from_json(&s.to_json().unwrap()).unwrap(), s);
+        }
+    }
+
+    #[test]
+    fn write_read_round_trip_and_no_clobber() {
+        let dir = std::env::temp_dir().join(format!("steplearn-summary-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("summary.json");
+        let s = stability();
+        s.write(&path).unwrap();
+        assert_eq!(Summary::read(&path).unwrap(), s);
+        // an invalid summary is refused and the file stays as it was
+        let mut bad = s.clone();
+        if let ExperimentResult::Stability { controllers } = &mut bad.result {
+            controllers.model.impulse_at_50pct_fall_ns = f64::NAN;
+        }
+        assert!(matches!(bad.write(&path), Err(ReportError::Invalid(_))));
+        assert_eq!(Summary::read(&path).unwrap(), s);
+        // malformed files are parse errors that name the file
+        let broken = dir.join("broken.json");
+        std::fs::write(&broken, "{\"approx\": \"lwpr\"").unwrap();
+        match Summary::read(&broken) {
+            Err(ReportError::Parse { path, .. }) => assert_eq!(path, broken),
+            other => panic!("{other:?}"),
+        }
+        std::fs::write(
+            &broken,
+            s.to_json()
+                .unwrap()
+                .replace("\"falls\": 90", "\"falls\": 900"),
+        )
+        .unwrap();
+        assert!(matches!(
+            Summary::read(&broken),
+            Err(ReportError::Parse { .. })
+        ));
+        let csv_path = dir.join("t.csv");
+        write_csv(&csv_path, &["a", "b"], &[vec!["1".into(), "x,y".into()]]).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(&csv_path).unwrap(),
+            "a,b\n1,\"x,y\"\n"
+        );
+        assert!(write_csv(&csv_path, &["a"], &[vec![]]).is_err());
+        assert_eq!(
+            std::fs::read_to_string(&csv_path).unwrap(),
+            "a,b\n1,\"x,y\"\n"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

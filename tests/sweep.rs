@@ -1,0 +1,340 @@
+//! The sweep machinery with a fake runner: determinism across thread counts, resumption,
+//! failures, sharding into one directory, and merging into the ablation table.
+
+use rand::rngs::ChaCha8Rng;
+use rand::{RngExt, SeedableRng};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use steplearn::experiments::ExperimentKind;
+use steplearn::experiments::sweep::{
+    RunError, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
+};
+use steplearn::report::summary::{
+    ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
+};
+use steplearn::rules::RuleKind;
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("steplearn-sweep-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// FNV-1a: a hash that is the same on every platform and version.
+fn fnv(s: &str) -> u64 {
+    s.bytes().fold(0xcbf29ce484222325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x100000001b3)
+    })
+}
+
+/// A fake experiment: pseudo-random results seeded from the run id, plus a CSV file.
+fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(fnv(&spec.id()));
+    std::fs::write(dir.join("steps.csv"), format!("id\n{}\n", spec.id()))?;
+    let mut controller = |pushes: u32| ControllerFalls {
+        pushes,
+        falls: rng.random_range(0..=pushes),
+        impulse_at_50pct_fall_ns: rng.random_range(2.0..15.0),
+    };
+    let result = match spec.experiment {
+        ExperimentKind::Stability => ExperimentResult::Stability {
+            controllers: Controllers {
+                open_loop: controller(40),
+                model: controller(40),
+                learned: controller(40),
+            },
+        },
+        ExperimentKind::Robustness => {
+            let first = rng.random_range(1..=6u32);
+            ExperimentResult::Robustness {
+                pushes_until_first_absorbed: (first < 6).then_some(first),
+                falls: first - 1,
+            }
+        }
+        ExperimentKind::Tracking => ExperimentResult::Tracking {
+            step_error_std_m: ModelLearned {
+                model: vec![rng.random_range(0.0..0.1); 4],
+                learned: vec![rng.random_range(0.0..0.1); 4],
+            },
+            bin_s: 0.5,
+        },
+        ExperimentKind::Disturbance => ExperimentResult::Disturbance {
+            return_time_s: ModelLearned {
+                model: rng.random_range(0.0..5.0),
+                learned: rng.random_range(0.0..5.0),
+            },
+            max_tda_rad: ModelLearned {
+                model: 0.1,
+                learned: 0.15,
+            },
+        },
+    };
+    Ok(Summary {
+        approx: spec.approx.clone(),
+        rule: spec.rule,
+        seed: spec.seed,
+        result,
+    })
+}
+
+fn grid() -> Vec<RunSpec> {
+    SweepGrid {
+        experiments: ExperimentKind::ALL.to_vec(),
+        approx: vec!["lwpr".into(), "grid".into()],
+        rules: vec![RuleKind::PendulumCart, RuleKind::BalanceOnly],
+        seeds: vec![0, 1, 2],
+    }
+    .runs()
+    .unwrap()
+}
+
+/// Every `summary.json` under `dir`, by run id.
+fn summaries(dir: &Path) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .map(|p| {
+            let id = p.file_name().unwrap().to_string_lossy().into_owned();
+            (id, std::fs::read_to_string(p.join("summary.json")).unwrap())
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn results_do_not_depend_on_the_number_of_threads() {
+    let runs = grid();
+    let mut results = Vec::new();
+    for threads in [1, 4] {
+        let dir = temp_dir(&format!("threads{threads}"));
+        let outcomes = run_sweep(
+            &runs,
+            &dir,
+            &fake,
+            &SweepOptions {
+                threads: Some(threads),
+            },
+            &|_| {},
+        )
+        .unwrap();
+        assert_eq!(outcomes.len(), runs.len());
+        assert!(outcomes.iter().zip(&runs).all(|(o, r)| &o.spec == r));
+        assert!(
+            outcomes
+                .iter()
+                .all(|o| matches!(o.status, RunStatus::Done { .. }))
+        );
+        let merged = merge(&dir).unwrap();
+        results.push((summaries(&dir), merged.to_markdown(), merged.csv_rows()));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    assert_eq!(results[0].0.len(), runs.len());
+    assert_eq!(
+        results[0].0, results[1].0,
+        "summaries differ between 1 and 4 threads"
+    );
+    // the tables differ only in run time: compare every other column
+    let strip = |rows: &Vec<Vec<String>>| -> Vec<Vec<String>> {
+        rows.iter().map(|r| r[..r.len() - 2].to_vec()).collect()
+    };
+    assert_eq!(strip(&results[0].2), strip(&results[1].2));
+}
+
+#[test]
+fn resumption_skips_finished_runs_and_retries_failed_ones() {
+    let runs = grid();
+    let dir = temp_dir("resume");
+    let calls = AtomicUsize::new(0);
+    // first attempt: robustness runs fail, one stability run panics
+    let flaky = |spec: &RunSpec, d: &Path| -> Result<Summary, RunError> {
+        calls.fetch_add(1, Ordering::Relaxed);
+        if spec.experiment == ExperimentKind::Robustness {
+            return Err("simulator exploded".into());
+        }
+        if spec.id() == "stability__grid__balance-only__s1" {
+            panic!("boom");
+        }
+        fake(spec, d)
+    };
+    let seen = Mutex::new(Vec::new());
+    let first = run_sweep(&runs, &dir, &flaky, &SweepOptions::default(), &|o| {
+        seen.lock().unwrap().push(o.spec.id())
+    })
+    .unwrap();
+    assert_eq!(seen.lock().unwrap().len(), runs.len());
+    let failed: Vec<_> = first
+        .iter()
+        .filter(|o| matches!(o.status, RunStatus::Failed(_)))
+        .collect();
+    assert_eq!(failed.len(), 12 + 1);
+    assert!(failed.iter().any(|o| matches!(&o.status,
+        RunStatus::Failed(m) if m.contains("panicked: boom"))));
+    assert!(failed.iter().any(|o| matches!(&o.status,
+        RunStatus::Failed(m) if m.contains("simulator exploded"))));
+    assert_eq!(calls.load(Ordering::Relaxed), runs.len());
+    let finished_ids: Vec<String> = first
+        .iter()
+        .filter(|o| matches!(o.status, RunStatus::Done { .. }))
+        .map(|o| o.spec.id())
+        .collect();
+    let done_summary =
+        std::fs::read_to_string(dir.join(&finished_ids[0]).join("summary.json")).unwrap();
+
+    // second attempt with a working runner: only the failed runs run again
+    calls.store(0, Ordering::Relaxed);
+    let counting = |spec: &RunSpec, d: &Path| -> Result<Summary, RunError> {
+        calls.fetch_add(1, Ordering::Relaxed);
+        fake(spec, d)
+    };
+    let second = run_sweep(&runs, &dir, &counting, &SweepOptions::default(), &|_| {}).unwrap();
+    assert_eq!(calls.load(Ordering::Relaxed), 13);
+    let skipped = second
+        .iter()
+        .filter(|o| o.status == RunStatus::Skipped)
+        .count();
+    assert_eq!(skipped, runs.len() - 13);
+    assert_eq!(
+        std::fs::read_to_string(dir.join(&finished_ids[0]).join("summary.json")).unwrap(),
+        done_summary
+    );
+    // a third attempt does nothing
+    calls.store(0, Ordering::Relaxed);
+    run_sweep(&runs, &dir, &counting, &SweepOptions::default(), &|_| {}).unwrap();
+    assert_eq!(calls.load(Ordering::Relaxed), 0);
+
+    // a corrupted result is reported, never overwritten
+    let victim = dir.join(&finished_ids[1]).join("summary.json");
+    std::fs::write(&victim, "{not json").unwrap();
+    let third = run_sweep(&runs, &dir, &counting, &SweepOptions::default(), &|_| {}).unwrap();
+    assert_eq!(calls.load(Ordering::Relaxed), 0);
+    assert_eq!(
+        third
+            .iter()
+            .filter(|o| matches!(&o.status, RunStatus::Failed(m) if m.contains("left untouched")))
+            .count(),
+        1
+    );
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "{not json");
+    // merge lists it with its path and still builds the table from the rest
+    let merged = merge(&dir).unwrap();
+    assert_eq!(merged.problems.len(), 1);
+    assert_eq!(merged.problems[0].path, victim);
+    assert_eq!(merged.runs_read, runs.len() - 1);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_runner_returning_the_wrong_summary_fails_the_run() {
+    let dir = temp_dir("mismatch");
+    let runs = grid();
+    let wrong = |spec: &RunSpec, d: &Path| -> Result<Summary, RunError> {
+        let mut s = fake(spec, d)?;
+        s.seed += 1;
+        Ok(s)
+    };
+    let out = run_sweep(&runs[..2], &dir, &wrong, &SweepOptions::default(), &|_| {}).unwrap();
+    assert!(
+        out.iter()
+            .all(|o| matches!(&o.status, RunStatus::Failed(m) if m.contains("another run")))
+    );
+    assert!(!dir.join(runs[0].id()).join("summary.json").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn shards_fill_one_directory_and_merge_builds_the_table() {
+    let runs = grid();
+    let dir = temp_dir("shards");
+    for i in 0..3 {
+        let shard = Shard::new(i, 3).unwrap();
+        let mine = shard.select(&runs);
+        run_sweep(
+            &mine,
+            &dir,
+            &fake,
+            &SweepOptions { threads: Some(2) },
+            &|_| {},
+        )
+        .unwrap();
+    }
+    // an unfinished run directory and a stray malformed run record
+    std::fs::create_dir_all(dir.join("stability__rbf__linear__s9")).unwrap();
+    let record = dir.join(runs[0].id()).join("run.json");
+    std::fs::write(&record, "[]").unwrap();
+
+    let merged = merge(&dir).unwrap();
+    assert_eq!(merged.runs_read, runs.len());
+    assert_eq!(merged.unfinished.len(), 1);
+    assert_eq!(merged.problems.len(), 1);
+    assert_eq!(merged.problems[0].path, record);
+    assert_eq!(merged.rows.len(), 4);
+    let names: Vec<(String, String)> = merged
+        .rows
+        .iter()
+        .map(|r| (r.approx.clone(), r.rule.clone()))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("grid".into(), "pendulum-cart".into()),
+            ("grid".into(), "balance-only".into()),
+            ("lwpr".into(), "pendulum-cart".into()),
+            ("lwpr".into(), "balance-only".into()),
+        ]
+    );
+    // the lwpr / pendulum-cart row recomputed by hand from the summaries
+    let row = &merged.rows[2];
+    let mut learned = Vec::new();
+    let mut absorbed_within_3 = 0;
+    for seed in 0..3 {
+        let spec = |experiment| RunSpec {
+            experiment,
+            approx: "lwpr".into(),
+            rule: RuleKind::PendulumCart,
+            seed,
+        };
+        let s = fake(
+            &spec(ExperimentKind::Stability),
+            &dir.join(spec(ExperimentKind::Stability).id()),
+        )
+        .unwrap();
+        if let ExperimentResult::Stability { controllers } = s.result {
+            learned.push(controllers.learned.impulse_at_50pct_fall_ns);
+        }
+        let s = fake(
+            &spec(ExperimentKind::Robustness),
+            &dir.join(spec(ExperimentKind::Robustness).id()),
+        )
+        .unwrap();
+        if let ExperimentResult::Robustness {
+            pushes_until_first_absorbed: Some(n),
+            ..
+        } = s.result
+        {
+            absorbed_within_3 += usize::from(n <= 3);
+        }
+    }
+    let mean = learned.iter().sum::<f64>() / 3.0;
+    assert!((row.i50_learned.mean - mean).abs() < 1e-12);
+    assert_eq!(row.i50_learned.n, 3);
+    assert_eq!(row.robustness_seeds, 3);
+    assert_eq!(row.absorbed_within_3, absorbed_within_3);
+    // every experiment's run is timed, except runs[0] (this row) whose run.json was broken
+    assert_eq!(runs[0].id(), "tracking__lwpr__pendulum-cart__s0");
+    assert_eq!(row.run_time_s.n, 4 * 3 - 1);
+
+    merged.write(&dir).unwrap();
+    let md = std::fs::read_to_string(dir.join("ablation.md")).unwrap();
+    assert!(md.starts_with("| approx | rule |"));
+    assert_eq!(md.lines().count(), 2 + 4);
+    assert!(md.contains("| lwpr | pendulum-cart |"));
+    let mut csv = csv::Reader::from_path(dir.join("ablation.csv")).unwrap();
+    assert_eq!(csv.headers().unwrap().len(), 20);
+    assert_eq!(csv.records().count(), 4);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(merge(&dir).is_err(), "a missing directory is an error");
+}
