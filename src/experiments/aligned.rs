@@ -1,6 +1,7 @@
 //! Event-aligned statistics: mean and standard deviation of a signal against the time since
 //! the last event (a reference change, a push), as in the paper's Figures 4 and 5.
 
+use crate::report::ReportError;
 use serde::{Deserialize, Serialize};
 
 /// Mean and standard deviation per time bin after an event.
@@ -19,12 +20,22 @@ pub struct AlignedStats {
 impl AlignedStats {
     /// Bins `samples` `(time, value)` by the time since the latest event at or before them,
     /// over `[0, horizon)`. Samples before the first event or past the horizon are ignored.
-    /// `events` must be sorted.
-    pub fn compute(samples: &[(f64, f64)], events: &[f64], bin_s: f64, horizon: f64) -> Self {
-        assert!(
-            bin_s > 0.0 && horizon > 0.0,
-            "bin and horizon must be positive"
-        );
+    /// `events` must be sorted. A bin or horizon that is not positive and finite, or unsorted
+    /// events, is an error.
+    pub fn compute(
+        samples: &[(f64, f64)],
+        events: &[f64],
+        bin_s: f64,
+        horizon: f64,
+    ) -> Result<Self, ReportError> {
+        if !(bin_s.is_finite() && bin_s > 0.0 && horizon.is_finite() && horizon > 0.0) {
+            return Err(ReportError::invalid(format!(
+                "aligned statistics need a positive finite bin and horizon, got {bin_s} and {horizon}"
+            )));
+        }
+        if events.windows(2).any(|w| w[0] > w[1] || w[0].is_nan()) {
+            return Err(ReportError::invalid("event times must be sorted"));
+        }
         let n_bins = (horizon / bin_s).ceil() as usize;
         let mut sum = vec![0.0; n_bins];
         let mut sum_sq = vec![0.0; n_bins];
@@ -53,12 +64,12 @@ impl AlignedStats {
                 c => (sum_sq[k] / c as f64 - mean[k] * mean[k]).max(0.0).sqrt(),
             })
             .collect();
-        AlignedStats {
+        Ok(AlignedStats {
             bin_s,
             mean,
             std,
             count,
-        }
+        })
     }
 
     /// Bin centre times.
@@ -82,7 +93,7 @@ mod tests {
                 (t, t % 10.0)
             })
             .collect();
-        let s = AlignedStats::compute(&samples, &[0.0, 10.0], 1.0, 5.0);
+        let s = AlignedStats::compute(&samples, &[0.0, 10.0], 1.0, 5.0).unwrap();
         assert_eq!(s.mean.len(), 5);
         for k in 0..5 {
             assert_eq!(s.count[k], 20);
@@ -94,10 +105,17 @@ mod tests {
 
     #[test]
     fn empty_bins_are_nan_and_early_samples_ignored() {
-        let s = AlignedStats::compute(&[(-1.0, 5.0), (0.5, 2.0)], &[0.0], 1.0, 3.0);
+        let s = AlignedStats::compute(&[(-1.0, 5.0), (0.5, 2.0)], &[0.0], 1.0, 3.0).unwrap();
         assert_eq!(s.count, vec![1, 0, 0]);
         assert_eq!(s.mean[0], 2.0);
         assert_eq!(s.std[0], 0.0);
         assert!(s.mean[1].is_nan());
+    }
+
+    #[test]
+    fn bad_bins_and_unsorted_events_are_errors() {
+        assert!(AlignedStats::compute(&[], &[0.0], 0.0, 1.0).is_err());
+        assert!(AlignedStats::compute(&[], &[0.0], 1.0, f64::NAN).is_err());
+        assert!(AlignedStats::compute(&[], &[2.0, 1.0], 1.0, 1.0).is_err());
     }
 }
