@@ -8,9 +8,9 @@ use serde::{Deserialize, Serialize};
 ///
 /// Recommended settings (measured by `examples/compare_approximators.rs`, 100,000 samples):
 /// - cross 2D on [-1, 1]^2, noise 0.1: `resolution = [31, 31]`, `learning_rate = 0.1`
-///   (nMSE about 0.01);
+///   (nMSE 0.005);
 /// - the 3-input step-offset map (theta, theta_dot, F_R), noise 0.01: `resolution = [11, 5, 5]`,
-///   `learning_rate = 0.05` (nMSE below 1e-3).
+///   `learning_rate = 0.05` (nMSE 1e-4).
 ///
 /// Choose the spacing so that the target is close to linear between neighbouring nodes; more
 /// nodes resolve more detail but see fewer samples each (more noise). The node count is the
