@@ -6,11 +6,21 @@
 //! invariant check on load, so a corrupt file is an error, never a broken model.
 
 mod error;
+mod grid;
+mod input_box;
+mod kernel_ridge;
+pub mod lattice;
 mod persist;
 pub mod problems;
+mod rbf;
+mod square_matrix;
 
 pub use error::{ApproxError, check_output, check_vector};
+pub use grid::{Grid, GridConfig};
+pub use input_box::InputBox;
+pub use kernel_ridge::{KernelRidge, KernelRidgeConfig};
 pub use persist::Persist;
+pub use rbf::{Rbf, RbfConfig, RbfUpdate};
 
 /// An online regressor from `input_dim` inputs to `output_dim` outputs.
 ///
