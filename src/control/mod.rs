@@ -5,5 +5,6 @@
 
 mod io;
 pub mod kinematics;
+pub mod motion;
 
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
