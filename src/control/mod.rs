@@ -10,5 +10,6 @@ pub mod kinematics;
 pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
+pub mod motion;
 
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};

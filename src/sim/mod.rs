@@ -1,3 +1,18 @@
 //! The simulated humanoid in rapier3d: a 2 m, 13.5 kg biped with 12 position-controlled joints,
 //! pushes, fall detection and resets. It fills [`crate::control::Sensors`] and applies
 //! [`crate::control::JointTargets`]; control never sees rapier.
+
+mod body;
+mod config;
+mod error;
+mod fall;
+mod humanoid;
+mod sensors;
+mod truth;
+
+pub use body::{BodyConfig, Foot, JointSpec, Segment, Torso};
+pub use config::{SimConfig, standing_pose};
+pub use error::SimError;
+pub use fall::{BodyPart, Fall, FallCause};
+pub use humanoid::Humanoid;
+pub use truth::{GroundTruth, Skeleton, WorldPose};

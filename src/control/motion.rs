@@ -1,0 +1,411 @@
+//! The open-loop step motion generator, in "abstract leg space" (after Missura & Behnke,
+//! "Self-stable omnidirectional walking with compliant joints", 2013).
+//!
+//! Each leg is commanded by a [`LegPose`]: its extension (how much shorter the hip-to-ankle
+//! distance is than the straight leg, as a fraction), its leg angle (roll, pitch, yaw of the
+//! hip-to-ankle line) and its foot angle (roll, pitch of the sole), all relative to the torso
+//! frame and following the right-hand rule of [`crate::control`] (a positive leg pitch swings
+//! the foot backward, a positive leg roll swings it to the left). [`LegSpace`] converts a leg
+//! pose to the six joint angles and back, exactly.
+//!
+//! A step is built from motion primitives added to a halt pose over the step phase
+//! `p in [0, 1)`: the swing leg lifts (extension bump) while the support leg pushes (extends);
+//! the swing leg swings from where it was to the commanded placement (cosine profile) while
+//! the support leg sweeps back linearly; both legs roll together to sway the hips over the
+//! support foot; the trunk leans with the commanded step. The generator takes a
+//! [`StepCommand`] every tick: where the swing foot should land relative to the support foot,
+//! the turn, and the time left until touch-down; changing them mid-step is smooth (the
+//! commanded placement is low-pass filtered and the phase itself never jumps).
+
+use serde::{Deserialize, Serialize};
+
+use super::kinematics::LegGeometry;
+use super::{JOINTS_PER_LEG, JointTargets, LegJoint, Side};
+
+/// The pose of one leg in abstract leg space (angles in rad, relative to the torso frame).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct LegPose {
+    /// Leg shortening as a fraction of the straight hip-to-ankle length, in [0, 1).
+    pub extension: f64,
+    /// Leg angle: roll, pitch, yaw of the hip-to-ankle line.
+    pub angle: [f64; 3],
+    /// Foot angle: roll and pitch of the sole.
+    pub foot: [f64; 2],
+}
+
+/// Exact conversion between abstract leg poses and joint angles for one leg geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LegSpace {
+    thigh: f64,
+    shank: f64,
+}
+
+impl LegSpace {
+    /// The leg space of `geometry` (thigh and shank lengths).
+    pub fn new(geometry: &LegGeometry) -> Self {
+        LegSpace {
+            thigh: geometry.thigh,
+            shank: geometry.shank,
+        }
+    }
+
+    /// Straight hip-to-ankle length (m).
+    pub fn leg_length(&self) -> f64 {
+        self.thigh + self.shank
+    }
+
+    /// Joint angles ([`LegJoint::ALL`] order) of `pose`. The extension is clamped to
+    /// `[0, 0.95]`. The hip-to-ankle line keeps the leg angle; the thigh and shank fold about
+    /// it by the law of cosines; the ankle keeps the commanded foot angle.
+    pub fn to_joints(&self, pose: &LegPose) -> [f64; JOINTS_PER_LEG] {
+        let (t, s) = (self.thigh, self.shank);
+        let d = (t + s) * (1.0 - pose.extension.clamp(0.0, 0.95));
+        let beta = ((t * t + d * d - s * s) / (2.0 * t * d))
+            .clamp(-1.0, 1.0)
+            .acos();
+        let gamma = ((s * s + d * d - t * t) / (2.0 * s * d))
+            .clamp(-1.0, 1.0)
+            .acos();
+        let [roll, pitch, yaw] = pose.angle;
+        let [foot_roll, foot_pitch] = pose.foot;
+        [
+            yaw,
+            roll,
+            pitch - beta,
+            beta + gamma,
+            foot_pitch - pitch - gamma,
+            foot_roll - roll,
+        ]
+    }
+
+    /// The leg pose of joint angles `q` (inverse of [`LegSpace::to_joints`] for knee angles in
+    /// `[0, pi]`).
+    pub fn from_joints(&self, q: &[f64; JOINTS_PER_LEG]) -> LegPose {
+        let (t, s) = (self.thigh, self.shank);
+        let knee = q[LegJoint::Knee as usize];
+        let d = (t * t + s * s + 2.0 * t * s * knee.cos()).max(0.0).sqrt();
+        let beta = ((t * t + d * d - s * s) / (2.0 * t * d))
+            .clamp(-1.0, 1.0)
+            .acos();
+        let gamma = ((s * s + d * d - t * t) / (2.0 * s * d))
+            .clamp(-1.0, 1.0)
+            .acos();
+        let yaw = q[LegJoint::HipYaw as usize];
+        let roll = q[LegJoint::HipRoll as usize];
+        let pitch = q[LegJoint::HipPitch as usize] + beta;
+        LegPose {
+            extension: 1.0 - d / (t + s),
+            angle: [roll, pitch, yaw],
+            foot: [
+                q[LegJoint::AnkleRoll as usize] + roll,
+                q[LegJoint::AnklePitch as usize] + pitch + gamma,
+            ],
+        }
+    }
+
+    /// Joint targets of both legs (left, right).
+    pub fn targets(&self, legs: &[LegPose; 2]) -> JointTargets {
+        let mut out = JointTargets::default();
+        for side in Side::BOTH {
+            let q = self.to_joints(&legs[side.index()]);
+            for j in LegJoint::ALL {
+                out.pos[j.index(side)] = q[j as usize];
+            }
+        }
+        out
+    }
+}
+
+/// What a balance controller asks of the generator, every tick.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct StepCommand {
+    /// Sagittal placement of the swing foot at touch-down relative to the support foot (m,
+    /// forward positive; 0 steps in place).
+    pub step_x: f64,
+    /// Lateral placement of the swing foot relative to the support foot (m, left positive; it
+    /// must lie on the swing leg's side and is clamped to the configured width range).
+    pub step_y: f64,
+    /// Turn of the swing foot relative to the support foot (rad, counter-clockwise positive).
+    pub turn: f64,
+    /// Time left until touch-down (s).
+    pub step_time: f64,
+}
+
+/// Settings of the step motion generator.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MotionConfig {
+    /// Extension of both legs in the halt pose.
+    pub halt_extension: f64,
+    /// Forward trunk lean in the halt pose (rad).
+    pub halt_lean: f64,
+    /// Extra extension of the swing leg at the top of its lift.
+    pub lift_extension: f64,
+    /// Extension removed from the support leg at the top of the lift (the ground push).
+    pub push_extension: f64,
+    /// Lateral hip sway over the support foot (m, at the middle of a step).
+    pub sway: f64,
+    /// Phase by which the sway leads the step (fraction of a step).
+    pub sway_lead: f64,
+    /// Part of the step (phase interval) during which the swing foot is lifted.
+    pub lift_window: [f64; 2],
+    /// Part of the step during which the swing leg swings.
+    pub swing_window: [f64; 2],
+    /// Extra trunk lean per metre of commanded step (rad/m).
+    pub lean_per_step: f64,
+    /// Time constant of the low-pass filter on the commanded placement (s; 0 = off).
+    pub filter_time: f64,
+    /// Sagittal step range (m).
+    pub step_x_range: [f64; 2],
+    /// Lateral foot distance range (m, magnitude).
+    pub step_y_range: [f64; 2],
+    /// Largest turn per step (rad).
+    pub max_turn: f64,
+    /// Nominal step period used by [`MotionGenerator::open_loop`] (s).
+    pub period: f64,
+    /// Time over which the step primitives fade in after start (s).
+    pub fade_in: f64,
+}
+
+impl Default for MotionConfig {
+    fn default() -> Self {
+        MotionConfig {
+            halt_extension: 0.04,
+            halt_lean: 0.0,
+            lift_extension: 0.06,
+            push_extension: 0.0,
+            sway: 0.035,
+            sway_lead: 0.0,
+            lift_window: [0.1, 0.9],
+            swing_window: [0.1, 0.9],
+            lean_per_step: 0.2,
+            filter_time: 0.05,
+            step_x_range: [-0.15, 0.3],
+            step_y_range: [0.16, 0.4],
+            max_turn: 0.5,
+            period: 0.4,
+            fade_in: 1.0,
+        }
+    }
+}
+
+/// The open-loop step motion generator. It knows the leg geometry and nothing of any
+/// simulator.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MotionGenerator {
+    config: MotionConfig,
+    space: LegSpace,
+    hip_width: f64,
+    phase: f64,
+    support: Side,
+    steps: u64,
+    time: f64,
+    /// Filtered placement: step_x, step_y offset beyond nominal width, turn.
+    filtered: [f64; 3],
+    /// Leg angle (roll, pitch, yaw) placement of each leg at the start of the step.
+    start: [[f64; 3]; 2],
+    /// Last commanded leg poses.
+    legs: [LegPose; 2],
+}
+
+fn smooth(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    0.5 - 0.5 * (std::f64::consts::PI * x).cos()
+}
+
+fn window(p: f64, w: [f64; 2]) -> f64 {
+    ((p - w[0]) / (w[1] - w[0]).max(1e-6)).clamp(0.0, 1.0)
+}
+
+impl MotionGenerator {
+    /// A generator for legs of `geometry`, halted, with the left leg supporting the first step.
+    pub fn new(config: MotionConfig, geometry: &LegGeometry) -> Self {
+        let mut g = MotionGenerator {
+            config,
+            space: LegSpace::new(geometry),
+            hip_width: 2.0 * geometry.hip_offset[1].abs(),
+            phase: 0.0,
+            support: Side::Left,
+            steps: 0,
+            time: 0.0,
+            filtered: [0.0; 3],
+            start: [[0.0; 3]; 2],
+            legs: [LegPose::default(); 2],
+        };
+        g.legs = [g.halt_pose(); 2];
+        g
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &MotionConfig {
+        &self.config
+    }
+
+    /// The leg space (pose <-> joints).
+    pub fn leg_space(&self) -> &LegSpace {
+        &self.space
+    }
+
+    /// Step phase in [0, 1).
+    pub fn phase(&self) -> f64 {
+        self.phase
+    }
+
+    /// The supporting leg of the current step.
+    pub fn support(&self) -> Side {
+        self.support
+    }
+
+    /// The swinging leg of the current step.
+    pub fn swing(&self) -> Side {
+        self.support.other()
+    }
+
+    /// Number of support exchanges so far.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// The leg poses last commanded (left, right).
+    pub fn legs(&self) -> &[LegPose; 2] {
+        &self.legs
+    }
+
+    /// Lateral foot distance when stepping in place (m): the hip width.
+    pub fn nominal_width(&self) -> f64 {
+        self.hip_width
+    }
+
+    /// The halt pose of one leg.
+    pub fn halt_pose(&self) -> LegPose {
+        LegPose {
+            extension: self.config.halt_extension,
+            angle: [0.0, -self.config.halt_lean, 0.0],
+            foot: [0.0, -self.config.halt_lean],
+        }
+    }
+
+    /// Joint targets of the halt pose (standing still).
+    pub fn halt_targets(&self) -> JointTargets {
+        let h = self.halt_pose();
+        self.space.targets(&[h, h])
+    }
+
+    /// An open-loop command: step `step_x` forward at the configured period, feet at hip width.
+    pub fn open_loop(&self, step_x: f64) -> StepCommand {
+        StepCommand {
+            step_x,
+            step_y: self.swing().sign() * self.hip_width,
+            turn: 0.0,
+            step_time: (1.0 - self.phase) * self.config.period,
+        }
+    }
+
+    /// Advances by `dt` (s) under `command` and returns the joint targets. Non-finite command
+    /// fields are ignored (the previous filtered value is kept).
+    pub fn update(&mut self, command: &StepCommand, dt: f64) -> JointTargets {
+        let c = &self.config;
+        let dt = if dt.is_finite() && dt > 0.0 { dt } else { 0.0 };
+        self.time += dt;
+        let swing = self.swing();
+        // Desired placement: step_x, lateral offset beyond nominal width (in the swing
+        // side's direction), turn.
+        let mut want = self.filtered;
+        if command.step_x.is_finite() {
+            want[0] = command.step_x.clamp(c.step_x_range[0], c.step_x_range[1]);
+        }
+        if command.step_y.is_finite() {
+            let w = (command.step_y * swing.sign()).clamp(c.step_y_range[0], c.step_y_range[1]);
+            want[1] = w - self.hip_width;
+        }
+        if command.turn.is_finite() {
+            want[2] = command.turn.clamp(-c.max_turn, c.max_turn);
+        }
+        let alpha = if c.filter_time > 0.0 {
+            1.0 - (-dt / c.filter_time).exp()
+        } else {
+            1.0
+        };
+        for k in 0..3 {
+            self.filtered[k] += alpha * (want[k] - self.filtered[k]);
+        }
+        // Phase: reach 1 after the time left.
+        let left = if command.step_time.is_finite() {
+            command.step_time.max(dt)
+        } else {
+            (1.0 - self.phase) * c.period
+        };
+        if dt > 0.0 {
+            self.phase += dt * (1.0 - self.phase) / left.max(dt);
+        }
+        if self.phase >= 1.0 - 1e-9 {
+            self.exchange();
+        }
+        self.legs = self.poses();
+        self.space.targets(&self.legs)
+    }
+
+    fn exchange(&mut self) {
+        self.phase = 0.0;
+        self.steps += 1;
+        self.support = self.support.other();
+        for side in Side::BOTH {
+            self.start[side.index()] = self.legs[side.index()].angle;
+            self.start[side.index()][0] -= self.sway_roll(0.0);
+        }
+    }
+
+    /// Leg roll that shifts the hips by the sway at phase `p` (towards the support foot).
+    fn sway_roll(&self, p: f64) -> f64 {
+        let d = self.space.leg_length() * (1.0 - self.config.halt_extension);
+        let y = self.config.sway * (std::f64::consts::PI * (p + self.config.sway_lead)).sin();
+        // Hips move towards the support side: feet move away from it relative to the hips.
+        -self.support.sign() * (y / d).clamp(-0.5, 0.5).asin()
+    }
+
+    fn poses(&self) -> [LegPose; 2] {
+        let c = &self.config;
+        let fade = if c.fade_in > 0.0 {
+            smooth(self.time / c.fade_in)
+        } else {
+            1.0
+        };
+        let p = self.phase;
+        let d = self.space.leg_length() * (1.0 - c.halt_extension);
+        let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();
+        let [sx, sy, turn] = self.filtered;
+        let swing = self.swing();
+        // End-of-step leg angles: swing foot ahead by step_x, outward by sy, turned by turn.
+        let end_swing = [
+            swing.sign() * half(sy.abs()) * sy.signum(),
+            -half(sx),
+            turn / 2.0,
+        ];
+        let end_support = [-end_swing[0], half(sx), -turn / 2.0];
+        let s_swing = smooth(window(p, c.swing_window));
+        let lift = (std::f64::consts::PI * window(p, c.lift_window)).sin();
+        let lean = c.halt_lean + c.lean_per_step * sx;
+        let sway = self.sway_roll(p) * fade;
+        let mut out = [self.halt_pose(); 2];
+        for side in Side::BOTH {
+            let i = side.index();
+            let start = self.start[i];
+            let (end, s, ext) = if side == swing {
+                (end_swing, s_swing, c.lift_extension * lift * fade)
+            } else {
+                (end_support, p, -c.push_extension * lift * fade)
+            };
+            let mut angle = [0.0; 3];
+            for k in 0..3 {
+                angle[k] = start[k] + s * (end[k] - start[k]);
+            }
+            angle[0] += sway;
+            angle[1] -= lean;
+            out[i] = LegPose {
+                extension: c.halt_extension + ext,
+                angle,
+                foot: [0.0, -lean],
+            };
+        }
+        out
+    }
+}

@@ -1,0 +1,42 @@
+//! Falls: what counts as one and how it is reported.
+
+use serde::{Deserialize, Serialize};
+
+use crate::control::Side;
+
+/// A part of the robot that can touch the ground.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum BodyPart {
+    /// The torso (trunk, pelvis, head or arms).
+    Torso,
+    /// A thigh.
+    Thigh(Side),
+    /// A shank.
+    Shank(Side),
+    /// A foot (touching the ground with it is not a fall).
+    Foot(Side),
+}
+
+/// Why the robot is considered fallen.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum FallCause {
+    /// The trunk tilted beyond the threshold.
+    Tilt {
+        /// Trunk tilt from vertical (rad).
+        angle: f64,
+    },
+    /// A body other than a foot touched the ground.
+    Contact {
+        /// Which one.
+        part: BodyPart,
+    },
+}
+
+/// A detected fall.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Fall {
+    /// Simulation time of detection (s).
+    pub time: f64,
+    /// Why.
+    pub cause: FallCause,
+}

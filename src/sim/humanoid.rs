@@ -1,0 +1,673 @@
+//! The humanoid in a rapier3d world: building the multibody, servoing the joints, stepping,
+//! pushes, falls and resets.
+//!
+//! The robot is one reduced-coordinate multibody: the torso is the floating root; each leg is
+//! a chain of six 1-DoF revolute joints (rapier's multibodies cannot integrate joints with two
+//! free angular DoFs). Every joint servo is a torque-limited PD controller realised with
+//! rapier's implicit joint spring and implicit joint damping: each physics step the spring's
+//! rest angle is set so that `k (rest - q) - d q' = clamp(k (target - q) - d q', +-max_torque)`.
+//! Being implicit, it stays stable with stiff gains at a 2 ms step and adds no solver
+//! constraints. Targets are clamped to the joint limits.
+
+use rapier3d_f64::prelude::*;
+
+use super::body::{BodyConfig, head_neck_length};
+use super::config::SimConfig;
+use super::error::SimError;
+use super::fall::{BodyPart, Fall, FallCause};
+use super::sensors::{foot_contact, imu_of};
+use super::truth::{GroundTruth, Skeleton, pose_of};
+use crate::control::{JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+
+/// Index of the free angular axis of a revolute joint in rapier's spatial layout.
+const REVOLUTE_AXIS: usize = 3;
+
+/// The simulated humanoid: a rapier world holding the robot and the ground.
+pub struct Humanoid {
+    config: SimConfig,
+    world: PhysicsWorld,
+    multibody: MultibodyIndex,
+    torso: RigidBodyHandle,
+    /// Body moved by each joint, [`LegJoint::index`] order.
+    links: [RigidBodyHandle; NUM_JOINTS],
+    /// Link id of that body inside the multibody.
+    link_ids: [usize; NUM_JOINTS],
+    /// Generalized-coordinate index of each joint.
+    dofs: [usize; NUM_JOINTS],
+    feet: [ColliderHandle; 2],
+    ground: ColliderHandle,
+    /// Every robot collider and the body part it belongs to.
+    parts: Vec<(ColliderHandle, BodyPart)>,
+    /// Every link with its mass (kg) and local centre of mass.
+    masses: Vec<(RigidBodyHandle, f64, Vector)>,
+    targets: [f64; NUM_JOINTS],
+    time: f64,
+    push_force: [f64; 3],
+    push_steps_left: usize,
+    forces_applied: bool,
+}
+
+fn v3(a: [f64; 3]) -> Vector {
+    Vector::new(a[0], a[1], a[2])
+}
+
+fn capsule_below(length: f64, radius: f64, clearance: f64) -> Collider {
+    let half = (length / 2.0 - radius - clearance).max(1e-3);
+    ColliderBuilder::capsule_z(half, radius)
+        .translation(Vector::new(0.0, 0.0, -length / 2.0))
+        .density(0.0)
+        .build()
+}
+
+fn segment_mass(
+    length: f64,
+    mass: f64,
+    com_fraction: f64,
+    gyr: f64,
+    radius: f64,
+) -> MassProperties {
+    let i_long = mass * (gyr * length).powi(2);
+    let i_axial = 0.5 * mass * radius * radius;
+    MassProperties::new(
+        Vector::new(0.0, 0.0, -com_fraction * length),
+        mass,
+        Vector::new(i_long, i_long, i_axial),
+    )
+}
+
+impl Humanoid {
+    /// Builds the robot standing in `config.initial_joints` with its soles
+    /// `config.initial_clearance` above the ground. Rejects invalid configs.
+    pub fn new(config: SimConfig) -> Result<Self, SimError> {
+        config.validate()?;
+        let body = &config.body;
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, 0.0, -config.gravity);
+        let p = &mut world.integration_parameters;
+        p.dt = config.dt;
+        p.num_solver_iterations = config.solver_iterations;
+        p.num_internal_pgs_iterations = config.pgs_iterations;
+
+        // Ground: a thick fixed slab whose top face is z = 0.
+        let ground_rb = world.bodies.insert(RigidBodyBuilder::fixed());
+        let ground = world.colliders.insert_with_parent(
+            ColliderBuilder::cuboid(100.0, 100.0, 0.5)
+                .translation(Vector::new(0.0, 0.0, -0.5))
+                .friction(config.friction),
+            ground_rb,
+            &mut world.bodies,
+        );
+
+        let mut parts = Vec::new();
+        let mut attach = |world: &mut PhysicsWorld, c: Collider, rb, part| {
+            let mut c = c;
+            c.set_friction(config.friction);
+            let h = world.colliders.insert_with_parent(c, rb, &mut world.bodies);
+            parts.push((h, part));
+            h
+        };
+
+        // Torso (trunk, pelvis, head, arms): the floating root. Its frame sits midway between
+        // the hip centres.
+        let t = &body.torso;
+        let torso = world.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .can_sleep(false)
+                .additional_mass_properties(MassProperties::new(
+                    Vector::new(0.0, 0.0, t.com_height),
+                    t.mass,
+                    v3(t.inertia),
+                )),
+        );
+        let pelvis_h = 0.12;
+        attach(
+            &mut world,
+            ColliderBuilder::cuboid(t.depth / 2.0, t.width / 2.0, t.length / 2.0)
+                .translation(Vector::new(
+                    0.0,
+                    0.0,
+                    t.length / 2.0 - pelvis_h / 2.0 + 0.02,
+                ))
+                .density(0.0)
+                .build(),
+            torso,
+            BodyPart::Torso,
+        );
+        attach(
+            &mut world,
+            ColliderBuilder::ball(t.head_radius)
+                .translation(Vector::new(
+                    0.0,
+                    0.0,
+                    t.length + head_neck_length(t) - t.head_radius,
+                ))
+                .density(0.0)
+                .build(),
+            torso,
+            BodyPart::Torso,
+        );
+        for s in [1.0, -1.0] {
+            attach(
+                &mut world,
+                ColliderBuilder::capsule_z(t.arm_length / 2.0 - t.arm_radius, t.arm_radius)
+                    .translation(Vector::new(
+                        0.0,
+                        s * (t.width / 2.0 + t.arm_radius + 0.01),
+                        t.length - t.arm_length / 2.0,
+                    ))
+                    .density(0.0)
+                    .build(),
+                torso,
+                BodyPart::Torso,
+            );
+        }
+
+        let gimbal = || {
+            RigidBodyBuilder::dynamic()
+                .can_sleep(false)
+                .additional_mass_properties(MassProperties::new(
+                    Vector::ZERO,
+                    body.gimbal_mass,
+                    Vector::splat(1e-4),
+                ))
+        };
+        let mut links = [torso; NUM_JOINTS];
+        let mut feet = [ground; 2];
+        for side in Side::BOTH {
+            let sign = side.sign();
+            let th = &body.thigh;
+            let sh = &body.shank;
+            let f = &body.foot;
+            let hip_yaw = world.bodies.insert(gimbal());
+            let hip_roll = world.bodies.insert(gimbal());
+            let thigh = world.bodies.insert(
+                RigidBodyBuilder::dynamic()
+                    .can_sleep(false)
+                    .additional_mass_properties(segment_mass(
+                        th.length,
+                        th.mass - 2.0 * body.gimbal_mass,
+                        th.com_fraction,
+                        th.gyration_fraction,
+                        th.radius,
+                    )),
+            );
+            attach(
+                &mut world,
+                capsule_below(th.length, th.radius, 0.0),
+                thigh,
+                BodyPart::Thigh(side),
+            );
+            let shank = world.bodies.insert(
+                RigidBodyBuilder::dynamic()
+                    .can_sleep(false)
+                    .additional_mass_properties(segment_mass(
+                        sh.length,
+                        sh.mass,
+                        sh.com_fraction,
+                        sh.gyration_fraction,
+                        sh.radius,
+                    )),
+            );
+            attach(
+                &mut world,
+                capsule_below(sh.length, sh.radius, 0.01),
+                shank,
+                BodyPart::Shank(side),
+            );
+            let ankle = world.bodies.insert(gimbal());
+            let fm = f.mass - body.gimbal_mass;
+            let (lx, ly, lz) = (f.length, f.width, f.ankle_height);
+            let foot = world.bodies.insert(
+                RigidBodyBuilder::dynamic()
+                    .can_sleep(false)
+                    .additional_mass_properties(MassProperties::new(
+                        Vector::new(f.sole_offset_x, 0.0, -lz / 2.0),
+                        fm,
+                        Vector::new(
+                            fm * (ly * ly + lz * lz) / 12.0,
+                            fm * (lx * lx + lz * lz) / 12.0,
+                            fm * (lx * lx + ly * ly) / 12.0,
+                        ),
+                    )),
+            );
+            feet[side.index()] = attach(
+                &mut world,
+                ColliderBuilder::cuboid(lx / 2.0, ly / 2.0, lz / 2.0)
+                    .translation(Vector::new(f.sole_offset_x, 0.0, -lz / 2.0))
+                    .density(0.0)
+                    .build(),
+                foot,
+                BodyPart::Foot(side),
+            );
+
+            let hip = Vector::new(0.0, sign * body.hip_half_width, 0.0);
+            let chain = [
+                (torso, hip_yaw, Vector::Z, hip),
+                (hip_yaw, hip_roll, Vector::X, Vector::ZERO),
+                (hip_roll, thigh, Vector::Y, Vector::ZERO),
+                (thigh, shank, Vector::Y, Vector::new(0.0, 0.0, -th.length)),
+                (shank, ankle, Vector::Y, Vector::new(0.0, 0.0, -sh.length)),
+                (ankle, foot, Vector::X, Vector::ZERO),
+            ];
+            for (j, (parent, child, axis, anchor)) in LegJoint::ALL.iter().zip(chain) {
+                let joint = RevoluteJointBuilder::new(axis)
+                    .local_anchor1(anchor)
+                    .local_anchor2(Vector::ZERO)
+                    .contacts_enabled(false);
+                world
+                    .multibody_joints
+                    .insert(parent, child, joint, true)
+                    .ok_or_else(|| SimError::BlowUp {
+                        time: 0.0,
+                        what: "rapier refused a joint".into(),
+                    })?;
+                links[j.index(side)] = child;
+            }
+        }
+
+        let multibody = world
+            .multibody_joints
+            .rigid_body_link(torso)
+            .map(|l| l.multibody)
+            .ok_or_else(|| SimError::BlowUp {
+                time: 0.0,
+                what: "torso is not in a multibody".into(),
+            })?;
+        let mut link_ids = [0; NUM_JOINTS];
+        for (i, h) in links.iter().enumerate() {
+            link_ids[i] = world
+                .multibody_joints
+                .rigid_body_link(*h)
+                .map(|l| l.id)
+                .unwrap_or(0);
+        }
+        let mb = world
+            .multibody_joints
+            .get_multibody_mut(multibody)
+            .expect("multibody just built");
+        mb.set_self_contacts_enabled(false);
+        let mut dofs = [0; NUM_JOINTS];
+        for (i, id) in link_ids.iter().enumerate() {
+            dofs[i] = mb.link(*id).expect("link").assembly_id();
+        }
+        // No artificial damping on the floating base; joint damping is the servo's.
+        let damping = mb.damping_mut();
+        for k in 0..6 {
+            damping[k] = 0.0;
+        }
+        for side in Side::BOTH {
+            for j in LegJoint::ALL {
+                damping[dofs[j.index(side)]] = body.joint(j).damping;
+            }
+        }
+
+        let handles: Vec<_> = world.bodies.iter().map(|(h, _)| h).collect();
+        for h in handles {
+            world.bodies[h].recompute_mass_properties_from_colliders(&world.colliders);
+        }
+        let masses = world
+            .bodies
+            .iter()
+            .filter(|(_, rb)| rb.is_dynamic())
+            .map(|(h, rb)| {
+                let mp = rb.mass_properties().local_mprops;
+                (h, mp.mass(), mp.local_com)
+            })
+            .collect();
+        let mut sim = Humanoid {
+            masses,
+            targets: config.initial_joints,
+            config,
+            world,
+            multibody,
+            torso,
+            links,
+            link_ids,
+            dofs,
+            feet,
+            ground,
+            parts,
+            time: 0.0,
+            push_force: [0.0; 3],
+            push_steps_left: 0,
+            forces_applied: false,
+        };
+        sim.place_standing();
+        Ok(sim)
+    }
+
+    /// Sets the initial joint angles and lifts the root so the lowest sole corner sits
+    /// `initial_clearance` above the ground.
+    fn place_standing(&mut self) {
+        let q0 = self.config.initial_joints;
+        let ndofs = self.mb().ndofs();
+        let mut disp = vec![0.0; ndofs];
+        for (i, q) in q0.iter().enumerate() {
+            disp[self.dofs[i]] = *q;
+        }
+        self.apply_displacement(&disp);
+        let lowest = Side::BOTH
+            .iter()
+            .flat_map(|s| self.sole_corners(*s))
+            .map(|c| c[2])
+            .fold(f64::INFINITY, f64::min);
+        let mut disp = vec![0.0; ndofs];
+        disp[2] = self.config.initial_clearance - lowest;
+        self.apply_displacement(&disp);
+        for (i, q) in q0.iter().enumerate() {
+            self.set_servo(i, *q, 0.0);
+        }
+    }
+
+    fn apply_displacement(&mut self, disp: &[f64]) {
+        let mb = self
+            .world
+            .multibody_joints
+            .get_multibody_mut(self.multibody)
+            .expect("multibody");
+        mb.apply_displacements(disp);
+        mb.forward_kinematics(&self.world.bodies, false);
+        mb.update_rigid_bodies(&mut self.world.bodies, true);
+    }
+
+    fn mb(&self) -> &Multibody {
+        self.world
+            .multibody_joints
+            .get_multibody(self.multibody)
+            .expect("multibody")
+    }
+
+    /// The configuration this robot was built from.
+    pub fn config(&self) -> &SimConfig {
+        &self.config
+    }
+
+    /// The body description.
+    pub fn body(&self) -> &BodyConfig {
+        &self.config.body
+    }
+
+    /// Simulation time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Current joint angle of joint `i` (rad).
+    fn joint_angle(&self, i: usize) -> f64 {
+        self.mb()
+            .link(self.link_ids[i])
+            .expect("link")
+            .joint()
+            .coords()[REVOLUTE_AXIS]
+    }
+
+    /// Everything control may read now.
+    pub fn sensors(&self) -> Sensors {
+        let mb = self.mb();
+        let gv = mb.generalized_velocity();
+        let mut joint_pos = [0.0; NUM_JOINTS];
+        let mut joint_vel = [0.0; NUM_JOINTS];
+        for i in 0..NUM_JOINTS {
+            joint_pos[i] = self.joint_angle(i);
+            joint_vel[i] = gv[self.dofs[i]];
+        }
+        let torso = &self.world.bodies[self.torso];
+        let imu = imu_of(torso.position(), [gv[3], gv[4], gv[5]]);
+        let dt = self.config.dt;
+        let feet = [Side::Left, Side::Right].map(|s| {
+            let foot_rb = self.links[LegJoint::AnkleRoll.index(s)];
+            foot_contact(&self.world, self.feet[s.index()], self.ground, foot_rb, dt)
+        });
+        Sensors {
+            time: self.time,
+            joint_pos,
+            joint_vel,
+            imu,
+            feet,
+        }
+    }
+
+    /// Applies `targets` (clamped to the joint limits) and advances one control tick.
+    /// A non-finite target is rejected before anything changes; a physics blow-up is an error.
+    pub fn step(&mut self, targets: &JointTargets) -> Result<(), SimError> {
+        for (index, value) in targets.pos.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(SimError::BadTarget {
+                    index,
+                    value: *value,
+                });
+            }
+        }
+        for side in Side::BOTH {
+            for j in LegJoint::ALL {
+                let i = j.index(side);
+                let [lo, hi] = self.limits(j, side);
+                self.targets[i] = targets.pos[i].clamp(lo, hi);
+            }
+        }
+        for _ in 0..self.config.steps_per_tick {
+            self.physics_step()?;
+        }
+        Ok(())
+    }
+
+    /// Joint limits of joint `j` of leg `side` (roll and yaw limits mirror on the right leg).
+    pub fn limits(&self, j: LegJoint, side: Side) -> [f64; 2] {
+        let [lo, hi] = self.config.body.joint(j).limits;
+        match (j, side) {
+            (LegJoint::HipYaw | LegJoint::HipRoll | LegJoint::AnkleRoll, Side::Right) => [-hi, -lo],
+            _ => [lo, hi],
+        }
+    }
+
+    fn set_servo(&mut self, i: usize, target: f64, max_torque_override: f64) {
+        let j = LegJoint::ALL[i % LegJoint::ALL.len()];
+        let spec = *self.config.body.joint(j);
+        let q = self.joint_angle(i);
+        let v = self.mb().generalized_velocity()[self.dofs[i]];
+        let k = spec.stiffness;
+        let max = if max_torque_override > 0.0 {
+            max_torque_override
+        } else {
+            spec.max_torque
+        };
+        let pd = k * (target - q) - spec.damping * v;
+        let rest = if pd.abs() <= max {
+            target
+        } else {
+            q + (pd.clamp(-max, max) + spec.damping * v) / k
+        };
+        let id = self.link_ids[i];
+        let mb = self
+            .world
+            .multibody_joints
+            .get_multibody_mut(self.multibody)
+            .expect("multibody");
+        mb.link_mut(id)
+            .expect("link")
+            .joint
+            .set_spring(REVOLUTE_AXIS, k, rest);
+    }
+
+    fn physics_step(&mut self) -> Result<(), SimError> {
+        for i in 0..NUM_JOINTS {
+            self.set_servo(i, self.targets[i], 0.0);
+        }
+        let torso = &mut self.world.bodies[self.torso];
+        if self.push_steps_left > 0 {
+            torso.reset_forces(false);
+            torso.add_force(v3(self.push_force), true);
+            self.push_steps_left -= 1;
+            self.forces_applied = true;
+        } else if self.forces_applied {
+            torso.reset_forces(false);
+            self.forces_applied = false;
+        }
+        self.world.step();
+        self.time += self.config.dt;
+        self.check_finite()
+    }
+
+    fn check_finite(&self) -> Result<(), SimError> {
+        let mb = self.mb();
+        let gv = mb.generalized_velocity();
+        let torso = self.world.bodies[self.torso].position().translation;
+        let bad = if !torso.is_finite() || torso.length() > 1e4 {
+            Some(format!("torso position {torso:?}"))
+        } else if let Some(v) = gv.iter().find(|v| !v.is_finite() || v.abs() > 1e3) {
+            Some(format!("generalized velocity {v}"))
+        } else {
+            None
+        };
+        match bad {
+            Some(what) => Err(SimError::BlowUp {
+                time: self.time,
+                what,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Pushes the torso (at its centre of mass) with `impulse_ns` (N s, world frame), spread as
+    /// a constant force over the next `config.push_steps` physics steps, so the momentum of
+    /// the robot changes by exactly the impulse (plus what gravity and contacts add). A push
+    /// still under way is replaced. Non-finite impulses are ignored.
+    pub fn push(&mut self, impulse_ns: [f64; 3]) {
+        if impulse_ns.iter().any(|v| !v.is_finite()) {
+            return;
+        }
+        let duration = self.config.dt * self.config.push_steps as f64;
+        self.push_force = impulse_ns.map(|p| p / duration);
+        self.push_steps_left = self.config.push_steps;
+    }
+
+    /// Whether a push is still being delivered.
+    pub fn pushing(&self) -> bool {
+        self.push_steps_left > 0
+    }
+
+    /// The fall, if the trunk tilts beyond `config.fall_tilt` or a body other than a foot
+    /// touches the ground.
+    pub fn fall(&self) -> Option<Fall> {
+        let r = self.world.bodies[self.torso].position().rotation;
+        let up = r * Vector::Z;
+        let tilt = up.z.clamp(-1.0, 1.0).acos();
+        if tilt > self.config.fall_tilt {
+            return Some(Fall {
+                time: self.time,
+                cause: FallCause::Tilt { angle: tilt },
+            });
+        }
+        for pair in self.world.narrow_phase.contact_pairs_with(self.ground) {
+            if !pair.has_any_active_contact() {
+                continue;
+            }
+            let other = if pair.collider1 == self.ground {
+                pair.collider2
+            } else {
+                pair.collider1
+            };
+            if let Some((_, part)) = self.parts.iter().find(|(h, _)| *h == other)
+                && !matches!(part, BodyPart::Foot(_))
+            {
+                return Some(Fall {
+                    time: self.time,
+                    cause: FallCause::Contact { part: *part },
+                });
+            }
+        }
+        None
+    }
+
+    /// Puts the robot back in its initial standing pose at time zero, as if newly built.
+    pub fn reset(&mut self) {
+        *self = Humanoid::new(self.config.clone()).expect("config validated at construction");
+    }
+
+    fn sole_corners(&self, side: Side) -> [[f64; 3]; 4] {
+        let f = &self.config.body.foot;
+        let pose = self.world.bodies[self.links[LegJoint::AnkleRoll.index(side)]].position();
+        let mut out = [[0.0; 3]; 4];
+        for (k, (sx, sy)) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let p = pose.transform_point(Vector::new(
+                f.sole_offset_x + sx * f.length / 2.0,
+                sy * f.width / 2.0,
+                -f.ankle_height,
+            ));
+            out[k] = [p.x, p.y, p.z];
+        }
+        out
+    }
+
+    /// Ground truth for tests and figures (control must not use it): centre of mass, its
+    /// velocity, linear momentum, torso and sole poses, and stick-figure points.
+    pub fn ground_truth(&self) -> GroundTruth {
+        let bodies = &self.world.bodies;
+        let mut m = 0.0;
+        let mut com = Vector::ZERO;
+        let mut momentum = Vector::ZERO;
+        for (h, mi, local_com) in &self.masses {
+            let rb = &bodies[*h];
+            m += mi;
+            com += rb.position().transform_point(*local_com) * *mi;
+            momentum += rb.linvel() * *mi;
+        }
+        let com = com / m;
+        let vel = momentum / m;
+        let b = &self.config.body;
+        let torso = bodies[self.torso].position();
+        let point = |pose: &Pose, p: [f64; 3]| {
+            let w = pose.transform_point(v3(p));
+            [w.x, w.y, w.z]
+        };
+        let legs = Side::BOTH.map(|s| {
+            let hip = point(torso, [0.0, s.sign() * b.hip_half_width, 0.0]);
+            let knee = point(
+                bodies[self.links[LegJoint::Knee.index(s)]].position(),
+                [0.0; 3],
+            );
+            let foot = bodies[self.links[LegJoint::AnkleRoll.index(s)]].position();
+            let ankle = point(foot, [0.0; 3]);
+            let f = &b.foot;
+            let heel = point(
+                foot,
+                [f.sole_offset_x - f.length / 2.0, 0.0, -f.ankle_height],
+            );
+            let toe = point(
+                foot,
+                [f.sole_offset_x + f.length / 2.0, 0.0, -f.ankle_height],
+            );
+            [hip, knee, ankle, heel, toe]
+        });
+        let t = &b.torso;
+        let skeleton = Skeleton {
+            pelvis: point(torso, [0.0; 3]),
+            neck: point(torso, [0.0, 0.0, t.length]),
+            head: point(
+                torso,
+                [0.0, 0.0, t.length + head_neck_length(t) - t.head_radius],
+            ),
+            head_radius: t.head_radius,
+            legs,
+        };
+        let soles = Side::BOTH.map(|s| {
+            let foot = bodies[self.links[LegJoint::AnkleRoll.index(s)]].position();
+            let f = &b.foot;
+            let sole = foot.transform_point(Vector::new(f.sole_offset_x, 0.0, -f.ankle_height));
+            pose_of(sole, foot.rotation)
+        });
+        GroundTruth {
+            time: self.time,
+            mass: m,
+            com: [com.x, com.y, com.z],
+            com_vel: [vel.x, vel.y, vel.z],
+            momentum: [momentum.x, momentum.y, momentum.z],
+            torso: pose_of(torso.translation, torso.rotation),
+            soles,
+            skeleton,
+        }
+    }
+}
