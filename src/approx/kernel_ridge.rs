@@ -134,9 +134,27 @@ impl KernelRidgeConfig {
 /// Cost: update `O(m^2 + m (d + output_dim))` (about 6 passes over `m x m` matrices), predict
 /// `O(m (d + output_dim))` with no allocation; memory `3 m^2 + m (d + 2 output_dim)` floats.
 ///
+/// ```
+/// use steplearn::approx::{FunctionApproximator, KernelRidge, KernelRidgeConfig};
+/// let mut model = KernelRidge::new(KernelRidgeConfig {
+///     regularisation: 1e-4,
+///     budget: 30,
+///     ..KernelRidgeConfig::new(vec![0.3], 1)
+/// })?;
+/// for i in 0..500 {
+///     let x = (i % 100) as f64 / 99.0;
+///     model.update(&[x], &[(3.0 * x).sin()])?;
+/// }
+/// assert!(model.dictionary_size() <= 30);
+/// let mut y = [0.0];
+/// model.predict(&[0.5], &mut y)?;
+/// assert!((y[0] - 1.5f64.sin()).abs() < 1e-2);
+/// # Ok::<(), steplearn::approx::ApproxError>(())
+/// ```
+///
 /// Linear algebra: only matrix-vector products and rank-one updates of symmetric matrices
 /// (BLAS-2), on compact buffers that grow and shrink by one row and column
-/// ([`SquareMatrix`]). Hand-written slice loops auto-vectorise, never allocate and keep the
+/// (`SquareMatrix`, a private helper). Hand-written slice loops auto-vectorise, never allocate and keep the
 /// matrices bitwise symmetric, which neither faer's nor nalgebra's general kernels give for
 /// free; their strength, blocked factorisations, is only needed when a model is loaded:
 /// there nalgebra (the crate's small-matrix library) multiplies `Q K` to check that `Q` is

@@ -192,6 +192,21 @@ impl RbfConfig {
 /// Cost, with `active` = product of the window lengths (about `(2 cutoff widths / spacing)^d`):
 /// predict `O(active (d + output_dim))` with no allocation; update the same for
 /// [`RbfUpdate::Nlms`], `O(centres^2 + centres * output_dim)` for [`RbfUpdate::Rls`].
+///
+/// ```
+/// use steplearn::approx::{FunctionApproximator, InputBox, Rbf, RbfConfig, RbfUpdate};
+/// let bounds = InputBox::cube(1, 0.0, 1.0)?;
+/// let update = RbfUpdate::Rls { forgetting: 1.0, prior_variance: 100.0 };
+/// let mut net = Rbf::new(RbfConfig { update, ..RbfConfig::new(bounds, vec![11], 1) })?;
+/// for i in 0..200 {
+///     let x = i as f64 / 199.0;
+///     net.update(&[x], &[x * x])?;
+/// }
+/// let mut y = [0.0];
+/// net.predict(&[0.5], &mut y)?;
+/// assert!((y[0] - 0.25).abs() < 0.01);
+/// # Ok::<(), steplearn::approx::ApproxError>(())
+/// ```
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Rbf {
     config: RbfConfig,
