@@ -197,3 +197,21 @@ fn invalid_configs_name_the_parameter() {
     assert!(InputBox::new(vec![], vec![]).is_err());
     assert!(InputBox::new(vec![0.0, 0.0], vec![1.0]).is_err());
 }
+
+#[test]
+fn many_outputs_beyond_the_stack_buffer_work_too() {
+    let n_out = 11;
+    let config = GridConfig::new(InputBox::cube(2, 0.0, 1.0).unwrap(), vec![4, 4], n_out);
+    let mut g = Grid::new(GridConfig {
+        learning_rate: 1.0,
+        ..config
+    })
+    .unwrap();
+    let target: Vec<f64> = (0..n_out).map(|k| k as f64 - 5.0).collect();
+    g.update(&[0.3, 0.8], &target).unwrap();
+    let mut y = vec![0.0; n_out];
+    g.predict(&[0.3, 0.8], &mut y).unwrap();
+    for (a, b) in y.iter().zip(&target) {
+        assert!((a - b).abs() < 1e-12);
+    }
+}

@@ -211,3 +211,29 @@ fn invalid_configs_name_the_parameter() {
     let ten = RbfConfig::new(InputBox::cube(10, -1.0, 1.0).unwrap(), vec![21; 10], 1);
     assert_eq!(param(ten), "centres");
 }
+
+#[test]
+fn many_outputs_beyond_the_stack_buffer_work_too() {
+    let n_out = 11;
+    // A weak prior, so that three samples pin the fit (RLS is ridge regression).
+    let weak_prior = RbfUpdate::Rls {
+        forgetting: 1.0,
+        prior_variance: 1e6,
+    };
+    for update in [RbfUpdate::Nlms { learning_rate: 1.0 }, weak_prior] {
+        let config = RbfConfig {
+            update,
+            ..RbfConfig::new(InputBox::cube(2, 0.0, 1.0).unwrap(), vec![5, 5], n_out)
+        };
+        let mut m = Rbf::new(config).unwrap();
+        let target: Vec<f64> = (0..n_out).map(|k| k as f64 - 5.0).collect();
+        for _ in 0..3 {
+            m.update(&[0.3, 0.8], &target).unwrap();
+        }
+        let mut y = vec![0.0; n_out];
+        m.predict(&[0.3, 0.8], &mut y).unwrap();
+        for (a, b) in y.iter().zip(&target) {
+            assert!((a - b).abs() < 1e-3, "{update:?}: {a} vs {b}");
+        }
+    }
+}
