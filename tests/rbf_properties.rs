@@ -87,6 +87,21 @@ proptest! {
 }
 
 #[test]
+fn extreme_inputs_use_the_nearest_centre() {
+    let mut m = rbf(
+        vec![5, 5],
+        vec![0.3, 0.3],
+        RbfUpdate::Nlms { learning_rate: 1.0 },
+    );
+    m.update(&[1.0, -1.0], &[3.0]).unwrap();
+    assert!(m.weights()[4] > 0.0);
+    for x in [[1e300, -1e300], [f64::MAX, f64::MIN], [1e10, -1e10]] {
+        assert_eq!(m.basis(&x).unwrap(), vec![(4, 1.0)]);
+        assert_eq!(predict(&m, &x), m.weights()[4]);
+    }
+}
+
+#[test]
 fn least_squares_beats_least_mean_squares_on_noisy_data() {
     let target = |x: &[f64]| (2.0 * x[0]).sin() * x[1];
     let mut rng = ChaCha8Rng::seed_from_u64(3);
