@@ -257,3 +257,22 @@ fn many_outputs_beyond_the_stack_buffer_work_too() {
         }
     }
 }
+
+#[test]
+fn forgetting_does_not_wind_up_the_covariance_of_unvisited_centres() {
+    use steplearn::approx::Persist;
+    let forgetting = RbfUpdate::Rls {
+        forgetting: 0.9,
+        prior_variance: 10.0,
+    };
+    let mut m = rbf(vec![6, 6], vec![0.3, 0.3], forgetting);
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    // Only one corner is ever visited: without a bound, 0.9^-5000 would overflow.
+    for _ in 0..5000 {
+        let x = [rng.random_range(0.8..1.0), rng.random_range(0.8..1.0)];
+        m.update(&x, &[x[0] + x[1]]).unwrap();
+    }
+    let loaded = Rbf::from_json(&m.to_json().unwrap()).expect("covariance stays bounded");
+    assert!((predict(&loaded, &[0.9, 0.9]) - 1.8).abs() < 0.01);
+    assert!(predict(&loaded, &[-1.0, -1.0]).is_finite());
+}
