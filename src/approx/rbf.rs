@@ -432,7 +432,7 @@ impl Persist for Rbf {
                 }
                 // Updates never raise the trace above its initial value.
                 let trace: f64 = (0..m).map(|i| p[i * m + i]).sum();
-                if !(trace <= m as f64 * prior_variance * (1.0 + 1e-9)) {
+                if trace.is_nan() || trace > m as f64 * prior_variance * (1.0 + 1e-9) {
                     return corrupt(format!(
                         "covariance trace {trace} exceeds its initial value"
                     ));
