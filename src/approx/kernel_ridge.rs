@@ -16,7 +16,8 @@ const JITTER: f64 = 1e-8;
 /// - the 3-input step-offset map, noise 0.01: `length_scales` = half the input ranges
 ///   (`[0.5, 3.0, 0.15]`), `regularisation = 1e-4`, defaults otherwise: nMSE 2e-4.
 ///
-/// At the default budget an update takes about 25 us (criterion, `benches/approx_others.rs`).
+/// At the default budget an update on cross 2D takes 15-27 us (criterion,
+/// `benches/approx_others.rs`, on a shared 2-core machine).
 ///
 /// Length scales of about the distance over which the target changes noticeably, and a
 /// `regularisation` of the observation noise variance, are good starting points. The budget
