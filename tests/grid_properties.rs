@@ -36,7 +36,12 @@ fn multilinear(coef: &[f64], x: &[f64]) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    // A fixed seed: the same cases on every run.
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20_260_322),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn weights_are_a_partition_of_unity(
@@ -196,4 +201,22 @@ fn invalid_configs_name_the_parameter() {
     assert!(InputBox::new(vec![0.0], vec![f64::INFINITY]).is_err());
     assert!(InputBox::new(vec![], vec![]).is_err());
     assert!(InputBox::new(vec![0.0, 0.0], vec![1.0]).is_err());
+}
+
+#[test]
+fn many_outputs_beyond_the_stack_buffer_work_too() {
+    let n_out = 11;
+    let config = GridConfig::new(InputBox::cube(2, 0.0, 1.0).unwrap(), vec![4, 4], n_out);
+    let mut g = Grid::new(GridConfig {
+        learning_rate: 1.0,
+        ..config
+    })
+    .unwrap();
+    let target: Vec<f64> = (0..n_out).map(|k| k as f64 - 5.0).collect();
+    g.update(&[0.3, 0.8], &target).unwrap();
+    let mut y = vec![0.0; n_out];
+    g.predict(&[0.3, 0.8], &mut y).unwrap();
+    for (a, b) in y.iter().zip(&target) {
+        assert!((a - b).abs() < 1e-12);
+    }
 }

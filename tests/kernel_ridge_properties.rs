@@ -26,41 +26,47 @@ fn gaussian(a: &[f64], b: &[f64], ls: &[f64]) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    // A fixed seed: the same cases on every run.
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20_260_322),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn without_budget_pressure_it_equals_batch_kernel_ridge(
         seed in 0u64..1000,
         reg in 0.001..0.5f64,
-        ls0 in 0.2..1.0f64,
-        ls1 in 0.2..1.0f64,
+        ls0 in 0.2..0.6f64,
+        ls1 in 0.2..0.6f64,
     ) {
         // Every sample becomes an atom (budget > samples, tiny novelty threshold), so the
         // online model must match f(x) = k(x, X) (K + reg I)^-1 y computed in one go.
         let ls = [ls0, ls1];
         let mut m = KernelRidge::new(KernelRidgeConfig {
             budget: 60,
-            novelty_threshold: 1e-9,
+            novelty_threshold: 1e-6,
             regularisation: reg,
             ..KernelRidgeConfig::new(ls.to_vec(), 1)
         }).unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let xs: Vec<[f64; 2]> = (0..25)
+        let xs: Vec<[f64; 2]> = (0..15)
             .map(|_| [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)])
             .collect();
         let ys: Vec<f64> = xs.iter().map(|x| x[0].sin() + x[1] * x[1] + rng.random_range(-0.1..0.1)).collect();
         for (x, y) in xs.iter().zip(&ys) {
             m.update(x, &[*y]).unwrap();
         }
-        prop_assert_eq!(m.dictionary_size(), 25);
+        prop_assert_eq!(m.dictionary_size(), 15);
         let n = xs.len();
-        let k = DMatrix::from_fn(n, n, |i, j| gaussian(&xs[i], &xs[j], &ls) + if i == j { reg } else { 0.0 });
+        // The model's kernel carries a jitter of 1e-8 on its diagonal (see KernelRidge docs).
+        let k = DMatrix::from_fn(n, n, |i, j| gaussian(&xs[i], &xs[j], &ls) + if i == j { reg + 1e-8 } else { 0.0 });
         let alpha = k.lu().solve(&DVector::from_vec(ys.clone())).unwrap();
         for _ in 0..20 {
             let x = [rng.random_range(-1.2..1.2), rng.random_range(-1.2..1.2)];
             let batch: f64 = xs.iter().zip(alpha.iter()).map(|(xi, a)| a * gaussian(xi, &x, &ls)).sum();
             let online = predict(&m, &x);
-            prop_assert!((batch - online).abs() < 1e-6, "batch {} online {}", batch, online);
+            prop_assert!((batch - online).abs() < 1e-7, "batch {} online {}", batch, online);
         }
     }
 }

@@ -28,7 +28,12 @@ const RLS: RbfUpdate = RbfUpdate::Rls {
 };
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    // A fixed seed: the same cases on every run.
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20_260_322),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn the_basis_is_normalised_and_local(
@@ -83,6 +88,21 @@ proptest! {
             let err = (predict(&m, &x) - predict(&truth, &x)).abs();
             prop_assert!(err < 1e-3, "error {} at {:?}", err, x);
         }
+    }
+}
+
+#[test]
+fn extreme_inputs_use_the_nearest_centre() {
+    let mut m = rbf(
+        vec![5, 5],
+        vec![0.3, 0.3],
+        RbfUpdate::Nlms { learning_rate: 1.0 },
+    );
+    m.update(&[1.0, -1.0], &[3.0]).unwrap();
+    assert!(m.weights()[4] > 0.0);
+    for x in [[1e300, -1e300], [f64::MAX, f64::MIN], [1e10, -1e10]] {
+        assert_eq!(m.basis(&x).unwrap(), vec![(4, 1.0)]);
+        assert_eq!(predict(&m, &x), m.weights()[4]);
     }
 }
 
@@ -210,4 +230,49 @@ fn invalid_configs_name_the_parameter() {
     // Ten inputs with 21 centres each: the curse of dimensionality is a config error.
     let ten = RbfConfig::new(InputBox::cube(10, -1.0, 1.0).unwrap(), vec![21; 10], 1);
     assert_eq!(param(ten), "centres");
+}
+
+#[test]
+fn many_outputs_beyond_the_stack_buffer_work_too() {
+    let n_out = 11;
+    // A weak prior, so that three samples pin the fit (RLS is ridge regression).
+    let weak_prior = RbfUpdate::Rls {
+        forgetting: 1.0,
+        prior_variance: 1e6,
+    };
+    for update in [RbfUpdate::Nlms { learning_rate: 1.0 }, weak_prior] {
+        let config = RbfConfig {
+            update,
+            ..RbfConfig::new(InputBox::cube(2, 0.0, 1.0).unwrap(), vec![5, 5], n_out)
+        };
+        let mut m = Rbf::new(config).unwrap();
+        let target: Vec<f64> = (0..n_out).map(|k| k as f64 - 5.0).collect();
+        for _ in 0..3 {
+            m.update(&[0.3, 0.8], &target).unwrap();
+        }
+        let mut y = vec![0.0; n_out];
+        m.predict(&[0.3, 0.8], &mut y).unwrap();
+        for (a, b) in y.iter().zip(&target) {
+            assert!((a - b).abs() < 1e-3, "{update:?}: {a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn forgetting_does_not_wind_up_the_covariance_of_unvisited_centres() {
+    use steplearn::approx::Persist;
+    let forgetting = RbfUpdate::Rls {
+        forgetting: 0.9,
+        prior_variance: 10.0,
+    };
+    let mut m = rbf(vec![6, 6], vec![0.3, 0.3], forgetting);
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    // Only one corner is ever visited: without a bound, 0.9^-5000 would overflow.
+    for _ in 0..5000 {
+        let x = [rng.random_range(0.8..1.0), rng.random_range(0.8..1.0)];
+        m.update(&x, &[x[0] + x[1]]).unwrap();
+    }
+    let loaded = Rbf::from_json(&m.to_json().unwrap()).expect("covariance stays bounded");
+    assert!((predict(&loaded, &[0.9, 0.9]) - 1.8).abs() < 0.01);
+    assert!(predict(&loaded, &[-1.0, -1.0]).is_finite());
 }

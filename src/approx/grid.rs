@@ -80,7 +80,18 @@ impl GridConfig {
 /// `learning_rate * e`. Untrained nodes are 0. A multilinear target is reproduced exactly.
 ///
 /// Cost: predict and update `O(2^d (d + output_dim))` (4 corners in 2D, 8 in 3D), no
-/// allocation; memory `prod(resolution) * output_dim` floats.
+/// allocation (up to 8 outputs); memory `prod(resolution) * output_dim` floats.
+///
+/// ```
+/// use steplearn::approx::{FunctionApproximator, Grid, GridConfig, InputBox};
+/// let bounds = InputBox::cube(2, -1.0, 1.0)?;
+/// let mut grid = Grid::new(GridConfig { learning_rate: 1.0, ..GridConfig::new(bounds, vec![3, 3], 1) })?;
+/// grid.update(&[0.5, 0.5], &[2.0])?;
+/// let mut y = [0.0];
+/// grid.predict(&[0.5, 0.5], &mut y)?;
+/// assert!((y[0] - 2.0).abs() < 1e-12);
+/// # Ok::<(), steplearn::approx::ApproxError>(())
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Grid {
     config: GridConfig,

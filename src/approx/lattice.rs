@@ -159,6 +159,11 @@ impl Lattice {
                 (first, end)
             };
             let len = (end - first + 1).min(W);
+            if len == 1 {
+                // Also keeps inputs so far out that `d * d` overflows well defined.
+                out.set(i, first, &[1.0]);
+                continue;
+            }
             let inv = 1.0 / (2.0 * widths[i] * widths[i]);
             // Shift exponents by the nearest centre's so far-away inputs do not underflow.
             let mut dmin = f64::INFINITY;

@@ -22,8 +22,10 @@ pub enum RbfUpdate {
     /// Recursive least squares over all output weights (exact least squares with a Gaussian
     /// prior on the weights). Cost `O(centres^2)` per update and `centres^2` floats of memory.
     Rls {
-        /// Exponential forgetting factor in (0, 1]; 1 keeps all data (recommended: below 1
-        /// the covariance of rarely visited centres grows without bound).
+        /// Exponential forgetting factor in (0, 1]; 1 keeps all data. Below 1, forgetting is
+        /// bounded-trace: the division by `forgetting` is skipped whenever it would lift the
+        /// trace of the covariance above its initial value (`centres * prior_variance`), so
+        /// the covariance of rarely visited centres cannot wind up.
         forgetting: f64,
         /// Prior variance of each weight (> 0): the ridge regulariser is `1 / prior_variance`.
         prior_variance: f64,
@@ -192,6 +194,21 @@ impl RbfConfig {
 /// Cost, with `active` = product of the window lengths (about `(2 cutoff widths / spacing)^d`):
 /// predict `O(active (d + output_dim))` with no allocation; update the same for
 /// [`RbfUpdate::Nlms`], `O(centres^2 + centres * output_dim)` for [`RbfUpdate::Rls`].
+///
+/// ```
+/// use steplearn::approx::{FunctionApproximator, InputBox, Rbf, RbfConfig, RbfUpdate};
+/// let bounds = InputBox::cube(1, 0.0, 1.0)?;
+/// let update = RbfUpdate::Rls { forgetting: 1.0, prior_variance: 100.0 };
+/// let mut net = Rbf::new(RbfConfig { update, ..RbfConfig::new(bounds, vec![11], 1) })?;
+/// for i in 0..200 {
+///     let x = i as f64 / 199.0;
+///     net.update(&[x], &[x * x])?;
+/// }
+/// let mut y = [0.0];
+/// net.predict(&[0.5], &mut y)?;
+/// assert!((y[0] - 0.25).abs() < 0.01);
+/// # Ok::<(), steplearn::approx::ApproxError>(())
+/// ```
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Rbf {
     config: RbfConfig,
@@ -271,7 +288,13 @@ impl Rbf {
         });
     }
 
-    fn rls_update(&mut self, phi: &TensorWeights<WINDOW>, err: &[f64], forgetting: f64) {
+    fn rls_update(
+        &mut self,
+        phi: &TensorWeights<WINDOW>,
+        err: &[f64],
+        forgetting: f64,
+        prior_variance: f64,
+    ) {
         let m = self.lattice.len();
         let n_out = self.config.output_dim;
         let p = &mut self.covariance;
@@ -293,8 +316,14 @@ impl Rbf {
                 *w += gain * e;
             }
         }
-        // P = (P - u u^T / denom) / forgetting, computed so that P stays exactly symmetric.
-        let inv_forget = 1.0 / forgetting;
+        // P = (P - u u^T / denom) / forgetting, computed so that P stays exactly symmetric;
+        // forgetting only while the trace stays within its initial value.
+        let trace: f64 = (0..m).map(|i| p[i * m + i] - u[i] * u[i] * inv_denom).sum();
+        let inv_forget = if trace <= forgetting * m as f64 * prior_variance {
+            1.0 / forgetting
+        } else {
+            1.0
+        };
         for (j, col) in p.chunks_exact_mut(m).enumerate() {
             let uj = u[j];
             for (pij, ui) in col.iter_mut().zip(u.iter()) {
@@ -360,7 +389,10 @@ impl FunctionApproximator for Rbf {
                     }
                 });
             }
-            RbfUpdate::Rls { forgetting, .. } => self.rls_update(&phi, err, forgetting),
+            RbfUpdate::Rls {
+                forgetting,
+                prior_variance,
+            } => self.rls_update(&phi, err, forgetting, prior_variance),
         }
         Ok(())
     }
@@ -393,10 +425,17 @@ impl Persist for Rbf {
                     return corrupt("least mean squares model carries a covariance".into());
                 }
             }
-            RbfUpdate::Rls { .. } => {
+            RbfUpdate::Rls { prior_variance, .. } => {
                 let p = &self.covariance;
                 if p.len() != m * m {
                     return corrupt(format!("covariance has {} entries, not {m}^2", p.len()));
+                }
+                // Updates never raise the trace above its initial value.
+                let trace: f64 = (0..m).map(|i| p[i * m + i]).sum();
+                if trace.is_nan() || trace > m as f64 * prior_variance * (1.0 + 1e-9) {
+                    return corrupt(format!(
+                        "covariance trace {trace} exceeds its initial value"
+                    ));
                 }
                 for i in 0..m {
                     let pii = p[i * m + i];
