@@ -514,10 +514,10 @@ impl Humanoid {
         let torso = self.world.bodies[self.torso].position().translation;
         let bad = if !torso.is_finite() || torso.length() > 1e4 {
             Some(format!("torso position {torso:?}"))
-        } else if let Some(v) = gv.iter().find(|v| !v.is_finite() || v.abs() > 1e3) {
-            Some(format!("generalized velocity {v}"))
         } else {
-            None
+            gv.iter()
+                .find(|v| !v.is_finite() || v.abs() > 1e3)
+                .map(|v| format!("generalized velocity {v}"))
         };
         match bad {
             Some(what) => Err(SimError::BlowUp {
