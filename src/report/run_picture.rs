@@ -346,12 +346,15 @@ impl<'a> Picture<'a> {
             self.text(px(t) - 10.0, y1 + 13.0, 10.0, "#444", &format!("{t:.1}s"));
         }
         let stride = (frames.len() / 1500).max(1);
-        let series: [(&str, Box<dyn Fn(&RunFrame) -> f64>); 3] = [
-            (LEFT, Box::new(move |f: &RunFrame| f.soles[0][axis])),
-            (RIGHT, Box::new(move |f: &RunFrame| f.soles[1][axis])),
-            (COM, Box::new(move |f: &RunFrame| f.com[axis])),
-        ];
-        for (color, get) in series {
+        // Which point of a frame each series follows: sole 0, sole 1, CoM.
+        for (color, which) in [(LEFT, 0), (RIGHT, 1), (COM, 2)] {
+            let get = |f: &RunFrame| {
+                if which == 2 {
+                    f.com[axis]
+                } else {
+                    f.soles[which][axis]
+                }
+            };
             let mut d = String::new();
             for (k, f) in frames.iter().step_by(stride).enumerate() {
                 let _ = write!(
