@@ -271,7 +271,7 @@ impl<'a> Picture<'a> {
                 .rec
                 .pushes
                 .iter()
-                .filter(|m| m.time >= f.time && m.time < next_t)
+                .filter(|m| m.time >= f.time && m.time < next_t && m.impulse[axis].abs() > 1e-9)
                 .copied()
                 .collect();
             for m in pushes {
