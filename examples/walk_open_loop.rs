@@ -36,6 +36,9 @@ struct Args {
     /// Physics step (s) and steps per control tick.
     #[arg(long, num_args = 2)]
     dt: Option<Vec<f64>>,
+    /// Time over which the commanded step grows from 0 to `step_x` (s).
+    #[arg(long, default_value_t = 4.0)]
+    ramp: f64,
     /// Motion config override as JSON.
     #[arg(long)]
     motion: Option<String>,
@@ -75,7 +78,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let targets = if args.stand {
             motion_gen.halt_targets()
         } else {
-            let cmd = motion_gen.open_loop(args.step_x);
+            let ramp = if args.ramp > 0.0 {
+                (sim.time() / args.ramp).min(1.0)
+            } else {
+                1.0
+            };
+            let cmd = motion_gen.open_loop(args.step_x * ramp);
             motion_gen.update(&cmd, dt)
         };
         sim.step(&targets)?;

@@ -375,7 +375,8 @@ impl MotionGenerator {
         let p = self.phase;
         let d = self.space.leg_length() * (1.0 - c.halt_extension);
         let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();
-        let [sx, sy, turn] = self.filtered;
+        // Placement fades in with the lift so a barely lifted foot is not dragged.
+        let [sx, sy, turn] = self.filtered.map(|v| v * fade);
         let swing = self.swing();
         // End-of-step leg angles: swing foot ahead by step_x, outward by sy, turned by turn.
         let end_swing = [
