@@ -34,5 +34,16 @@ fn control_tick(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, control_tick);
+/// The physics alone: one control tick of the standing robot with fixed targets.
+fn physics_tick(c: &mut Criterion) {
+    let config = SimConfig::default();
+    let tick = config.tick();
+    let mut sim = Humanoid::new(config).unwrap();
+    let generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let targets = generator.halt_targets();
+    let name = format!("standing robot physics only ({:.0} ms)", tick * 1e3);
+    c.bench_function(&name, |b| b.iter(|| sim.step(black_box(&targets)).unwrap()));
+}
+
+criterion_group!(benches, control_tick, physics_tick);
 criterion_main!(benches);
