@@ -414,10 +414,8 @@ impl Humanoid {
         let torso = &self.world.bodies[self.torso];
         let imu = imu_of(torso.position(), [gv[3], gv[4], gv[5]]);
         let dt = self.config.dt;
-        let feet = [Side::Left, Side::Right].map(|s| {
-            let foot_rb = self.links[LegJoint::AnkleRoll.index(s)];
-            foot_contact(&self.world, self.feet[s.index()], self.ground, foot_rb, dt)
-        });
+        let feet =
+            Side::BOTH.map(|s| foot_contact(&self.world, self.feet[s.index()], self.ground, dt));
         Sensors {
             time: self.time,
             joint_pos,
