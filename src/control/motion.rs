@@ -203,6 +203,8 @@ pub struct MotionGenerator {
     filtered: [f64; 3],
     /// Leg angle (roll, pitch, yaw) placement of each leg at the start of the step.
     start: [[f64; 3]; 2],
+    /// Leg angles of the placement primitive alone (without sway and lean) at the last update.
+    placement: [[f64; 3]; 2],
     /// Last commanded leg poses.
     legs: [LegPose; 2],
 }
@@ -229,6 +231,7 @@ impl MotionGenerator {
             time: 0.0,
             filtered: [0.0; 3],
             start: [[0.0; 3]; 2],
+            placement: [[0.0; 3]; 2],
             legs: [LegPose::default(); 2],
         };
         g.legs = [g.halt_pose(); 2];
@@ -325,8 +328,8 @@ impl MotionGenerator {
         } else {
             1.0
         };
-        for k in 0..3 {
-            self.filtered[k] += alpha * (want[k] - self.filtered[k]);
+        for (f, w) in self.filtered.iter_mut().zip(want) {
+            *f += alpha * (w - *f);
         }
         // Phase: reach 1 after the time left.
         let left = if command.step_time.is_finite() {
@@ -340,7 +343,9 @@ impl MotionGenerator {
         if self.phase >= 1.0 - 1e-9 {
             self.exchange();
         }
-        self.legs = self.poses();
+        let (placement, legs) = self.poses();
+        self.placement = placement;
+        self.legs = legs;
         self.space.targets(&self.legs)
     }
 
@@ -348,10 +353,7 @@ impl MotionGenerator {
         self.phase = 0.0;
         self.steps += 1;
         self.support = self.support.other();
-        for side in Side::BOTH {
-            self.start[side.index()] = self.legs[side.index()].angle;
-            self.start[side.index()][0] -= self.sway_roll(0.0);
-        }
+        self.start = self.placement;
     }
 
     /// Leg roll that shifts the hips by the sway at phase `p` (towards the support foot).
@@ -362,7 +364,8 @@ impl MotionGenerator {
         -self.support.sign() * (y / d).clamp(-0.5, 0.5).asin()
     }
 
-    fn poses(&self) -> [LegPose; 2] {
+    /// The placement angles and the full leg poses at the current phase.
+    fn poses(&self) -> ([[f64; 3]; 2], [LegPose; 2]) {
         let c = &self.config;
         let fade = if c.fade_in > 0.0 {
             smooth(self.time / c.fade_in)
@@ -372,7 +375,8 @@ impl MotionGenerator {
         let p = self.phase;
         let d = self.space.leg_length() * (1.0 - c.halt_extension);
         let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();
-        let [sx, sy, turn] = self.filtered;
+        // Placement fades in with the lift so a barely lifted foot is not dragged.
+        let [sx, sy, turn] = self.filtered.map(|v| v * fade);
         let swing = self.swing();
         // End-of-step leg angles: swing foot ahead by step_x, outward by sy, turned by turn.
         let end_swing = [
@@ -386,6 +390,7 @@ impl MotionGenerator {
         let lean = c.halt_lean + c.lean_per_step * sx;
         let sway = self.sway_roll(p) * fade;
         let mut out = [self.halt_pose(); 2];
+        let mut placement = [[0.0; 3]; 2];
         for side in Side::BOTH {
             let i = side.index();
             let start = self.start[i];
@@ -398,6 +403,7 @@ impl MotionGenerator {
             for k in 0..3 {
                 angle[k] = start[k] + s * (end[k] - start[k]);
             }
+            placement[i] = angle;
             angle[0] += sway;
             angle[1] -= lean;
             out[i] = LegPose {
@@ -406,6 +412,6 @@ impl MotionGenerator {
                 foot: [0.0, -lean],
             };
         }
-        out
+        (placement, out)
     }
 }

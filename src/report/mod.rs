@@ -5,6 +5,7 @@ mod atomic;
 mod error;
 pub mod fall_rate;
 pub mod figures;
+pub mod run_picture;
 pub mod settling;
 pub mod summary;
 

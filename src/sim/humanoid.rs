@@ -414,10 +414,8 @@ impl Humanoid {
         let torso = &self.world.bodies[self.torso];
         let imu = imu_of(torso.position(), [gv[3], gv[4], gv[5]]);
         let dt = self.config.dt;
-        let feet = [Side::Left, Side::Right].map(|s| {
-            let foot_rb = self.links[LegJoint::AnkleRoll.index(s)];
-            foot_contact(&self.world, self.feet[s.index()], self.ground, foot_rb, dt)
-        });
+        let feet =
+            Side::BOTH.map(|s| foot_contact(&self.world, self.feet[s.index()], self.ground, dt));
         Sensors {
             time: self.time,
             joint_pos,
@@ -514,10 +512,10 @@ impl Humanoid {
         let torso = self.world.bodies[self.torso].position().translation;
         let bad = if !torso.is_finite() || torso.length() > 1e4 {
             Some(format!("torso position {torso:?}"))
-        } else if let Some(v) = gv.iter().find(|v| !v.is_finite() || v.abs() > 1e3) {
-            Some(format!("generalized velocity {v}"))
         } else {
-            None
+            gv.iter()
+                .find(|v| !v.is_finite() || v.abs() > 1e3)
+                .map(|v| format!("generalized velocity {v}"))
         };
         match bad {
             Some(what) => Err(SimError::BlowUp {

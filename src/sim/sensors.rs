@@ -22,7 +22,6 @@ pub(crate) fn foot_contact(
     world: &PhysicsWorld,
     foot: ColliderHandle,
     ground: ColliderHandle,
-    foot_body: RigidBodyHandle,
     dt: f64,
 ) -> FootContact {
     let Some(pair) = world.narrow_phase.contact_pair(foot, ground) else {
@@ -34,10 +33,8 @@ pub(crate) fn foot_contact(
     let foot_is_1 = pair.collider1 == foot;
     let collider = &world.colliders[foot];
     let offset = collider.position_wrt_parent().copied().unwrap_or_default();
-    let _ = foot_body;
     let mut total = 0.0;
     let mut moment = [0.0; 2];
-    let mut sole_z = 0.0;
     for manifold in pair.manifolds() {
         for point in &manifold.points {
             let imp = point.data.impulse;
@@ -53,10 +50,8 @@ pub(crate) fn foot_contact(
             total += imp;
             moment[0] += imp * p.x;
             moment[1] += imp * p.y;
-            sole_z = p.z;
         }
     }
-    let _ = sole_z;
     if total <= 0.0 {
         return FootContact {
             in_contact: true,

@@ -1,0 +1,132 @@
+//! The step motion generator: leg space round trip, timing, support exchange, smoothness.
+
+use proptest::prelude::*;
+use steplearn::control::LegJoint;
+use steplearn::control::motion::{LegPose, LegSpace, MotionConfig, MotionGenerator, StepCommand};
+use steplearn::sim::BodyConfig;
+
+fn space() -> LegSpace {
+    LegSpace::new(&BodyConfig::default().leg_geometry())
+}
+
+proptest! {
+    #[test]
+    fn leg_pose_joint_round_trip(
+        ext in 0.0..0.6f64,
+        roll in -0.4..0.4f64, pitch in -0.8..0.8f64, yaw in -0.4..0.4f64,
+        froll in -0.3..0.3f64, fpitch in -0.5..0.5f64,
+    ) {
+        let pose = LegPose { extension: ext, angle: [roll, pitch, yaw], foot: [froll, fpitch] };
+        let q = space().to_joints(&pose);
+        let back = space().from_joints(&q);
+        prop_assert!((back.extension - ext).abs() < 1e-9);
+        for k in 0..3 { prop_assert!((back.angle[k] - pose.angle[k]).abs() < 1e-9); }
+        for k in 0..2 { prop_assert!((back.foot[k] - pose.foot[k]).abs() < 1e-9); }
+        // Bent knee never hyperextends; the sole angle is the sum of the pitch joints.
+        prop_assert!(q[LegJoint::Knee as usize] >= 0.0);
+        let sole = q[LegJoint::HipPitch as usize] + q[LegJoint::Knee as usize]
+            + q[LegJoint::AnklePitch as usize];
+        prop_assert!((sole - fpitch).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn straight_leg_is_zero() {
+    let q = space().to_joints(&LegPose::default());
+    assert!(q.iter().all(|v| v.abs() < 1e-7), "{q:?}");
+}
+
+fn generator() -> MotionGenerator {
+    MotionGenerator::new(
+        MotionConfig::default(),
+        &BodyConfig::default().leg_geometry(),
+    )
+}
+
+#[test]
+fn steps_take_the_commanded_time_and_alternate() {
+    let mut g = generator();
+    let dt = 0.01;
+    let mut exchanges = Vec::new();
+    let mut t = 0.0;
+    let mut support = g.support();
+    while t < 3.0 {
+        // Remaining time of a 0.5 s step.
+        let cmd = StepCommand {
+            step_x: 0.0,
+            step_y: g.swing().sign() * g.nominal_width(),
+            turn: 0.0,
+            step_time: (1.0 - g.phase()) * 0.5,
+        };
+        g.update(&cmd, dt);
+        t += dt;
+        if g.support() != support {
+            exchanges.push(t);
+            assert_eq!(g.support(), support.other());
+            support = g.support();
+        }
+    }
+    assert_eq!(exchanges.len(), 6, "{exchanges:?}");
+    for w in exchanges.windows(2) {
+        assert!((w[1] - w[0] - 0.5).abs() < 0.011, "{exchanges:?}");
+    }
+}
+
+#[test]
+fn swing_foot_lands_where_commanded() {
+    let mut g = generator();
+    let dt = 0.005;
+    let step_x = 0.15;
+    // Run long enough for the fade-in and filter to settle, stop just before touch-down.
+    for _ in 0..4000 {
+        let cmd = g.open_loop(step_x);
+        g.update(&cmd, dt);
+        if g.steps() >= 8 && g.phase() > 0.995 - dt / 0.4 {
+            break;
+        }
+    }
+    let d = space().leg_length() * (1.0 - g.config().halt_extension);
+    let lean = g.config().lean_per_step * step_x;
+    let swing = g.legs()[g.swing().index()].angle[1] + lean;
+    let support = g.legs()[g.support().index()].angle[1] + lean;
+    // Foot x relative to the hip is -d sin(pitch); the swing foot is step_x ahead.
+    let gap = -d * swing.sin() + d * support.sin();
+    assert!((gap - step_x).abs() < 0.01, "gap {gap}");
+}
+
+#[test]
+fn changing_the_command_mid_step_is_smooth() {
+    let mut g = generator();
+    let dt = 0.01;
+    let mut last = g.update(&g.open_loop(0.0), dt);
+    let mut biggest: f64 = 0.0;
+    for i in 0..300 {
+        let mut cmd = g.open_loop(if i < 150 { 0.0 } else { 0.2 });
+        if i == 170 {
+            cmd.step_time *= 0.5;
+        }
+        let t = g.update(&cmd, dt);
+        for k in 0..12 {
+            biggest = biggest.max((t.pos[k] - last.pos[k]).abs());
+        }
+        last = t;
+    }
+    // No joint target moves more than ~0.1 rad in one 10 ms tick (10 rad/s).
+    assert!(biggest < 0.1, "largest jump {biggest}");
+}
+
+#[test]
+fn bad_command_values_are_ignored() {
+    let mut g = generator();
+    let cmd = StepCommand {
+        step_x: f64::NAN,
+        step_y: f64::INFINITY,
+        turn: f64::NAN,
+        step_time: f64::NAN,
+    };
+    for _ in 0..100 {
+        let t = g.update(&cmd, 0.01);
+        assert!(t.pos.iter().all(|v| v.is_finite()));
+    }
+    assert!(g.steps() >= 1);
+}
