@@ -11,5 +11,6 @@ pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
 pub mod motion;
+pub mod walker;
 
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};

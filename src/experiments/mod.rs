@@ -2,8 +2,13 @@
 //! harness that runs and sweeps them.
 
 pub mod aligned;
+mod error;
+pub mod settings;
+pub mod stability;
+pub mod trial;
 mod kind;
 pub mod schedule;
 pub mod sweep;
 
+pub use error::ExperimentError;
 pub use kind::ExperimentKind;

@@ -1,0 +1,250 @@
+//! The control tick that joins state estimation, Capture Step balance control, an optional
+//! footstep learner and the step motion generator.
+//!
+//! ```text
+//! Sensors -> StateEstimator -> CaptureStep (+ dF from the policy) -> MotionGenerator -> JointTargets
+//! ```
+//!
+//! The open-loop walker (fixed period, no reaction to pushes), the *model* (Capture Step), the
+//! *learned* walker (Capture Step + learner) and the learner without initialisation (analytic
+//! footstep off) are all configurations of this one type.
+
+use super::capture_step::{
+    CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
+};
+use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
+use super::kinematics::LegGeometry;
+use super::learner::{FootstepLearner, LearnerError, LearnerInput};
+use super::lipm::LipmState;
+use super::motion::{MotionConfig, MotionGenerator, StepCommand};
+use super::{JointTargets, Sensors, Side};
+use crate::approx::FunctionApproximator;
+use crate::rules::{LearningRule, StepOutcome};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// How the walker chooses its steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WalkerMode {
+    /// Fixed period, the reference step size, no feedback (the paper's open-loop controller).
+    OpenLoop,
+    /// Capture Step balance control with its analytic footstep (the paper's *model*); a
+    /// learner, if given, adds its offset (the *learned* walker).
+    CaptureStep,
+    /// Capture Step timing and lateral control, but no analytic sagittal footstep: the
+    /// learner alone decides the sagittal step (experiment D, "not initialised").
+    LearnerOnly,
+}
+
+/// Everything that configures a walker.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct WalkerConfig {
+    /// How steps are chosen.
+    pub mode: WalkerMode,
+    /// The balance controller.
+    pub capture_step: CaptureStepConfig,
+    /// State estimation.
+    pub estimator: EstimatorConfig,
+    /// The step motion generator.
+    pub motion: MotionConfig,
+}
+
+impl WalkerConfig {
+    /// Defaults for `mode` with the default controller, estimator and generator.
+    pub fn new(mode: WalkerMode) -> Self {
+        WalkerConfig {
+            mode,
+            capture_step: CaptureStepConfig::default(),
+            estimator: EstimatorConfig::default(),
+            motion: MotionConfig::default(),
+        }
+    }
+}
+
+/// What can go wrong in a control tick.
+#[derive(Debug, Error)]
+pub enum WalkerError {
+    /// The state estimator rejected its input or configuration.
+    #[error("state estimation: {0}")]
+    Estimator(#[from] EstimatorError),
+    /// The balance controller rejected its input or configuration.
+    #[error("capture step: {0}")]
+    CaptureStep(#[from] CaptureStepError),
+    /// The learner failed.
+    #[error("learner: {0}")]
+    Learner(#[from] LearnerError),
+}
+
+/// A source of learned sagittal footstep offsets dF: asked every tick, told at touch-down.
+///
+/// [`FootstepLearner`] is the implementation; the trait lets the walker hold any learner
+/// without knowing its approximator and rule types.
+pub trait FootstepPolicy {
+    /// dF for the current tick (m).
+    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError>;
+    /// The step that just ended: learn from it.
+    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<(), LearnerError>;
+    /// Forget the current step without learning (after a fall and reset).
+    fn discard_step(&mut self);
+}
+
+impl<A: FunctionApproximator, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
+    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
+        self.query(input)
+    }
+    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<(), LearnerError> {
+        FootstepLearner::touch_down(self, outcome).map(|_| ())
+    }
+    fn discard_step(&mut self) {
+        FootstepLearner::discard_step(self)
+    }
+}
+
+/// What one tick decided and measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tick {
+    /// Joint targets for the robot.
+    pub targets: JointTargets,
+    /// The state estimate of this tick.
+    pub estimate: Estimate,
+    /// The balance controller's decision (none in open-loop mode).
+    pub decision: Option<StepDecision>,
+    /// The command given to the motion generator.
+    pub command: StepCommand,
+    /// The learned offset used this tick (0 without a policy).
+    pub learned_offset: f64,
+    /// The step that ended this tick, if a touch-down was detected.
+    pub step: Option<StepOutcome>,
+}
+
+/// The walker: estimator, balance controller and motion generator, ticked together.
+#[derive(Debug, Clone)]
+pub struct Walker {
+    config: WalkerConfig,
+    geometry: LegGeometry,
+    estimator: StateEstimator,
+    controller: CaptureStep,
+    generator: MotionGenerator,
+    last_time: Option<f64>,
+}
+
+impl Walker {
+    /// A walker for a robot with legs `geometry`.
+    pub fn new(config: WalkerConfig, geometry: LegGeometry) -> Result<Self, WalkerError> {
+        let mut capture_step = config.capture_step;
+        capture_step.analytic_footstep = config.mode != WalkerMode::LearnerOnly;
+        Ok(Walker {
+            config,
+            geometry,
+            estimator: StateEstimator::new(geometry, config.estimator)?,
+            controller: CaptureStep::new(capture_step)?,
+            generator: MotionGenerator::new(config.motion, &geometry),
+            last_time: None,
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &WalkerConfig {
+        &self.config
+    }
+
+    /// The step motion generator (phase, support leg, leg poses).
+    pub fn generator(&self) -> &MotionGenerator {
+        &self.generator
+    }
+
+    /// Joint targets of the standing pose the walker starts from.
+    pub fn halt_targets(&self) -> JointTargets {
+        self.generator.halt_targets()
+    }
+
+    /// Back to the initial state (after the robot was reset), keeping the configuration.
+    pub fn reset(&mut self) {
+        self.estimator.reset();
+        self.controller.reset();
+        self.generator = MotionGenerator::new(self.config.motion, &self.geometry);
+        self.last_time = None;
+    }
+
+    /// One control tick: reads `sensors`, tracks the reference step size `f_r` (m), asks
+    /// `policy` (if any) for dF and tells it about finished steps.
+    ///
+    /// Errors leave the robot's command unchanged for this tick (the caller decides whether to
+    /// stop); the estimator and controller reject bad input without changing their state.
+    pub fn tick(
+        &mut self,
+        sensors: &Sensors,
+        f_r: f64,
+        mut policy: Option<&mut (dyn FootstepPolicy + '_)>,
+    ) -> Result<Tick, WalkerError> {
+        // The desired trunk pitch theta_R: the generator's halt lean.
+        let theta_r = self.config.motion.halt_lean;
+        let estimate = self.estimator.update(sensors, theta_r)?;
+        let dt = self
+            .last_time
+            .map_or(0.0, |t| (sensors.time - t).max(0.0));
+        self.last_time = Some(sensors.time);
+
+        let step = estimate.touch_down.map(|td| StepOutcome {
+            theta_e: estimate.theta_e,
+            theta_e_dot: estimate.theta_e_rate,
+            f_e: td.step[0] - f_r,
+            f_r,
+        });
+        if let (Some(outcome), Some(p)) = (&step, policy.as_deref_mut()) {
+            p.touch_down(outcome)?;
+        }
+
+        let mut learned_offset = 0.0;
+        let (command, decision) = match self.config.mode {
+            WalkerMode::OpenLoop => (self.generator.open_loop(f_r), None),
+            WalkerMode::CaptureStep | WalkerMode::LearnerOnly => {
+                if let Some(p) = policy.as_deref_mut() {
+                    learned_offset = p.offset(LearnerInput::new(
+                        estimate.theta_e,
+                        estimate.theta_e_rate,
+                        f_r,
+                    ))?;
+                }
+                let support = self.generator.support();
+                let com = com_relative_to(&estimate, support);
+                let reference = GaitReference {
+                    step_x: f_r,
+                    lateral: 0.0,
+                };
+                let d = self.controller.update(&com, &reference, learned_offset)?;
+                let command = StepCommand {
+                    step_x: d.step[0],
+                    step_y: d.step[1],
+                    turn: 0.0,
+                    step_time: d.time_to_step,
+                };
+                (command, Some(d))
+            }
+        };
+        let targets = self.generator.update(&command, dt);
+        Ok(Tick {
+            targets,
+            estimate,
+            decision,
+            command,
+            learned_offset,
+            step,
+        })
+    }
+}
+
+/// The CoM state relative to the sole of `support` (the motion generator's support leg, which
+/// may differ from the estimator's for a tick around the exchange).
+fn com_relative_to(estimate: &Estimate, support: Side) -> ComState {
+    let foot = estimate.feet[support.index()];
+    ComState {
+        time: estimate.time,
+        support,
+        axes: [
+            LipmState::new(-foot[0], estimate.com[0].vel),
+            LipmState::new(-foot[1], estimate.com[1].vel),
+        ],
+    }
+}

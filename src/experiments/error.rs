@@ -1,0 +1,23 @@
+//! The error type of the experiments.
+
+use super::trial::TrialError;
+use crate::control::learner::LearnerError;
+use crate::report::ReportError;
+use thiserror::Error;
+
+/// What can stop an experiment.
+#[derive(Debug, Error)]
+pub enum ExperimentError {
+    /// A trial failed.
+    #[error(transparent)]
+    Trial(#[from] TrialError),
+    /// The learner could not be built or failed.
+    #[error("learner: {0}")]
+    Learner(#[from] LearnerError),
+    /// Analysing or writing the results failed.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// The experiment's settings are invalid.
+    #[error("invalid experiment settings: {0}")]
+    Invalid(String),
+}

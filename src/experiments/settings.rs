@@ -1,0 +1,121 @@
+//! Settings shared by every experiment: the robot, the walker, the learner, and how long to run.
+
+use super::schedule::{Push, PushPlan, ReferenceSchedule};
+use super::trial::TrialSetup;
+use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
+use crate::control::walker::{WalkerConfig, WalkerMode};
+use crate::approx::{FunctionApproximator};
+use crate::rules::LearningRule;
+use crate::sim::SimConfig;
+use serde::{Deserialize, Serialize};
+
+/// Everything an experiment needs besides its own protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Settings {
+    /// The robot and physics.
+    pub sim: SimConfig,
+    /// The walker (its mode is set by each experiment).
+    pub walker: WalkerConfig,
+    /// The learner.
+    pub learner: LearnerConfig,
+    /// Scale of every experiment's length in (0, 1]: 1 is the paper's protocol; `--quick`
+    /// uses a fraction for a fast look.
+    pub scale: f64,
+    /// A push counts as absorbed if no fall follows within this time (s).
+    pub push_window_s: f64,
+    /// Standing time after a reset before walking resumes (s).
+    pub recovery_s: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            sim: SimConfig::default(),
+            walker: WalkerConfig::new(WalkerMode::CaptureStep),
+            learner: LearnerConfig::default(),
+            scale: 1.0,
+            push_window_s: 3.0,
+            recovery_s: 1.0,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks the experiment-level numbers (the parts check themselves when built).
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.scale.is_finite() && self.scale > 0.0 && self.scale <= 1.0) {
+            return Err(format!("scale must be in (0, 1], got {}", self.scale));
+        }
+        if !(self.push_window_s.is_finite() && self.push_window_s > 0.0) {
+            return Err(format!("push_window_s must be positive, got {}", self.push_window_s));
+        }
+        if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
+            return Err(format!("recovery_s must be >= 0, got {}", self.recovery_s));
+        }
+        Ok(())
+    }
+
+    /// `n` scaled by [`Settings::scale`], at least `min`.
+    pub fn scaled(&self, n: usize, min: usize) -> usize {
+        ((n as f64 * self.scale).round() as usize).max(min)
+    }
+
+    /// A trial of `mode` with these settings.
+    pub fn trial(
+        &self,
+        mode: WalkerMode,
+        reference: ReferenceSchedule,
+        pushes: Vec<Push>,
+        push_direction: [f64; 3],
+        duration_s: f64,
+    ) -> TrialSetup {
+        TrialSetup {
+            sim: self.sim.clone(),
+            walker: WalkerConfig {
+                mode,
+                ..self.walker
+            },
+            reference,
+            pushes,
+            push_direction,
+            push_window_s: self.push_window_s,
+            recovery_s: self.recovery_s,
+            duration_s,
+        }
+    }
+
+    /// A trial with pushes drawn from `plan`, long enough to deliver them all (each push gets
+    /// the time after it that the next gap provides, plus the push window for the last).
+    pub fn push_trial(
+        &self,
+        mode: WalkerMode,
+        f_r: f64,
+        plan: &PushPlan,
+        seed: u64,
+        push_direction: [f64; 3],
+    ) -> TrialSetup {
+        let pushes = plan.draw(seed);
+        // Falls cost recovery time and delay later pushes: leave room for them.
+        let slack = plan.count as f64 * (self.recovery_s + self.push_window_s);
+        let end = pushes.last().map_or(plan.settle, |p| p.time) + self.push_window_s + slack;
+        self.trial(mode, ReferenceSchedule::constant(f_r), pushes, push_direction, end)
+    }
+}
+
+/// Builds a fresh learner for one run (each controller of an experiment gets its own).
+pub trait LearnerFactory<A: FunctionApproximator, R: LearningRule> {
+    /// A new, untrained learner.
+    fn make(&self) -> Result<FootstepLearner<A, R>, LearnerError>;
+}
+
+impl<A, R, F> LearnerFactory<A, R> for F
+where
+    A: FunctionApproximator,
+    R: LearningRule,
+    F: Fn() -> Result<FootstepLearner<A, R>, LearnerError>,
+{
+    fn make(&self) -> Result<FootstepLearner<A, R>, LearnerError> {
+        self()
+    }
+}

@@ -1,0 +1,112 @@
+//! Experiment C (paper Fig. 6): fall probability against push impulse for the open-loop
+//! walker, the Capture Step *model* and the *learned* walker, walking in place with forward
+//! pushes of random impulse at random gait phases.
+
+use super::error::ExperimentError;
+use super::schedule::PushPlan;
+use super::settings::{LearnerFactory, Settings};
+use super::trial::{PushRecord, run_trial};
+use crate::approx::FunctionApproximator;
+use crate::control::walker::WalkerMode;
+use crate::report::fall_rate::{Fall50Estimate, PushResult, impulse_at_50pct_fall};
+use crate::rules::LearningRule;
+use serde::{Deserialize, Serialize};
+
+/// The protocol (paper: 400 pushes uniform in [0, 20] Ns, walking in place).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StabilityProtocol {
+    /// Pushes per controller (before [`Settings::scale`]).
+    pub pushes: usize,
+    /// Impulse range (Ns).
+    pub impulse: (f64, f64),
+    /// Time between pushes (s), random so pushes hit random gait phases.
+    pub gap_s: (f64, f64),
+    /// Unit push direction (forward by default).
+    pub direction: [f64; 3],
+}
+
+impl Default for StabilityProtocol {
+    fn default() -> Self {
+        StabilityProtocol {
+            pushes: 400,
+            impulse: (0.0, 20.0),
+            gap_s: (3.0, 4.0),
+            direction: [1.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// One controller's pushes and its 50% fall impulse.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ControllerPushes {
+    /// Every delivered push and its outcome.
+    pub pushes: Vec<PushRecord>,
+    /// The impulse at 50% falls.
+    pub fall50: Fall50Estimate,
+}
+
+impl ControllerPushes {
+    fn new(pushes: Vec<PushRecord>) -> Result<Self, ExperimentError> {
+        let samples: Vec<PushResult> = pushes.iter().map(|p| (p.impulse, p.fell)).collect();
+        let fall50 = impulse_at_50pct_fall(&samples)?;
+        Ok(ControllerPushes { pushes, fall50 })
+    }
+
+    /// Number of falls.
+    pub fn falls(&self) -> usize {
+        self.pushes.iter().filter(|p| p.fell).count()
+    }
+}
+
+/// The three controllers' results.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StabilityResult {
+    /// Fixed-frequency stepping in place, no feedback.
+    pub open_loop: ControllerPushes,
+    /// Capture Step alone.
+    pub model: ControllerPushes,
+    /// Capture Step plus the learner, learning throughout.
+    pub learned: ControllerPushes,
+}
+
+/// Runs experiment C. The three controllers see the same push sequence.
+pub fn run<A, R>(
+    settings: &Settings,
+    protocol: &StabilityProtocol,
+    seed: u64,
+    learner: &(impl LearnerFactory<A, R> + Sync),
+) -> Result<StabilityResult, ExperimentError>
+where
+    A: FunctionApproximator,
+    R: LearningRule,
+{
+    settings.validate().map_err(ExperimentError::Invalid)?;
+    let plan = PushPlan {
+        count: settings.scaled(protocol.pushes, 1),
+        impulse: protocol.impulse,
+        settle: 3.0,
+        gap: protocol.gap_s,
+    };
+    let trial = |mode| settings.push_trial(mode, 0.0, &plan, seed, protocol.direction);
+    let (open_loop, (model, learned)) = rayon::join(
+        || run_trial(&trial(WalkerMode::OpenLoop), None, &mut []),
+        || {
+            rayon::join(
+                || run_trial(&trial(WalkerMode::CaptureStep), None, &mut []),
+                || {
+                    let mut l = learner.make()?;
+                    Ok::<_, ExperimentError>(run_trial(
+                        &trial(WalkerMode::CaptureStep),
+                        Some(&mut l),
+                        &mut [],
+                    )?)
+                },
+            )
+        },
+    );
+    Ok(StabilityResult {
+        open_loop: ControllerPushes::new(open_loop?.pushes)?,
+        model: ControllerPushes::new(model?.pushes)?,
+        learned: ControllerPushes::new(learned?.pushes)?,
+    })
+}

@@ -1,0 +1,270 @@
+//! One trial: the simulated humanoid, a walker and an optional learner, driven by a reference
+//! schedule and a sequence of pushes. Every experiment is a configuration of [`run_trial`] plus
+//! an analysis of its [`TrialLog`]; observers receive the same records as they happen (for
+//! progress bars, CSV logs, checkpoints).
+//!
+//! Data flows one way each tick: `Humanoid::sensors` -> `Walker::tick` (estimator, controller,
+//! learner, generator) -> `Humanoid::step`. After a fall the robot and the walker are reset and
+//! the learner keeps what it learned (its unfinished step is discarded).
+
+use super::schedule::{Push, ReferenceSchedule};
+use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
+use crate::sim::{Fall, Humanoid, SimConfig, SimError};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// What can stop a trial.
+#[derive(Debug, Error)]
+pub enum TrialError {
+    /// The simulator failed (bad configuration, or the physics blew up).
+    #[error("simulation: {0}")]
+    Sim(#[from] SimError),
+    /// The controller or learner failed.
+    #[error("walker: {0}")]
+    Walker(#[from] WalkerError),
+    /// The trial's own settings are invalid.
+    #[error("invalid trial: {0}")]
+    Invalid(String),
+}
+
+/// How a trial runs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrialSetup {
+    /// The robot and physics.
+    pub sim: SimConfig,
+    /// The walker.
+    pub walker: WalkerConfig,
+    /// The reference step size over trial time (falls do not rewind it).
+    pub reference: ReferenceSchedule,
+    /// Pushes in time order (trial time). A push that falls while the robot is still getting
+    /// up after a fall is delivered once `recovery_s` has passed.
+    pub pushes: Vec<Push>,
+    /// Unit direction of every push in the world frame (x forward).
+    pub push_direction: [f64; 3],
+    /// A push counts as absorbed if the robot does not fall within this time after it (s).
+    pub push_window_s: f64,
+    /// Time to stand and start stepping after a reset before anything else happens (s).
+    pub recovery_s: f64,
+    /// Length of the trial (s).
+    pub duration_s: f64,
+}
+
+impl TrialSetup {
+    fn validate(&self) -> Result<(), TrialError> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(TrialError::Invalid(format!(
+                    "{name} must be positive and finite, got {v}"
+                )))
+            }
+        };
+        positive("duration_s", self.duration_s)?;
+        positive("push_window_s", self.push_window_s)?;
+        if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
+            return Err(TrialError::Invalid(format!(
+                "recovery_s must be >= 0, got {}",
+                self.recovery_s
+            )));
+        }
+        let norm = self.push_direction.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !((norm - 1.0).abs() < 1e-6) {
+            return Err(TrialError::Invalid(format!(
+                "push_direction must be a unit vector, got {:?}",
+                self.push_direction
+            )));
+        }
+        if self.reference.segments.is_empty()
+            || self.reference.segments.iter().any(|(t, f)| !t.is_finite() || !f.is_finite())
+        {
+            return Err(TrialError::Invalid(
+                "the reference schedule needs at least one finite segment".into(),
+            ));
+        }
+        if self
+            .pushes
+            .iter()
+            .any(|p| !(p.time.is_finite() && p.impulse.is_finite() && p.impulse >= 0.0))
+            || self.pushes.windows(2).any(|w| w[0].time > w[1].time)
+        {
+            return Err(TrialError::Invalid(
+                "pushes must be finite, non-negative and in time order".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A step that ended in a touch-down.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StepRecord {
+    /// Time of the touch-down (s).
+    pub time: f64,
+    /// Reference step size F_R (m).
+    pub f_r: f64,
+    /// Measured step size F_hat (m).
+    pub f_hat: f64,
+    /// Trunk deviation angle theta_E at touch-down (rad).
+    pub theta_e: f64,
+    /// Its rate (rad/s).
+    pub theta_e_dot: f64,
+    /// The learned offset dF in force at touch-down (m).
+    pub learned_offset: f64,
+}
+
+impl StepRecord {
+    /// Step size error F_E = F_hat - F_R (m).
+    pub fn f_e(&self) -> f64 {
+        self.f_hat - self.f_r
+    }
+}
+
+/// A delivered push and whether the robot absorbed it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PushRecord {
+    /// When it was delivered (s).
+    pub time: f64,
+    /// Its impulse (Ns).
+    pub impulse: f64,
+    /// Whether the robot fell within the push window.
+    pub fell: bool,
+}
+
+/// A fall.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FallRecord {
+    /// When it was detected (s).
+    pub time: f64,
+    /// What the simulator reported.
+    pub fall: Fall,
+}
+
+/// Everything a trial recorded.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct TrialLog {
+    /// Every touch-down.
+    pub steps: Vec<StepRecord>,
+    /// Every delivered push.
+    pub pushes: Vec<PushRecord>,
+    /// Every fall.
+    pub falls: Vec<FallRecord>,
+    /// Simulated time (s).
+    pub sim_time_s: f64,
+}
+
+/// Receives a trial's records as they happen. Every method has an empty default.
+pub trait Observer {
+    /// After every control tick.
+    fn on_tick(&mut self, _time: f64, _tick: &Tick) {}
+    /// At every touch-down.
+    fn on_step(&mut self, _step: &StepRecord) {}
+    /// When a push's outcome is known.
+    fn on_push(&mut self, _push: &PushRecord) {}
+    /// At every fall (before the reset).
+    fn on_fall(&mut self, _fall: &FallRecord) {}
+}
+
+/// Runs one trial. `policy` is the learner (none for the open-loop walker and the model).
+pub fn run_trial(
+    setup: &TrialSetup,
+    mut policy: Option<&mut (dyn FootstepPolicy + '_)>,
+    observers: &mut [&mut dyn Observer],
+) -> Result<TrialLog, TrialError> {
+    setup.validate()?;
+    let mut robot = Humanoid::new(setup.sim.clone())?;
+    let mut walker = Walker::new(setup.walker, robot.body().leg_geometry())?;
+    let mut log = TrialLog::default();
+    let mut next_push = 0;
+    // The push being watched: (record index in log.pushes, deadline).
+    let mut watching: Option<(usize, f64)> = None;
+    // Trial time = offset + robot time: a reset restarts the robot's clock at zero.
+    let mut offset = 0.0;
+    let mut ready_at = 0.0;
+
+    while offset + robot.time() < setup.duration_s {
+        let sensors = robot.sensors();
+        let t = offset + sensors.time;
+        let f_r = setup.reference.at(t);
+        let tick = if t < ready_at && log.falls.last().is_some() {
+            // Getting up after a fall: hold the standing pose.
+            None
+        } else {
+            Some(walker.tick(&sensors, f_r, policy.as_deref_mut())?)
+        };
+        let targets = match &tick {
+            Some(tick) => {
+                for o in observers.iter_mut() {
+                    o.on_tick(t, tick);
+                }
+                if let Some(s) = tick.step {
+                    let record = StepRecord {
+                        time: t,
+                        f_r: s.f_r,
+                        f_hat: s.f_e + s.f_r,
+                        theta_e: s.theta_e,
+                        theta_e_dot: s.theta_e_dot,
+                        learned_offset: tick.learned_offset,
+                    };
+                    for o in observers.iter_mut() {
+                        o.on_step(&record);
+                    }
+                    log.steps.push(record);
+                }
+                tick.targets
+            }
+            None => walker.halt_targets(),
+        };
+
+        if next_push < setup.pushes.len()
+            && watching.is_none()
+            && t >= setup.pushes[next_push].time
+            && t >= ready_at
+        {
+            let p = setup.pushes[next_push];
+            robot.push(setup.push_direction.map(|d| d * p.impulse));
+            log.pushes.push(PushRecord {
+                time: t,
+                impulse: p.impulse,
+                fell: false,
+            });
+            watching = Some((log.pushes.len() - 1, t + setup.push_window_s));
+            next_push += 1;
+        }
+
+        robot.step(&targets)?;
+
+        if let Some(fall) = robot.fall() {
+            let record = FallRecord {
+                time: offset + robot.time(),
+                fall,
+            };
+            for o in observers.iter_mut() {
+                o.on_fall(&record);
+            }
+            log.falls.push(record);
+            if let Some((i, _)) = watching.take() {
+                log.pushes[i].fell = true;
+                for o in observers.iter_mut() {
+                    o.on_push(&log.pushes[i]);
+                }
+            }
+            offset += robot.time();
+            robot.reset();
+            walker.reset();
+            if let Some(p) = policy.as_deref_mut() {
+                p.discard_step();
+            }
+            ready_at = offset + setup.recovery_s;
+        } else if let Some((i, deadline)) = watching
+            && offset + robot.time() >= deadline
+        {
+            watching = None;
+            for o in observers.iter_mut() {
+                o.on_push(&log.pushes[i]);
+            }
+        }
+    }
+    log.sim_time_s = offset + robot.time();
+    Ok(log)
+}
