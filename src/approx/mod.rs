@@ -6,10 +6,12 @@
 //! invariant check on load, so a corrupt file is an error, never a broken model.
 
 mod error;
+mod lwpr;
 mod persist;
 pub mod problems;
 
 pub use error::{ApproxError, check_output, check_vector};
+pub use lwpr::{Kernel, Lwpr, LwprConfig, ReceptiveField, SubModel};
 pub use persist::Persist;
 
 /// An online regressor from `input_dim` inputs to `output_dim` outputs.

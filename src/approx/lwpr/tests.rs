@@ -1,0 +1,1 @@
+//! Unit tests of the PLS and distance-metric updates against hand-derived values.
