@@ -31,7 +31,7 @@ fn bench_approximator<A: FunctionApproximator>(
     let mut out = vec![0.0; model.output_dim()];
 
     let mut k = 0;
-    c.bench_function(format!("predict/{name}/{}", problem.name), |b| {
+    c.bench_function(&format!("predict/{name}/{}", problem.name), |b| {
         b.iter(|| {
             let (x, _) = &test[k % test.len()];
             k += 1;
@@ -40,7 +40,7 @@ fn bench_approximator<A: FunctionApproximator>(
         })
     });
     let mut k = 0;
-    c.bench_function(format!("update/{name}/{}", problem.name), |b| {
+    c.bench_function(&format!("update/{name}/{}", problem.name), |b| {
         b.iter(|| {
             let (x, y) = &fresh[k % fresh.len()];
             k += 1;
