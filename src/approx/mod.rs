@@ -5,20 +5,24 @@
 //! and leaves its state untouched when it rejects a call. [`Persist`] adds JSON save/load with an
 //! invariant check on load, so a corrupt file is an error, never a broken model.
 
+mod any;
 mod error;
 mod grid;
 mod input_box;
 mod kernel_ridge;
 pub mod lattice;
+mod lwpr;
 mod persist;
 pub mod problems;
 mod rbf;
 mod square_matrix;
 
+pub use any::{AnyApproximator, ApproxKind};
 pub use error::{ApproxError, check_output, check_vector};
 pub use grid::{Grid, GridConfig};
 pub use input_box::InputBox;
 pub use kernel_ridge::{KernelRidge, KernelRidgeConfig};
+pub use lwpr::{Kernel, Lwpr, LwprConfig, ReceptiveField, SubModel};
 pub use persist::Persist;
 pub use rbf::{Rbf, RbfConfig, RbfUpdate};
 

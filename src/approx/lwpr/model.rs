@@ -1,0 +1,309 @@
+//! The LWPR model: one set of receptive fields per output, creation, pruning and prediction.
+
+use super::config::LwprConfig;
+use super::receptive_field::ReceptiveField;
+use super::workspace::Workspace;
+use crate::approx::{ApproxError, FunctionApproximator, check_output, check_vector};
+use serde::{Deserialize, Serialize};
+
+/// Activations at or below this do not update a receptive field (as in the reference).
+pub(crate) const W_UPDATE: f64 = 0.001;
+
+/// The receptive fields that learn one output dimension.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SubModel {
+    /// The receptive fields.
+    pub rfs: Vec<ReceptiveField>,
+    /// How many receptive fields were pruned so far.
+    pub n_pruned: usize,
+}
+
+/// Locally weighted projection regression (Vijayakumar, D'Souza & Schaal 2005), faithful to
+/// the reference library LWPR 1.2.6; see the [module documentation](super) for the
+/// algorithm and every deliberate difference.
+///
+/// ```
+/// use steplearn::approx::{FunctionApproximator, Lwpr, LwprConfig};
+/// let mut model = Lwpr::new(LwprConfig::new(1, 1).init_d(20.0)).unwrap();
+/// for k in 0..2000 {
+///     let x = (k % 200) as f64 / 100.0 - 1.0;
+///     model.update(&[x], &[2.0 * x + 1.0]).unwrap();
+/// }
+/// let mut y = [0.0];
+/// model.predict(&[0.25], &mut y).unwrap();
+/// assert!((y[0] - 1.5).abs() < 0.05);
+/// ```
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Lwpr {
+    config: LwprConfig,
+    /// Cholesky factor of `config.init_d` (derived, kept to avoid recomputation).
+    init_m: Vec<f64>,
+    /// Number of training samples seen.
+    n_data: u64,
+    /// Mean of all training inputs (raw units).
+    mean_x: Vec<f64>,
+    /// Variance of all training inputs (raw units).
+    var_x: Vec<f64>,
+    /// One submodel per output.
+    sub: Vec<SubModel>,
+    #[serde(skip)]
+    ws: Workspace,
+}
+
+/// Top two activations seen in a scan over receptive fields.
+#[derive(Debug, Clone, Copy, Default)]
+struct TopTwo {
+    w_max: f64,
+    ind_max: Option<usize>,
+    w_sec: f64,
+    ind_sec: Option<usize>,
+}
+
+impl TopTwo {
+    #[inline]
+    fn push(&mut self, w: f64, k: usize) {
+        if w > self.w_sec {
+            if w > self.w_max {
+                self.w_sec = self.w_max;
+                self.ind_sec = self.ind_max;
+                self.w_max = w;
+                self.ind_max = Some(k);
+            } else {
+                self.w_sec = w;
+                self.ind_sec = Some(k);
+            }
+        }
+    }
+}
+
+impl Lwpr {
+    /// Validates `config` and builds an empty model.
+    pub fn new(config: LwprConfig) -> Result<Self, ApproxError> {
+        let init_m = config.validate()?;
+        let n_out = config.n_out;
+        let n_in = config.n_in;
+        let mut ws = Workspace::default();
+        ws.ensure(n_in);
+        Ok(Lwpr {
+            init_m,
+            n_data: 0,
+            mean_x: vec![0.0; n_in],
+            var_x: vec![0.0; n_in],
+            sub: (0..n_out)
+                .map(|_| SubModel {
+                    rfs: Vec::new(),
+                    n_pruned: 0,
+                })
+                .collect(),
+            config,
+            ws,
+        })
+    }
+
+    /// The configuration the model was built with.
+    pub fn config(&self) -> &LwprConfig {
+        &self.config
+    }
+
+    /// Number of receptive fields over all outputs.
+    pub fn num_receptive_fields(&self) -> usize {
+        self.sub.iter().map(|s| s.rfs.len()).sum()
+    }
+
+    /// The receptive fields learning output `k` (read-only, for inspection).
+    pub fn submodel(&self, k: usize) -> Option<&SubModel> {
+        self.sub.get(k)
+    }
+
+    /// Number of training samples seen.
+    pub fn n_data(&self) -> u64 {
+        self.n_data
+    }
+
+    /// Mean and variance of all training inputs seen (raw units).
+    pub fn input_stats(&self) -> (&[f64], &[f64]) {
+        (&self.mean_x, &self.var_x)
+    }
+
+    /// Prediction at `x` into `y` and, per output, a confidence bound into `conf` (the
+    /// reference's `lwpr_predict` with `conf`): the square root of the activation-weighted
+    /// predictive variance of the contributing receptive fields plus the weighted spread of
+    /// their predictions, divided by the summed activation. Where no trustworthy receptive
+    /// field is active, `y` is 0 and `conf` is infinite.
+    pub fn predict_with_confidence(
+        &self,
+        x: &[f64],
+        y: &mut [f64],
+        conf: &mut [f64],
+    ) -> Result<(), ApproxError> {
+        check_output("confidence conf", conf, self.config.n_out)?;
+        self.predict_impl(x, y, Some(conf))
+    }
+
+    fn predict_impl(
+        &self,
+        x: &[f64],
+        y: &mut [f64],
+        mut conf: Option<&mut [f64]>,
+    ) -> Result<(), ApproxError> {
+        let n = self.config.n_in;
+        check_vector("input x", x, n)?;
+        check_output("output y", y, self.config.n_out)?;
+        with_scratch(2 * n, |buf| {
+            let (xn, xu) = buf.split_at_mut(n);
+            for ((v, xi), ni) in xn.iter_mut().zip(x).zip(&self.config.norm_in) {
+                *v = xi / ni;
+            }
+            let cutoff = self.config.cutoff;
+            let limit = self.config.kernel.q_limit(cutoff);
+            for (k, sub) in self.sub.iter().enumerate() {
+                let (mut sum_w, mut sum_wy, mut sum_wyy, mut sum_conf) = (0.0, 0.0, 0.0, 0.0);
+                for rf in &sub.rfs {
+                    if !rf.trustworthy {
+                        continue;
+                    }
+                    let Some(q) = rf.squared_distance(xn, limit, self.config.diag_only) else {
+                        continue;
+                    };
+                    let w = self.config.kernel.weight(q);
+                    if w <= cutoff {
+                        continue;
+                    }
+                    let (yk, s2) = rf.local_prediction(xn, xu);
+                    sum_w += w;
+                    sum_wy += w * yk;
+                    if conf.is_some() {
+                        sum_wyy += w * yk * yk;
+                        sum_conf += w * rf.predictive_variance(w, s2);
+                    }
+                }
+                let norm = self.config.norm_out[k];
+                let mean = if sum_w > 0.0 { sum_wy / sum_w } else { 0.0 };
+                y[k] = mean * norm;
+                if let Some(c) = conf.as_deref_mut() {
+                    c[k] = if sum_w > 0.0 {
+                        norm * (sum_conf + sum_wyy - sum_wy * mean).abs().sqrt() / sum_w
+                    } else {
+                        f64::INFINITY
+                    };
+                }
+            }
+        });
+        // Only reachable with a tampered model whose numbers are finite but absurd.
+        if let Some(index) = y.iter().position(|v| !v.is_finite()) {
+            return Err(ApproxError::NonFinite {
+                what: "prediction (model state out of range)",
+                index,
+                value: y[index],
+            });
+        }
+        Ok(())
+    }
+
+    /// One training step for output `k` at normalised input `xn` with normalised target `yn`.
+    fn update_output(&mut self, k: usize, yn: f64) {
+        let config = &self.config;
+        let sub = &mut self.sub[k];
+        let ws = &mut self.ws;
+        let n = config.n_in;
+        // Receptive fields whose activation is at or below this cannot matter: they are not
+        // updated and cannot be the template of a new one.
+        let w_skip = W_UPDATE.min(0.1 * config.w_gen);
+        let limit = config.kernel.q_limit(w_skip);
+        let mut top = TopTwo::default();
+        let xn = std::mem::take(&mut ws.xn);
+        for (idx, rf) in sub.rfs.iter_mut().enumerate() {
+            let Some(q) = rf.squared_distance(&xn, limit, config.diag_only) else {
+                continue;
+            };
+            let act = config.kernel.activation(q);
+            top.push(act.w, idx);
+            if act.w > W_UPDATE {
+                rf.train(config, &xn, yn, act, ws);
+            }
+        }
+        if top.w_max <= config.w_gen {
+            let template = match top.ind_max {
+                Some(i) if top.w_max > 0.1 * config.w_gen && sub.rfs[i].trustworthy => {
+                    Some(&sub.rfs[i])
+                }
+                _ => None,
+            };
+            let rf = ReceptiveField::new(config, &self.init_m, template, &xn[..n], yn);
+            sub.rfs.push(rf);
+        } else if let (true, Some(a), Some(b)) =
+            (top.w_sec > config.w_prune, top.ind_max, top.ind_sec)
+        {
+            // Remove the narrower of the two (larger trace of D), as the documentation
+            // and the MATLAB code do.
+            let prune = if sub.rfs[a].trace_d() > sub.rfs[b].trace_d() {
+                a
+            } else {
+                b
+            };
+            sub.rfs.swap_remove(prune);
+            sub.n_pruned += 1;
+        }
+        ws.xn = xn;
+    }
+}
+
+/// Runs `f` on a zeroed scratch slice of length `len`: on the stack for small inputs, on the
+/// heap only for inputs with more than 32 dimensions.
+fn with_scratch<R>(len: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
+    const STACK: usize = 64;
+    if len <= STACK {
+        let mut buf = [0.0; STACK];
+        f(&mut buf[..len])
+    } else {
+        let mut buf = vec![0.0; len];
+        f(&mut buf)
+    }
+}
+
+impl FunctionApproximator for Lwpr {
+    fn input_dim(&self) -> usize {
+        self.config.n_in
+    }
+
+    fn output_dim(&self) -> usize {
+        self.config.n_out
+    }
+
+    fn predict(&self, x: &[f64], y: &mut [f64]) -> Result<(), ApproxError> {
+        self.predict_impl(x, y, None)
+    }
+
+    fn update(&mut self, x: &[f64], y: &[f64]) -> Result<(), ApproxError> {
+        let n = self.config.n_in;
+        check_vector("input x", x, n)?;
+        check_vector("target y", y, self.config.n_out)?;
+        // Nothing below can fail: a rejected sample never reaches this point.
+        self.ws.ensure(n);
+        self.n_data += 1;
+        let count = self.n_data as f64;
+        for i in 0..n {
+            let mean = (self.mean_x[i] * (count - 1.0) + x[i]) / count;
+            self.mean_x[i] = mean;
+            let d = x[i] - mean;
+            self.var_x[i] = (self.var_x[i] * (count - 1.0) + d * d) / count;
+            self.ws.xn[i] = x[i] / self.config.norm_in[i];
+        }
+        for (k, yk) in y.iter().enumerate() {
+            self.update_output(k, yk / self.config.norm_out[k]);
+        }
+        Ok(())
+    }
+}
+
+impl Lwpr {
+    pub(crate) fn parts(&self) -> (&LwprConfig, &[f64], &[f64], &[f64], &[SubModel]) {
+        (
+            &self.config,
+            &self.init_m,
+            &self.mean_x,
+            &self.var_x,
+            &self.sub,
+        )
+    }
+}
