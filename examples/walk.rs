@@ -71,7 +71,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         args.seconds,
     );
     let wall = std::time::Instant::now();
-    let log = run_trial(&setup, None, &mut [&mut Printer { verbose: args.verbose }])?;
+    let log = run_trial(
+        &setup,
+        None,
+        &mut [&mut Printer {
+            verbose: args.verbose,
+        }],
+    )?;
     let wall = wall.elapsed().as_secs_f64();
     let n = log.steps.len().max(1) as f64;
     let settled: Vec<_> = log.steps.iter().filter(|s| s.time > 3.0).collect();
@@ -80,7 +86,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{} steps, {} falls, pushes {:?}, mean step error after 3 s {:+.4} m, {:.1}x real time",
         n,
         log.falls.len(),
-        log.pushes.iter().map(|p| (p.impulse, p.fell)).collect::<Vec<_>>(),
+        log.pushes
+            .iter()
+            .map(|p| (p.impulse, p.fell))
+            .collect::<Vec<_>>(),
         mean_err,
         log.sim_time_s / wall
     );

@@ -48,7 +48,11 @@ fn a_large_push_is_a_recorded_fall_and_the_trial_goes_on_after_a_reset() {
     assert_eq!(log.falls.len(), 1);
     assert!(log.falls[0].time > 2.0 && log.falls[0].time < 5.0);
     assert!(log.sim_time_s >= 8.0 - 1e-9);
-    let after = log.steps.iter().filter(|s| s.time > log.falls[0].time).count();
+    let after = log
+        .steps
+        .iter()
+        .filter(|s| s.time > log.falls[0].time)
+        .count();
     assert!(after >= 3, "only {after} steps after the reset");
 }
 
@@ -66,11 +70,20 @@ fn a_small_push_is_absorbed_and_trials_are_deterministic() {
 fn invalid_trials_are_errors() {
     let mut t = pushed_trial(1.0);
     t.push_direction = [1.0, 1.0, 0.0];
-    assert!(matches!(run_trial(&t, None, &mut []), Err(TrialError::Invalid(_))));
+    assert!(matches!(
+        run_trial(&t, None, &mut []),
+        Err(TrialError::Invalid(_))
+    ));
     let mut t = pushed_trial(1.0);
     t.duration_s = f64::NAN;
-    assert!(matches!(run_trial(&t, None, &mut []), Err(TrialError::Invalid(_))));
+    assert!(matches!(
+        run_trial(&t, None, &mut []),
+        Err(TrialError::Invalid(_))
+    ));
     let mut t = pushed_trial(1.0);
     t.pushes[0].impulse = -1.0;
-    assert!(matches!(run_trial(&t, None, &mut []), Err(TrialError::Invalid(_))));
+    assert!(matches!(
+        run_trial(&t, None, &mut []),
+        Err(TrialError::Invalid(_))
+    ));
 }

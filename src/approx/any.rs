@@ -53,9 +53,9 @@ impl ApproxKind {
             .collect();
         let n = half.len();
         Ok(match self {
-            ApproxKind::Lwpr => AnyApproximator::Lwpr(Lwpr::new(
-                LwprConfig::new(n, 1).norm_in(half).init_d(10.0),
-            )?),
+            ApproxKind::Lwpr => {
+                AnyApproximator::Lwpr(Lwpr::new(LwprConfig::new(n, 1).norm_in(half).init_d(10.0))?)
+            }
             ApproxKind::Rbf => {
                 let centres = vec![7; n];
                 let mut config = RbfConfig::new(bounds.clone(), centres, 1);
@@ -85,7 +85,9 @@ impl std::str::FromStr for ApproxKind {
         ApproxKind::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown approximator '{s}' (expected lwpr, rbf, grid or kernel-ridge)"))
+            .ok_or_else(|| {
+                format!("unknown approximator '{s}' (expected lwpr, rbf, grid or kernel-ridge)")
+            })
     }
 }
 

@@ -181,9 +181,7 @@ impl Walker {
         // The desired trunk pitch theta_R: the generator's halt lean.
         let theta_r = self.config.motion.halt_lean;
         let estimate = self.estimator.update(sensors, theta_r)?;
-        let dt = self
-            .last_time
-            .map_or(0.0, |t| (sensors.time - t).max(0.0));
+        let dt = self.last_time.map_or(0.0, |t| (sensors.time - t).max(0.0));
         self.last_time = Some(sensors.time);
 
         let step = estimate.touch_down.map(|td| StepOutcome {
@@ -200,7 +198,7 @@ impl Walker {
         let (command, decision) = match self.config.mode {
             WalkerMode::OpenLoop => (self.generator.open_loop(f_r), None),
             WalkerMode::CaptureStep | WalkerMode::LearnerOnly => {
-                if let Some(p) = policy.as_deref_mut() {
+                if let Some(p) = policy {
                     learned_offset = p.offset(LearnerInput::new(
                         estimate.theta_e,
                         estimate.theta_e_rate,

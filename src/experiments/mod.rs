@@ -3,12 +3,12 @@
 
 pub mod aligned;
 mod error;
-pub mod settings;
-pub mod stability;
-pub mod trial;
 mod kind;
 pub mod schedule;
+pub mod settings;
+pub mod stability;
 pub mod sweep;
+pub mod trial;
 
 pub use error::ExperimentError;
 pub use kind::ExperimentKind;

@@ -2,9 +2,9 @@
 
 use super::schedule::{Push, PushPlan, ReferenceSchedule};
 use super::trial::TrialSetup;
+use crate::approx::FunctionApproximator;
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::control::walker::{WalkerConfig, WalkerMode};
-use crate::approx::{FunctionApproximator};
 use crate::rules::LearningRule;
 use crate::sim::SimConfig;
 use serde::{Deserialize, Serialize};
@@ -48,7 +48,10 @@ impl Settings {
             return Err(format!("scale must be in (0, 1], got {}", self.scale));
         }
         if !(self.push_window_s.is_finite() && self.push_window_s > 0.0) {
-            return Err(format!("push_window_s must be positive, got {}", self.push_window_s));
+            return Err(format!(
+                "push_window_s must be positive, got {}",
+                self.push_window_s
+            ));
         }
         if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
             return Err(format!("recovery_s must be >= 0, got {}", self.recovery_s));
@@ -99,7 +102,13 @@ impl Settings {
         // Falls cost recovery time and delay later pushes: leave room for them.
         let slack = plan.count as f64 * (self.recovery_s + self.push_window_s);
         let end = pushes.last().map_or(plan.settle, |p| p.time) + self.push_window_s + slack;
-        self.trial(mode, ReferenceSchedule::constant(f_r), pushes, push_direction, end)
+        self.trial(
+            mode,
+            ReferenceSchedule::constant(f_r),
+            pushes,
+            push_direction,
+            end,
+        )
     }
 }
 

@@ -68,15 +68,24 @@ impl TrialSetup {
                 self.recovery_s
             )));
         }
-        let norm = self.push_direction.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !((norm - 1.0).abs() < 1e-6) {
+        let norm = self
+            .push_direction
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt();
+        if (norm - 1.0).abs() >= 1e-6 || norm.is_nan() {
             return Err(TrialError::Invalid(format!(
                 "push_direction must be a unit vector, got {:?}",
                 self.push_direction
             )));
         }
         if self.reference.segments.is_empty()
-            || self.reference.segments.iter().any(|(t, f)| !t.is_finite() || !f.is_finite())
+            || self
+                .reference
+                .segments
+                .iter()
+                .any(|(t, f)| !t.is_finite() || !f.is_finite())
         {
             return Err(TrialError::Invalid(
                 "the reference schedule needs at least one finite segment".into(),
