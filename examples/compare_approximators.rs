@@ -12,7 +12,7 @@ use std::time::Instant;
 use steplearn::approx::problems::{Problem, nmse};
 use steplearn::approx::{
     ApproxError, FunctionApproximator, Grid, GridConfig, InputBox, KernelRidge, KernelRidgeConfig,
-    Persist, Rbf, RbfConfig, RbfUpdate,
+    Lwpr, LwprConfig, Persist, Rbf, RbfConfig, RbfUpdate,
 };
 
 /// What the comparison needs from a model: the trait, plus its saved size.
@@ -151,6 +151,19 @@ fn kernel_ridge(p: &Problem) -> Result<Built, ApproxError> {
     })
 }
 
+fn lwpr(p: &Problem) -> Result<Built, ApproxError> {
+    // The reference C demo's settings, with inputs scaled by the box's half-widths.
+    let config = LwprConfig::new(p.dim(), 1)
+        .init_d(50.0)
+        .init_alpha(250.0)
+        .w_gen(0.2)
+        .norm_in(p.half_ranges());
+    Ok(Built {
+        model: Box::new(Lwpr::new(config)?),
+        settings: "init_D 50, init_alpha 250, w_gen 0.2, norm_in = half ranges".into(),
+    })
+}
+
 fn main() {
     let mut samples = 100_000;
     let args: Vec<String> = std::env::args().collect();
@@ -161,7 +174,7 @@ fn main() {
             .expect("--samples needs a number");
     }
     let factories: Vec<(&str, Factory)> = vec![
-        // The lead adds LWPR here with one entry, e.g. ("LWPR", lwpr).
+        ("LWPR", lwpr),
         ("Grid", grid),
         ("Grid, coarse", grid_coarse),
         ("RBF (NLMS)", rbf_nlms),
