@@ -67,6 +67,21 @@ pub(crate) fn distance_derivatives(
     }
 }
 
+/// Calls `f` with the offset of every element of `M` that adapts: the diagonal with
+/// `diag_only`, else the upper triangle.
+#[inline(always)]
+fn for_each_element(n: usize, diag_only: bool, mut f: impl FnMut(usize)) {
+    for col in 0..n {
+        if diag_only {
+            f(col + col * n);
+        } else {
+            for row in 0..=col {
+                f(row + col * n);
+            }
+        }
+    }
+}
+
 impl ReceptiveField {
     /// One distance-metric step after the regression update of the same sample.
     ///
@@ -129,22 +144,12 @@ impl ReceptiveField {
         let diag_only = config.diag_only;
         distance_derivatives(self, act, penalty, diag_only, config.meta, ws);
 
-        // The upper-triangular (or diagonal) elements this metric adapts.
-        let elements = |f: &mut dyn FnMut(usize)| {
-            for col in 0..n {
-                if diag_only {
-                    f(col + col * n);
-                } else {
-                    for row in 0..=col {
-                        f(row + col * n);
-                    }
-                }
-            }
-        };
         let mut max_m = 0.0f64;
-        elements(&mut |off| max_m = max_m.max(self.m[off].abs()));
+        for_each_element(n, diag_only, |off| max_m = max_m.max(self.m[off].abs()));
         // Reuse dj2dm as the whole gradient dJ/dM.
-        elements(&mut |off| ws.dj2dm[off] = w_over_w * ws.dj2dm[off] + ws.dwdm[off] * dj1dw);
+        for_each_element(n, diag_only, |off| {
+            ws.dj2dm[off] = w_over_w * ws.dj2dm[off] + ws.dwdm[off] * dj1dw
+        });
 
         if config.meta {
             let mut s_pse = 0.0;
@@ -158,7 +163,7 @@ impl ReceptiveField {
             }
             ddj1dwdw /= big_w;
             let rate = config.meta_rate;
-            elements(&mut |off| {
+            for_each_element(n, diag_only, |off| {
                 let djdm = ws.dj2dm[off];
                 let dwdm = ws.dwdm[off];
                 let ddjdmdm =
@@ -174,7 +179,7 @@ impl ReceptiveField {
             });
         }
 
-        elements(&mut |off| {
+        for_each_element(n, diag_only, |off| {
             let delta = self.alpha[off] * transient * ws.dj2dm[off];
             if delta > 0.1 * max_m {
                 // Too large a step: halve the rate and skip this element.

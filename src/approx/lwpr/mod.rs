@@ -58,6 +58,11 @@
 //!   a scratch workspace, not in the saved model.
 //! - Everything else, including the order of operations within an update, follows `lwpr_aux.c`.
 //!
+//! Checked against the reference: fed the same 20,000 cross-2D samples (C demo settings), the C
+//! library (1.2.6, gcc -O2) and this implementation give bit-identical predictions and
+//! confidence bounds on an 11 x 11 grid with diagonal metrics (with and without meta learning),
+//! and agree to 5e-15 with full metrics (where the distance is computed via `M`, not `D`).
+//!
 //! # Cost
 //! Updates and predictions allocate nothing (a preallocated workspace; predictions use a stack
 //! buffer for up to 32 inputs). Creating a receptive field allocates its storage once,

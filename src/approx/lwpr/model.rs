@@ -19,7 +19,7 @@ pub struct SubModel {
 }
 
 /// Locally weighted projection regression (Vijayakumar, D'Souza & Schaal 2005), faithful to
-/// the reference library LWPR 1.2.6; see the [module documentation](super) for the
+/// the reference library LWPR 1.2.6; see the `steplearn::approx` LWPR module documentation for the
 /// algorithm and every deliberate difference.
 ///
 /// ```
