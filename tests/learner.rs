@@ -534,6 +534,7 @@ fn learning_reduces_trunk_and_step_errors_on_a_toy_walker() {
 }
 
 proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { rng_seed: proptest::test_runner::RngSeed::Fixed(13), failure_persistence: None, ..proptest::prelude::ProptestConfig::default() })]
     /// On a fresh table (first update of a bin moves it all the way), one touch-down leaves
     /// exactly F_old + eta G = eta G at every recorded input, nothing elsewhere, whatever the
     /// inputs, their number (subsampling included), eta and G.

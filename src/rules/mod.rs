@@ -92,6 +92,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { rng_seed: proptest::test_runner::RngSeed::Fixed(12), failure_persistence: None, ..proptest::prelude::ProptestConfig::default() })]
         #[test]
         fn tracking_term_is_bounded_and_opposes_the_error(
             p_theta in 0.0..1.0f64, p_f in 0.0..100.0f64, f_e in -10.0..10.0f64,
