@@ -57,6 +57,7 @@ fn steps_take_the_commanded_time_and_alternate() {
             step_y: g.swing().sign() * g.nominal_width(),
             turn: 0.0,
             step_time: (1.0 - g.phase()) * 0.5,
+            gait_x: 0.0,
         };
         g.update(&cmd, dt);
         t += dt;
@@ -123,6 +124,7 @@ fn bad_command_values_are_ignored() {
         step_y: f64::INFINITY,
         turn: f64::NAN,
         step_time: f64::NAN,
+        gait_x: f64::NAN,
     };
     for _ in 0..100 {
         let t = g.update(&cmd, 0.01);

@@ -217,6 +217,7 @@ impl Walker {
                     step_y: d.step[1],
                     turn: 0.0,
                     step_time: d.time_to_step,
+                    gait_x: f_r,
                 };
                 (command, Some(d))
             }
