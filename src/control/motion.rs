@@ -11,8 +11,9 @@
 //! A step is built from motion primitives added to a halt pose over the step phase
 //! `p in [0, 1)`: the swing leg lifts (extension bump) while the support leg pushes (extends);
 //! the swing leg swings from where it was to the commanded placement (cosine profile) while
-//! the support leg sweeps back linearly; both legs roll together to sway the hips over the
-//! support foot; the trunk leans with the commanded step. The generator takes a
+//! the support leg sweeps back linearly until the hips are half the nominal gait step
+//! ([`StepCommand::gait_x`]) ahead of the support foot; both legs roll together to sway the hips over the
+//! support foot; the trunk leans with the nominal gait step. The generator takes a
 //! [`StepCommand`] every tick: where the swing foot should land relative to the support foot,
 //! the turn, and the time left until touch-down; changing them mid-step is smooth (the
 //! commanded placement is low-pass filtered and the phase itself never jumps).
