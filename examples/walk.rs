@@ -23,6 +23,9 @@ struct Args {
     /// Forward push impulses (Ns), one every 5 s from t = 5 s.
     #[arg(long, value_delimiter = ',')]
     push: Vec<f64>,
+    /// Steps before this time (s) are left out of the mean figures.
+    #[arg(long, default_value_t = 5.0)]
+    settle: f64,
     /// Print every step.
     #[arg(long)]
     verbose: bool,
@@ -80,17 +83,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     let wall = wall.elapsed().as_secs_f64();
     let n = log.steps.len().max(1) as f64;
-    let settled: Vec<_> = log.steps.iter().filter(|s| s.time > 3.0).collect();
-    let mean_err = settled.iter().map(|s| s.f_e()).sum::<f64>() / settled.len().max(1) as f64;
+    let settled: Vec<_> = log.steps.iter().filter(|s| s.time > args.settle).collect();
+    let m = settled.len().max(1) as f64;
+    let mean_step = settled.iter().map(|s| s.f_hat).sum::<f64>() / m;
+    let mean_abs_err = settled.iter().map(|s| s.f_e().abs()).sum::<f64>() / m;
     println!(
-        "{} steps, {} falls, pushes {:?}, mean step error after 3 s {:+.4} m, {:.1}x real time",
+        "{} steps, {} falls, pushes {:?}, after {} s: mean F_hat {:+.4} m (mean error {:+.4} m, mean |error| {:.4} m), {:.1}x real time",
         n,
         log.falls.len(),
         log.pushes
             .iter()
             .map(|p| (p.impulse, p.fell))
             .collect::<Vec<_>>(),
-        mean_err,
+        args.settle,
+        mean_step,
+        mean_step - args.step_x,
+        mean_abs_err,
         log.sim_time_s / wall
     );
     Ok(())

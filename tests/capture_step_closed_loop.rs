@@ -13,6 +13,18 @@ use steplearn::control::lipm_plant::{LipmPlant, PlantTouchDown};
 const DT: f64 = 0.005;
 const FOOT: [f64; 2] = [0.30, 0.11];
 
+/// The controller these ideal-plant tests were designed for: a C = 3.0 pendulum with 0.55 s
+/// nominal steps and the sagittal ZMP range [-0.06, 0.09] m (the humanoid's defaults differ:
+/// they are tuned to the step generator, see `tests/walker_humanoid.rs`).
+fn lipm_config() -> CaptureStepConfig {
+    CaptureStepConfig {
+        c: 3.0,
+        nominal_step_time: 0.55,
+        zmp_x: [-0.06, 0.09],
+        ..CaptureStepConfig::default()
+    }
+}
+
 /// What a closed-loop run recorded.
 struct Run {
     touch_downs: Vec<PlantTouchDown>,
@@ -104,27 +116,26 @@ fn steady(tail: &[&PlantTouchDown]) -> bool {
 
 #[test]
 fn nominal_gait_is_a_fixed_point() {
-    for f_r in [-0.1, 0.0, 0.1, 0.2] {
-        let r = GaitReference {
-            step_x: f_r,
-            lateral: 0.0,
-        };
-        let out = run(
-            CaptureStepConfig::default(),
-            3.0,
-            1.0,
-            r,
-            f64::INFINITY,
-            [0.0; 2],
-            6.0,
-            0.001,
-        );
-        assert!(!out.fell);
-        // 6 s of 0.55 s steps.
-        assert!(out.touch_downs.len() >= 10, "{}", out.touch_downs.len());
-        for td in &out.touch_downs {
-            assert!((td.step[0] - f_r).abs() < 1e-3, "{td:?}");
-            assert!((td.step[1].abs() - 0.24).abs() < 1e-3, "{td:?}");
+    // The ideal-plant design config and the humanoid defaults, each on its own pendulum.
+    for cfg in [lipm_config(), CaptureStepConfig::default()] {
+        for f_r in [-0.1, 0.0, 0.1, 0.2] {
+            let r = GaitReference {
+                step_x: f_r,
+                lateral: 0.0,
+            };
+            let out = run(cfg, cfg.c, 1.0, r, f64::INFINITY, [0.0; 2], 6.0, 0.001);
+            assert!(!out.fell);
+            // 6 s of nominal steps (0.55 s or 0.40 s).
+            let expected = (6.0 / cfg.nominal_step_time) as usize;
+            assert!(
+                out.touch_downs.len() + 1 >= expected,
+                "{}",
+                out.touch_downs.len()
+            );
+            for td in &out.touch_downs {
+                assert!((td.step[0] - f_r).abs() < 1e-3, "{td:?}");
+                assert!((td.step[1].abs() - 0.24).abs() < 1e-3, "{td:?}");
+            }
         }
     }
 }
@@ -142,7 +153,7 @@ proptest! {
         dvy in -0.15f64..0.15,
     ) {
         let r = GaitReference { step_x: f_r, lateral: 0.0 };
-        let out = run(CaptureStepConfig::default(), 3.0, 1.0, r, push_at, [dvx, dvy], 12.0, DT);
+        let out = run(lipm_config(), 3.0, 1.0, r, push_at, [dvx, dvy], 12.0, DT);
         prop_assert!(!out.fell);
         prop_assert!(out.max_zmp_fraction <= 1.0);
         // No step is shorter than the minimum step duration (0.3 s), up to one tick.
@@ -159,7 +170,7 @@ proptest! {
 /// asserts their bounds.
 #[test]
 fn report_recovery_and_mismatch_figures() {
-    let cfg = CaptureStepConfig::default();
+    let cfg = lipm_config();
     let mut worst = 0;
     let mut total = 0usize;
     let mut count = 0usize;
@@ -317,7 +328,7 @@ fn report_recovery_and_mismatch_figures() {
 fn analytic_footstep_switch() {
     let off = CaptureStepConfig {
         analytic_footstep: false,
-        ..CaptureStepConfig::default()
+        ..lipm_config()
     };
     let r = GaitReference::default();
     let quiet = run(off, 3.0, 1.0, r, f64::INFINITY, [0.0; 2], 5.0, 0.001);
@@ -330,7 +341,7 @@ fn analytic_footstep_switch() {
     );
 
     // dF = analytic step: identical decisions.
-    let mut analytic = CaptureStep::new(CaptureStepConfig::default()).unwrap();
+    let mut analytic = CaptureStep::new(lipm_config()).unwrap();
     let mut learner_only = CaptureStep::new(off).unwrap();
     let s = start_state(&analytic, Side::Right, &r);
     let com = steplearn::control::capture_step::ComState {
@@ -351,16 +362,7 @@ fn lateral_command_walks_sideways() {
         step_x: 0.1,
         lateral: 0.5,
     };
-    let out = run(
-        CaptureStepConfig::default(),
-        3.0,
-        1.0,
-        r,
-        f64::INFINITY,
-        [0.0; 2],
-        8.0,
-        DT,
-    );
+    let out = run(lipm_config(), 3.0, 1.0, r, f64::INFINITY, [0.0; 2], 8.0, DT);
     assert!(!out.fell);
     // Steady state: a long step (2 x 0.16 m) and a short one (2 x 0.12 m) per gait cycle:
     // 0.08 m of lateral travel per pair of steps.

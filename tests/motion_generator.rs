@@ -57,6 +57,7 @@ fn steps_take_the_commanded_time_and_alternate() {
             step_y: g.swing().sign() * g.nominal_width(),
             turn: 0.0,
             step_time: (1.0 - g.phase()) * 0.5,
+            gait_x: 0.0,
         };
         g.update(&cmd, dt);
         t += dt;
@@ -72,26 +73,37 @@ fn steps_take_the_commanded_time_and_alternate() {
     }
 }
 
+/// The swing foot lands `step_x` ahead of the support foot, and the support leg has swept the
+/// hips `gait_x / 2` ahead of its foot whatever `step_x` is.
 #[test]
 fn swing_foot_lands_where_commanded() {
-    let mut g = generator();
-    let dt = 0.005;
-    let step_x = 0.15;
-    // Run long enough for the fade-in and filter to settle, stop just before touch-down.
-    for _ in 0..4000 {
-        let cmd = g.open_loop(step_x);
-        g.update(&cmd, dt);
-        if g.steps() >= 8 && g.phase() > 0.995 - dt / 0.4 {
-            break;
+    for (step_x, gait_x) in [(0.15, 0.15), (-0.1, 0.0), (0.15, 0.0), (0.0, 0.2)] {
+        let mut g = generator();
+        let dt = 0.005;
+        // Run long enough for the fade-in and filter to settle, stop just before touch-down.
+        for _ in 0..4000 {
+            let cmd = StepCommand {
+                gait_x,
+                ..g.open_loop(step_x)
+            };
+            g.update(&cmd, dt);
+            if g.steps() >= 8 && g.phase() > 0.995 - dt / 0.4 {
+                break;
+            }
         }
+        let d = space().leg_length() * (1.0 - g.config().halt_extension);
+        let lean = g.config().lean_per_step * gait_x;
+        let swing = g.legs()[g.swing().index()].angle[1] + lean;
+        let support = g.legs()[g.support().index()].angle[1] + lean;
+        // Foot x relative to the hip is -d sin(pitch).
+        let gap = -d * swing.sin() + d * support.sin();
+        assert!((gap - step_x).abs() < 0.01, "{step_x} {gait_x}: gap {gap}");
+        let hips = d * support.sin();
+        assert!(
+            (hips - gait_x / 2.0).abs() < 0.01,
+            "{step_x} {gait_x}: hips {hips} ahead of the support foot"
+        );
     }
-    let d = space().leg_length() * (1.0 - g.config().halt_extension);
-    let lean = g.config().lean_per_step * step_x;
-    let swing = g.legs()[g.swing().index()].angle[1] + lean;
-    let support = g.legs()[g.support().index()].angle[1] + lean;
-    // Foot x relative to the hip is -d sin(pitch); the swing foot is step_x ahead.
-    let gap = -d * swing.sin() + d * support.sin();
-    assert!((gap - step_x).abs() < 0.01, "gap {gap}");
 }
 
 #[test]
@@ -123,6 +135,7 @@ fn bad_command_values_are_ignored() {
         step_y: f64::INFINITY,
         turn: f64::NAN,
         step_time: f64::NAN,
+        gait_x: f64::NAN,
     };
     for _ in 0..100 {
         let t = g.update(&cmd, 0.01);

@@ -59,16 +59,26 @@
 //!
 //! | quantity | value | from |
 //! |---|---|---|
-//! | CoM height while walking | 1.09 m | 0.56 H standing, knees slightly bent |
-//! | `C = sqrt(g/h)` | 3.0 1/s | g = 9.81 |
+//! | CoM height while walking | 1.13 m | measured on the simulated body (1.16 m standing) |
+//! | `C = sqrt(g/h)` | 2.95 1/s | g = 9.81 |
 //! | hip half-width | 0.10 m | Winter hip width 0.191 H, joint centres inside |
 //! | foot (sole) | 0.30 x 0.11 m | 0.152 H x 0.055 H |
-//! | nominal step time `2 tau` | 0.55 s | generator step period |
+//! | nominal step time `2 tau` | 0.40 s | the step generator's period ([`MotionConfig::period`](crate::control::motion::MotionConfig)) |
 //! | `delta` (support exchange) | 0.12 m | feet 0.24 m apart in place |
-//! | `alpha` (lateral apex) | `delta / cosh(C tau)` = 0.0882 m | derived |
+//! | `alpha` (lateral apex) | `delta / cosh(C tau)` = 0.102 m | derived |
 //! | `omega` (long lateral step) | 0.20 m | |
-//! | ZMP x range | [-0.06, 0.09] m | inside the 0.30 m sole with margin |
+//! | ZMP x range | [-0.08, 0.08] m | inside the 0.30 m sole with margin; symmetric because the stiff generator realises no ZMP of its own (see below) |
 //! | ZMP y range | +-0.02 m | inside the 0.11 m sole with margin |
+//!
+//! ## On a stiff, position-controlled robot
+//! The step generator does not realise `Z`: with stiff servos the support leg's sweep moves
+//! the CoM kinematically and the ZMP goes wherever that motion needs it. The walker therefore
+//! drives the support leg's sweep with the *reference* step, not with the controller's step
+//! (see [`StepCommand::gait_x`](crate::control::motion::StepCommand)); the controller's
+//! footstep only places the swing foot. The sagittal ZMP range is then a model parameter, not
+//! a realised bound: on the simulated humanoid, stepping in place with `F_R = 0` for 20 s
+//! gave a mean measured step of -1.1 cm with `[-0.06, 0.09]` and +0.4 cm with `+-0.08`
+//! (`tests/walker_humanoid.rs` checks the chosen default).
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -139,11 +149,11 @@ pub struct CaptureStepConfig {
 impl Default for CaptureStepConfig {
     fn default() -> Self {
         CaptureStepConfig {
-            c: 3.0,
-            nominal_step_time: 0.55,
+            c: 2.95,
+            nominal_step_time: 0.40,
             delta: 0.12,
             omega: 0.20,
-            zmp_x: [-0.06, 0.09],
+            zmp_x: [-0.08, 0.08],
             zmp_y: 0.02,
             max_com_x: 0.30,
             max_step_time: 1.0,
@@ -595,7 +605,10 @@ mod tests {
                     lateral: 0.0,
                 };
                 let d = cs.update(&nominal(&cs, support, &r), &r, 0.0).unwrap();
-                assert!((d.time_to_step - 0.55).abs() < 1e-9, "{d:?}");
+                assert!(
+                    (d.time_to_step - cs.config().nominal_step_time).abs() < 1e-9,
+                    "{d:?}"
+                );
                 assert!(d.zmp[0].abs() < 1e-9 && d.zmp[1].abs() < 1e-9, "{d:?}");
                 assert!((d.step[0] - fr).abs() < 1e-9, "{d:?}");
                 let l = CaptureStep::lateral_sign(support);

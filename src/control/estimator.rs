@@ -4,9 +4,10 @@
 //! - **Heading frame**: the world frame turned by the trunk's yaw (x forward along the heading,
 //!   y left, z up). A vector `v` in the torso frame is `Ry(pitch) Rx(roll) v` in the heading
 //!   frame, with roll and pitch from the IMU ([`Imu::roll_pitch_yaw`](super::Imu)).
-//! - **CoM model**: the CoM is a fixed point `com_offset` of the torso frame (for the 2 m
-//!   humanoid about 6 cm above the hip centres with straight legs; the legs' motion moves the
-//!   true CoM by a few cm, which this model ignores, as the authors' gait does). Its position
+//! - **CoM model**: the CoM is a fixed point `com_offset` of the torso frame (the default is
+//!   the simulated 2 m humanoid's CoM in its torso frame, averaged while stepping in place:
+//!   2.1 cm ahead of and 11.6 cm above the hip centres; the legs' motion moves the true CoM by
+//!   a few cm, which this model ignores, as the authors' gait does). Its position
 //!   relative to the support foot's sole centre is `R (com_offset - sole)`, with `sole` from
 //!   forward kinematics and `R` the IMU attitude without yaw.
 //! - **CoM velocity**: the finite difference of that position between ticks, low-pass filtered
@@ -70,7 +71,7 @@ pub struct EstimatorConfig {
 impl Default for EstimatorConfig {
     fn default() -> Self {
         EstimatorConfig {
-            com_offset: [0.0, 0.0, 0.06],
+            com_offset: [0.021, 0.0, 0.116],
             switch_fraction: 0.6,
             min_total_force: 5.0,
             min_support_time: 0.1,

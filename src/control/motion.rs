@@ -11,8 +11,9 @@
 //! A step is built from motion primitives added to a halt pose over the step phase
 //! `p in [0, 1)`: the swing leg lifts (extension bump) while the support leg pushes (extends);
 //! the swing leg swings from where it was to the commanded placement (cosine profile) while
-//! the support leg sweeps back linearly; both legs roll together to sway the hips over the
-//! support foot; the trunk leans with the commanded step. The generator takes a
+//! the support leg sweeps back linearly until the hips are half the nominal gait step
+//! ([`StepCommand::gait_x`]) ahead of the support foot; both legs roll together to sway the hips over the
+//! support foot; the trunk leans with the nominal gait step. The generator takes a
 //! [`StepCommand`] every tick: where the swing foot should land relative to the support foot,
 //! the turn, and the time left until touch-down; changing them mid-step is smooth (the
 //! commanded placement is low-pass filtered and the phase itself never jumps).
@@ -129,6 +130,12 @@ pub struct StepCommand {
     pub turn: f64,
     /// Time left until touch-down (s).
     pub step_time: f64,
+    /// Sagittal step size of the nominal gait (m): the support leg sweeps the hips from where
+    /// the step began to `gait_x / 2` ahead of the support foot, whatever `step_x` is, and the
+    /// trunk leans with it. With stiff joints the sweep moves the CoM kinematically, so a
+    /// balance controller's footstep must not feed back into it (a backward catch step would
+    /// drive the CoM further back). The open-loop walker sets it to `step_x`.
+    pub gait_x: f64,
 }
 
 /// Settings of the step motion generator.
@@ -199,8 +206,8 @@ pub struct MotionGenerator {
     support: Side,
     steps: u64,
     time: f64,
-    /// Filtered placement: step_x, step_y offset beyond nominal width, turn.
-    filtered: [f64; 3],
+    /// Filtered placement: step_x, step_y offset beyond nominal width, turn, gait_x.
+    filtered: [f64; 4],
     /// Leg angle (roll, pitch, yaw) placement of each leg at the start of the step.
     start: [[f64; 3]; 2],
     /// Leg angles of the placement primitive alone (without sway and lean) at the last update.
@@ -229,7 +236,7 @@ impl MotionGenerator {
             support: Side::Left,
             steps: 0,
             time: 0.0,
-            filtered: [0.0; 3],
+            filtered: [0.0; 4],
             start: [[0.0; 3]; 2],
             placement: [[0.0; 3]; 2],
             legs: [LegPose::default(); 2],
@@ -300,6 +307,7 @@ impl MotionGenerator {
             step_y: self.swing().sign() * self.hip_width,
             turn: 0.0,
             step_time: (1.0 - self.phase) * self.config.period,
+            gait_x: step_x,
         }
     }
 
@@ -322,6 +330,9 @@ impl MotionGenerator {
         }
         if command.turn.is_finite() {
             want[2] = command.turn.clamp(-c.max_turn, c.max_turn);
+        }
+        if command.gait_x.is_finite() {
+            want[3] = command.gait_x.clamp(c.step_x_range[0], c.step_x_range[1]);
         }
         let alpha = if c.filter_time > 0.0 {
             1.0 - (-dt / c.filter_time).exp()
@@ -376,18 +387,21 @@ impl MotionGenerator {
         let d = self.space.leg_length() * (1.0 - c.halt_extension);
         let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();
         // Placement fades in with the lift so a barely lifted foot is not dragged.
-        let [sx, sy, turn] = self.filtered.map(|v| v * fade);
+        let [sx, sy, turn, gx] = self.filtered.map(|v| v * fade);
         let swing = self.swing();
-        // End-of-step leg angles: swing foot ahead by step_x, outward by sy, turned by turn.
+        // End-of-step leg angles: the support leg has swept the hips gait_x / 2 ahead of its
+        // foot; the swing foot lands step_x ahead of the support foot, outward by sy, turned
+        // by turn.
+        let end_support_pitch = half(gx);
         let end_swing = [
             swing.sign() * half(sy.abs()) * sy.signum(),
-            -half(sx),
+            -(((sx - 0.5 * gx) / d).clamp(-0.9, 0.9)).asin(),
             turn / 2.0,
         ];
-        let end_support = [-end_swing[0], half(sx), -turn / 2.0];
+        let end_support = [-end_swing[0], end_support_pitch, -turn / 2.0];
         let s_swing = smooth(window(p, c.swing_window));
         let lift = (std::f64::consts::PI * window(p, c.lift_window)).sin();
-        let lean = c.halt_lean + c.lean_per_step * sx;
+        let lean = c.halt_lean + c.lean_per_step * gx;
         let sway = self.sway_roll(p) * fade;
         let mut out = [self.halt_pose(); 2];
         let mut placement = [[0.0; 3]; 2];

@@ -8,6 +8,13 @@
 //! The open-loop walker (fixed period, no reaction to pushes), the *model* (Capture Step), the
 //! *learned* walker (Capture Step + learner) and the learner without initialisation (analytic
 //! footstep off) are all configurations of this one type.
+//!
+//! In the Capture Step modes the controller's step places only the swing foot; the support
+//! leg's sweep (and the trunk lean) follow the reference step `F_R`
+//! ([`StepCommand::gait_x`]). Driving the sweep with the controller's step fed back
+//! positively on the stiff robot: a backward catch step swept the hips backward over the
+//! support foot, the controller saw more backward velocity and stepped further back (the
+//! robot walked backward with -0.116 m steps whatever `F_R` was).
 
 use super::capture_step::{
     CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
@@ -217,6 +224,7 @@ impl Walker {
                     step_y: d.step[1],
                     turn: 0.0,
                     step_time: d.time_to_step,
+                    gait_x: f_r,
                 };
                 (command, Some(d))
             }
