@@ -2,12 +2,16 @@
 //! size, optionally with forward pushes, and prints every step and fall.
 //!
 //! `cargo run --release --example walk -- --mode capture-step --step-x 0.1 --seconds 30 --push 8`
+//! `cargo run --release --example walk -- --learn --eta 0.2 --seconds 60 --push 6,8,10,12,14`
 
 use clap::Parser;
+use steplearn::approx::{Lwpr, LwprConfig};
+use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{FallRecord, Observer, StepRecord, run_trial};
+use steplearn::rules::PendulumCart;
 
 #[derive(Parser)]
 struct Args {
@@ -29,6 +33,18 @@ struct Args {
     /// Print every step.
     #[arg(long)]
     verbose: bool,
+    /// Add the learner (LWPR + pendulum-cart) to the capture-step walker.
+    #[arg(long)]
+    learn: bool,
+    /// The learner's rate eta (the paper: 1).
+    #[arg(long, default_value_t = 1.0)]
+    eta: f64,
+    /// Clamp the learned offset to +-this (m); none by default.
+    #[arg(long)]
+    max_offset: Option<f64>,
+    /// LWPR's initial distance metric (init_D = value * I on inputs scaled by their ranges).
+    #[arg(long, default_value_t = 10.0)]
+    init_d: f64,
 }
 
 struct Printer {
@@ -39,8 +55,8 @@ impl Observer for Printer {
     fn on_step(&mut self, s: &StepRecord) {
         if self.verbose {
             println!(
-                "t {:7.2}  F_R {:+.3}  F_hat {:+.3}  theta_E {:+.3}  dtheta {:+.3}",
-                s.time, s.f_r, s.f_hat, s.theta_e, s.theta_e_dot
+                "t {:7.2}  F_R {:+.3}  F_hat {:+.3}  theta_E {:+.3}  dtheta {:+.3}  dF {:+.3}",
+                s.time, s.f_r, s.f_hat, s.theta_e, s.theta_e_dot, s.learned_offset
             );
         }
     }
@@ -74,9 +90,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         args.seconds,
     );
     let wall = std::time::Instant::now();
+    // LWPR over (theta_E, theta_E_dot, F_R), inputs scaled by the learner grid's half-ranges.
+    let grid = InputGrid::default();
+    let half: Vec<f64> = grid
+        .lo
+        .to_array()
+        .iter()
+        .zip(grid.hi.to_array())
+        .map(|(l, h)| 0.5 * (h - l))
+        .collect();
+    let lwpr = Lwpr::new(LwprConfig::new(3, 1).norm_in(half).init_d(args.init_d))?;
+    let mut learner = FootstepLearner::new(
+        lwpr,
+        PendulumCart::default(),
+        LearnerConfig {
+            max_offset: args.max_offset,
+            eta: args.eta,
+            ..LearnerConfig::default()
+        },
+    )?;
     let log = run_trial(
         &setup,
-        None,
+        if args.learn { Some(&mut learner) } else { None },
         &mut [&mut Printer {
             verbose: args.verbose,
         }],

@@ -8,9 +8,13 @@ use super::settings::{LearnerFactory, Settings};
 use super::trial::{PushRecord, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::control::walker::WalkerMode;
-use crate::report::fall_rate::{Fall50Estimate, PushResult, impulse_at_50pct_fall};
+use crate::report::ReportError;
+use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
+use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
+use crate::report::summary::write_csv;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 
 /// The protocol (paper: 400 pushes uniform in [0, 20] Ns, walking in place).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -109,4 +113,71 @@ where
         model: ControllerPushes::new(model?.pushes)?,
         learned: ControllerPushes::new(learned?.pushes)?,
     })
+}
+
+impl StabilityResult {
+    /// The three controllers with their display names, in plot order.
+    pub fn controllers(&self) -> [(&'static str, &ControllerPushes); 3] {
+        [
+            ("open-loop", &self.open_loop),
+            ("model", &self.model),
+            ("learned", &self.learned),
+        ]
+    }
+
+    /// Writes `pushes.csv` (controller, time, impulse, fell) and `fall_probability.svg`
+    /// (logistic fits and 2 Ns bins, as the paper's Fig. 6) into `dir`.
+    pub fn write(&self, dir: &Path, impulse: (f64, f64)) -> Result<(), ExperimentError> {
+        std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+        let mut rows = Vec::new();
+        for (name, c) in self.controllers() {
+            for p in &c.pushes {
+                rows.push(vec![
+                    name.to_string(),
+                    format!("{:.4}", p.time),
+                    format!("{:.4}", p.impulse),
+                    p.fell.to_string(),
+                ]);
+            }
+        }
+        write_csv(
+            &dir.join("pushes.csv"),
+            &["controller", "time_s", "impulse_ns", "fell"],
+            &rows,
+        )?;
+        let bins_per_controller = ((impulse.1 - impulse.0) / 2.0).ceil().max(1.0) as usize;
+        let mut curves = Vec::new();
+        for (name, c) in self.controllers() {
+            let samples: Vec<PushResult> = c.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
+            let bins: Vec<(f64, f64)> =
+                fall_rate_bins(&samples, impulse.0, impulse.1, bins_per_controller)?
+                    .iter()
+                    .filter_map(|b| b.fraction().map(|f| (b.center(), f)))
+                    .collect();
+            // The logistic fit where one exists, else the binned fractions joined by lines.
+            let (x, y) = match c.fall50.fit {
+                Some(fit) => fit.curve(impulse.0, impulse.1, 101),
+                None => bins.iter().copied().unzip(),
+            };
+            curves.push((name, x, y, bins));
+        }
+        let curves: Vec<FallCurve> = curves
+            .iter()
+            .map(|(name, x, y, bins)| FallCurve {
+                name,
+                impulse: x,
+                probability: y,
+                bins,
+            })
+            .collect();
+        fall_probability_plot(
+            &dir.join("fall_probability.svg"),
+            &FallPlot {
+                title: "Probability to fall vs forward push impulse",
+                x_label: "push impulse (Ns)",
+                curves: &curves,
+            },
+        )?;
+        Ok(())
+    }
 }
