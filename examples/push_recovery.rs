@@ -24,6 +24,9 @@ struct Args {
     /// Largest impulse (Ns); impulses are uniform in [0, max].
     #[arg(long, default_value_t = 20.0)]
     max_impulse: f64,
+    /// The learner's rate eta (the paper: 1).
+    #[arg(long, default_value_t = 1.0)]
+    eta: f64,
     /// Output directory.
     #[arg(long, default_value = "results/push_recovery")]
     out: PathBuf,
@@ -45,7 +48,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let approx = ApproxKind::Lwpr
             .build(&bounds)
             .expect("the default LWPR config is valid");
-        FootstepLearner::new(approx, PendulumCart::default(), LearnerConfig::default())
+        FootstepLearner::new(
+            approx,
+            PendulumCart::default(),
+            LearnerConfig {
+                eta: args.eta,
+                ..LearnerConfig::default()
+            },
+        )
     };
     let wall = std::time::Instant::now();
     let result = stability::run(&Settings::default(), &protocol, args.seed, &make)?;
