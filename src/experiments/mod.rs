@@ -4,6 +4,7 @@
 pub mod aligned;
 mod error;
 mod kind;
+pub mod run;
 pub mod schedule;
 pub mod settings;
 pub mod stability;

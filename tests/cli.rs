@@ -1,0 +1,79 @@
+//! The `steplearn` command: a short real run, and bad arguments rejected with a message.
+
+use std::process::Command;
+
+fn steplearn(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_steplearn"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+#[test]
+fn stability_run_writes_summary_and_figures() {
+    let dir = std::env::temp_dir().join(format!("steplearn-cli-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let o = steplearn(&[
+        "experiment",
+        "stability",
+        "--pushes",
+        "3",
+        "--seed",
+        "4",
+        "--out",
+        out,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["experiment"], "stability");
+    assert_eq!(summary["approx"], "lwpr");
+    assert_eq!(summary["rule"], "pendulum-cart");
+    assert_eq!(summary["seed"], 4);
+    for c in ["open_loop", "model", "learned"] {
+        assert_eq!(summary["controllers"][c]["pushes"], 3, "{c}");
+        assert!(summary["controllers"][c]["impulse_at_50pct_fall_ns"].is_number());
+    }
+    assert!(dir.join("fall_probability.svg").exists() && dir.join("pushes.csv").exists());
+
+    // A failing run leaves what is there untouched.
+    let before = std::fs::read(dir.join("summary.json")).unwrap();
+    let o = steplearn(&["experiment", "tracking", "--out", out]);
+    assert!(!o.status.success());
+    assert_eq!(before, std::fs::read(dir.join("summary.json")).unwrap());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_arguments_are_messages_and_failures() {
+    for args in [
+        vec!["experiment", "stability", "--approx", "lwrp", "--out", "x"],
+        vec!["experiment", "stability", "--rule", "nope", "--out", "x"],
+        vec![
+            "experiment",
+            "stability",
+            "--impulse-range",
+            "5,2",
+            "--out",
+            "x",
+        ],
+        vec!["experiment", "stability", "--pushes", "0", "--out", "x"],
+        vec![
+            "experiment",
+            "stability",
+            "--config",
+            "/nonexistent.toml",
+            "--out",
+            "x",
+        ],
+        vec!["sweep", "--shard", "3/2", "--out", "x"],
+        vec!["merge", "/nonexistent-steplearn-dir"],
+        vec!["experiment", "walking", "--out", "x"],
+    ] {
+        let o = steplearn(&args);
+        assert!(!o.status.success(), "{args:?} succeeded");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("error"), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    }
+}
