@@ -6,12 +6,17 @@
 
 use clap::Parser;
 use steplearn::approx::{Lwpr, LwprConfig};
+use steplearn::control::Side;
+use steplearn::control::capture_step::StepDecision;
 use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::walker::Tick;
 use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
-use steplearn::experiments::trial::{FallRecord, Observer, StepRecord, run_trial};
+use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord, run_trial};
+use steplearn::report::run_picture::{RunRecord, StepAnnotation};
 use steplearn::rules::PendulumCart;
+use steplearn::sim::GroundTruth;
 
 #[derive(Parser)]
 struct Args {
@@ -42,6 +47,10 @@ struct Args {
     /// Clamp the learned offset to +-this (m); none by default.
     #[arg(long)]
     max_offset: Option<f64>,
+    /// Write a run picture (stick figures, CoM and feet, pushes, falls, and the controller's
+    /// Z, F and T at the start of every step) to this SVG file.
+    #[arg(long)]
+    picture: Option<std::path::PathBuf>,
     /// LWPR's initial distance metric (init_D = value * I on inputs scaled by their ranges).
     #[arg(long, default_value_t = 10.0)]
     init_d: f64,
@@ -62,6 +71,47 @@ impl Observer for Printer {
     }
     fn on_fall(&mut self, f: &FallRecord) {
         println!("FALL at {:.2} s: {:?}", f.time, f.fall.cause);
+    }
+}
+
+/// Records the run for the picture: ground truth every tick, the controller's decision at the
+/// first tick of every step (placed in the world at the support sole).
+struct Picture {
+    record: RunRecord,
+    decision: Option<StepDecision>,
+    support: Option<Side>,
+}
+
+impl Observer for Picture {
+    fn on_tick(&mut self, _time: f64, tick: &Tick) {
+        self.decision = tick.decision;
+    }
+    fn on_push(&mut self, p: &PushRecord) {
+        self.record.push(p.time, [p.impulse, 0.0, 0.0]);
+    }
+    fn on_fall(&mut self, f: &FallRecord) {
+        self.record.fall(f.time);
+    }
+    fn wants_truth(&self) -> bool {
+        true
+    }
+    fn on_truth(&mut self, time: f64, truth: &GroundTruth) {
+        let mut truth = truth.clone();
+        truth.time = time;
+        self.record.record(&truth);
+        // The controller's first decision on a new support foot.
+        if let Some(d) = self.decision
+            && self.support != Some(d.support)
+        {
+            self.support = Some(d.support);
+            let sole = truth.soles[d.support.index()].position;
+            self.record.annotate(StepAnnotation {
+                time,
+                zmp: Some([sole[0] + d.zmp[0], sole[1] + d.zmp[1]]),
+                footstep: Some([sole[0] + d.step[0], sole[1] + d.step[1]]),
+                step_time: Some(d.time_to_step),
+            });
+        }
     }
 }
 
@@ -109,13 +159,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ..LearnerConfig::default()
         },
     )?;
+    let mut printer = Printer {
+        verbose: args.verbose,
+    };
+    let mut picture = Picture {
+        record: RunRecord::new(&format!("{} walker, F_R {:+.2} m", args.mode, args.step_x)),
+        decision: None,
+        support: None,
+    };
+    let mut observers: Vec<&mut dyn Observer> = vec![&mut printer];
+    if args.picture.is_some() {
+        observers.push(&mut picture);
+    }
     let log = run_trial(
         &setup,
         if args.learn { Some(&mut learner) } else { None },
-        &mut [&mut Printer {
-            verbose: args.verbose,
-        }],
+        &mut observers,
     )?;
+    if let Some(path) = &args.picture {
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir)?;
+        }
+        picture.record.write_svg(path, 0.5)?;
+        println!("wrote {}", path.display());
+    }
     let wall = wall.elapsed().as_secs_f64();
     let n = log.steps.len().max(1) as f64;
     let settled: Vec<_> = log.steps.iter().filter(|s| s.time > args.settle).collect();

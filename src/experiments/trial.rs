@@ -9,7 +9,7 @@
 
 use super::schedule::{Push, ReferenceSchedule};
 use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
-use crate::sim::{Fall, Humanoid, SimConfig, SimError};
+use crate::sim::{Fall, GroundTruth, Humanoid, SimConfig, SimError};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -172,6 +172,14 @@ pub trait Observer {
     fn on_push(&mut self, _push: &PushRecord) {}
     /// At every fall (before the reset).
     fn on_fall(&mut self, _fall: &FallRecord) {}
+    /// Whether this observer wants the simulator's ground truth every tick (for figures only:
+    /// it costs a pass over the bodies, and control never sees it).
+    fn wants_truth(&self) -> bool {
+        false
+    }
+    /// The ground truth after [`Observer::on_tick`] of the same tick (trial time `time`), if
+    /// [`Observer::wants_truth`].
+    fn on_truth(&mut self, _time: f64, _truth: &GroundTruth) {}
 }
 
 /// Runs one trial. `policy` is the learner (none for the open-loop walker and the model).
@@ -224,6 +232,12 @@ pub fn run_trial(
             }
             None => walker.halt_targets(),
         };
+        if observers.iter().any(|o| o.wants_truth()) {
+            let truth = robot.ground_truth();
+            for o in observers.iter_mut().filter(|o| o.wants_truth()) {
+                o.on_truth(t, &truth);
+            }
+        }
 
         if next_push < setup.pushes.len()
             && watching.is_none()
@@ -272,6 +286,12 @@ pub fn run_trial(
             for o in observers.iter_mut() {
                 o.on_push(&log.pushes[i]);
             }
+        }
+    }
+    // A push still watched when the trial ends was not followed by a fall.
+    if let Some((i, _)) = watching {
+        for o in observers.iter_mut() {
+            o.on_push(&log.pushes[i]);
         }
     }
     log.sim_time_s = offset + robot.time();
