@@ -96,7 +96,7 @@ impl Observer for Picture {
         true
     }
     fn on_truth(&mut self, time: f64, truth: &GroundTruth) {
-        let mut truth = truth.clone();
+        let mut truth = *truth;
         truth.time = time;
         self.record.record(&truth);
         // The controller's first decision on a new support foot.
