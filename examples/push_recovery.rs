@@ -7,7 +7,7 @@
 
 use clap::Parser;
 use std::path::PathBuf;
-use steplearn::approx::{ApproxKind, InputBox};
+use steplearn::approx::ApproxKind;
 use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::{self, StabilityProtocol};
@@ -43,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..StabilityProtocol::default()
     };
     let grid = InputGrid::default();
-    let bounds = InputBox::new(grid.lo.to_array().to_vec(), grid.hi.to_array().to_vec())?;
+    let bounds = grid.input_box()?;
     let make = || {
         let approx = ApproxKind::Lwpr
             .build(&bounds)

@@ -577,3 +577,18 @@ fn works_with_boxed_approximator_and_rule_chosen_at_run_time() {
     assert_eq!(report.gradient, 0.1);
     assert!((learner.predict(input(0.1, 0.0, 0.0)).unwrap() - 0.1).abs() < 1e-15);
 }
+
+#[test]
+fn input_grid_box_matches_its_corners_and_rejects_flat_axes() {
+    let grid = InputGrid::default();
+    let b = grid.input_box().unwrap();
+    assert_eq!(b.lo, grid.lo.to_array().to_vec());
+    assert_eq!(b.hi, grid.hi.to_array().to_vec());
+    let flat = InputGrid {
+        hi: input(0.5, 3.0, -0.1),
+        ..grid
+    };
+    // a single F_R value is a valid grid to sample but not a box to size an approximator by
+    assert!(flat.validate().is_ok());
+    assert!(flat.input_box().is_err());
+}

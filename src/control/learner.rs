@@ -21,7 +21,7 @@
 //! approximator with a large fixed learning rate needs a smaller eta (see the toy-walker test
 //! in `tests/learner.rs`).
 
-use crate::approx::{ApproxError, FunctionApproximator, Persist};
+use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -240,6 +240,12 @@ impl InputGrid {
             check_range(name, lo[axis], hi[axis], self.points[axis])?;
         }
         Ok(())
+    }
+
+    /// The grid's box as an [`InputBox`], what [`crate::approx::ApproxKind::build`] sizes a
+    /// fresh approximator from. Errors if the box is degenerate (an axis with `lo >= hi`).
+    pub fn input_box(&self) -> Result<InputBox, ApproxError> {
+        InputBox::new(self.lo.to_array().to_vec(), self.hi.to_array().to_vec())
     }
 }
 
