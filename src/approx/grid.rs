@@ -202,25 +202,13 @@ impl FunctionApproximator for Grid {
 
 impl Persist for Grid {
     fn check_invariants(&self) -> Result<(), ApproxError> {
-        let corrupt = |m: String| Err(ApproxError::Corrupt(format!("grid: {m}")));
-        let lattice = match self.config.validate() {
-            Ok(l) => l,
-            Err(e) => return corrupt(format!("invalid config: {e}")),
-        };
-        if lattice != self.lattice {
-            return corrupt("lattice does not match the config".into());
-        }
-        if self.values.len() != lattice.len() * self.config.output_dim {
-            return corrupt(format!(
-                "{} values for {} nodes x {} outputs",
-                self.values.len(),
-                lattice.len(),
-                self.config.output_dim
-            ));
-        }
-        if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
-            return corrupt(format!("value {i} is not finite"));
-        }
-        Ok(())
+        self.lattice
+            .check_table(
+                self.config.validate(),
+                &self.values,
+                self.config.output_dim,
+                "value",
+            )
+            .map_err(|m| ApproxError::Corrupt(format!("grid: {m}")))
     }
 }

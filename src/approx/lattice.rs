@@ -75,6 +75,33 @@ impl Lattice {
         Ok(())
     }
 
+    /// Checks a loaded model's table against its lattice: `self` must be the lattice the
+    /// model's config builds (`expected`) and `table` must hold one finite `entry` per node and
+    /// output. Returns what is wrong, for the model's `Corrupt` error.
+    pub fn check_table(
+        &self,
+        expected: Result<Lattice, ApproxError>,
+        table: &[f64],
+        outputs: usize,
+        entry: &str,
+    ) -> Result<(), String> {
+        let lattice = expected.map_err(|e| format!("invalid config: {e}"))?;
+        if lattice != *self {
+            return Err("lattice does not match the config".into());
+        }
+        if table.len() != self.len() * outputs {
+            return Err(format!(
+                "{} {entry}s for {} nodes x {outputs} outputs",
+                table.len(),
+                self.len()
+            ));
+        }
+        match table.iter().position(|v| !v.is_finite()) {
+            Some(i) => Err(format!("{entry} {i} is not finite")),
+            None => Ok(()),
+        }
+    }
+
     /// Number of inputs.
     pub fn dim(&self) -> usize {
         self.counts.len()

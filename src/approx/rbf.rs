@@ -401,24 +401,15 @@ impl FunctionApproximator for Rbf {
 impl Persist for Rbf {
     fn check_invariants(&self) -> Result<(), ApproxError> {
         let corrupt = |m: String| Err(ApproxError::Corrupt(format!("rbf: {m}")));
-        let lattice = match self.config.validate() {
-            Ok(l) => l,
-            Err(e) => return corrupt(format!("invalid config: {e}")),
-        };
-        if lattice != self.lattice {
-            return corrupt("lattice does not match the config".into());
+        if let Err(m) = self.lattice.check_table(
+            self.config.validate(),
+            &self.weights,
+            self.config.output_dim,
+            "weight",
+        ) {
+            return corrupt(m);
         }
-        let m = lattice.len();
-        if self.weights.len() != m * self.config.output_dim {
-            return corrupt(format!(
-                "{} weights for {m} centres x {} outputs",
-                self.weights.len(),
-                self.config.output_dim
-            ));
-        }
-        if let Some(i) = self.weights.iter().position(|v| !v.is_finite()) {
-            return corrupt(format!("weight {i} is not finite"));
-        }
+        let m = self.lattice.len();
         match self.config.update {
             RbfUpdate::Nlms { .. } => {
                 if !self.covariance.is_empty() {
