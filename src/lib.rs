@@ -35,6 +35,7 @@
 pub mod approx;
 pub mod control;
 pub mod experiments;
+mod names;
 pub mod report;
 pub mod rules;
 pub mod sim;

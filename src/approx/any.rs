@@ -8,39 +8,21 @@ use super::{
 };
 use serde::{Deserialize, Serialize};
 
-/// The approximators of this crate, by their command-line names.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "kebab-case")]
-pub enum ApproxKind {
-    /// Locally weighted projection regression (the paper's choice).
-    Lwpr,
-    /// Normalised Gaussian radial basis function network.
-    Rbf,
-    /// Multilinearly interpolated grid.
-    Grid,
-    /// Online sparse kernel ridge regression.
-    KernelRidge,
+crate::names::named_choices! {
+    /// The approximators of this crate, by their command-line names.
+    pub enum ApproxKind {
+        /// Locally weighted projection regression (the paper's choice).
+        Lwpr => "lwpr",
+        /// Normalised Gaussian radial basis function network.
+        Rbf => "rbf",
+        /// Multilinearly interpolated grid.
+        Grid => "grid",
+        /// Online sparse kernel ridge regression.
+        KernelRidge => "kernel-ridge",
+    }
 }
 
 impl ApproxKind {
-    /// Every kind, in table order.
-    pub const ALL: [ApproxKind; 4] = [
-        ApproxKind::Lwpr,
-        ApproxKind::Rbf,
-        ApproxKind::Grid,
-        ApproxKind::KernelRidge,
-    ];
-
-    /// The command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            ApproxKind::Lwpr => "lwpr",
-            ApproxKind::Rbf => "rbf",
-            ApproxKind::Grid => "grid",
-            ApproxKind::KernelRidge => "kernel-ridge",
-        }
-    }
-
     /// A fresh, untrained approximator of this kind with one output over the input box
     /// `bounds`, with the settings documented for each type as good defaults for a box of that
     /// size (inputs are scaled by the box's half-widths).
@@ -73,21 +55,15 @@ impl ApproxKind {
     }
 }
 
-impl std::fmt::Display for ApproxKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
 impl std::str::FromStr for ApproxKind {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        ApproxKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| {
-                format!("unknown approximator '{s}' (expected lwpr, rbf, grid or kernel-ridge)")
-            })
+        ApproxKind::from_name(s).ok_or_else(|| {
+            format!(
+                "unknown approximator '{s}' (expected {})",
+                ApproxKind::names()
+            )
+        })
     }
 }
 

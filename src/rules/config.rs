@@ -4,70 +4,26 @@ use super::{BalanceOnly, LearningRule, Linear, PendulumCart, RateDamped, Trackin
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-/// A rule's name, as used on the command line (`--rule`), in run ids and in `summary.json`.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Hash,
-    PartialOrd,
-    Ord,
-    Serialize,
-    Deserialize,
-    clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
-#[value(rename_all = "kebab-case")]
-pub enum RuleKind {
-    /// [`PendulumCart`], the paper's eq. (5).
-    PendulumCart,
-    /// [`BalanceOnly`]: G = theta_E.
-    BalanceOnly,
-    /// [`TrackingOnly`]: the saturated F_E term alone.
-    TrackingOnly,
-    /// [`Linear`]: eq. (5) without saturation.
-    Linear,
-    /// [`RateDamped`]: eq. (5) plus k theta_E_dot.
-    RateDamped,
-}
-
-impl RuleKind {
-    /// Every rule, the paper's first.
-    pub const ALL: [RuleKind; 5] = [
-        RuleKind::PendulumCart,
-        RuleKind::BalanceOnly,
-        RuleKind::TrackingOnly,
-        RuleKind::Linear,
-        RuleKind::RateDamped,
-    ];
-
-    /// The kebab-case name (`"pendulum-cart"`, ...).
-    pub fn name(self) -> &'static str {
-        match self {
-            RuleKind::PendulumCart => "pendulum-cart",
-            RuleKind::BalanceOnly => "balance-only",
-            RuleKind::TrackingOnly => "tracking-only",
-            RuleKind::Linear => "linear",
-            RuleKind::RateDamped => "rate-damped",
-        }
-    }
-}
-
-impl std::fmt::Display for RuleKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
+crate::names::named_choices! {
+    /// A rule's name, as used on the command line (`--rule`), in run ids and in `summary.json`.
+    pub enum RuleKind {
+        /// [`PendulumCart`], the paper's eq. (5).
+        PendulumCart => "pendulum-cart",
+        /// [`BalanceOnly`]: G = theta_E.
+        BalanceOnly => "balance-only",
+        /// [`TrackingOnly`]: the saturated F_E term alone.
+        TrackingOnly => "tracking-only",
+        /// [`Linear`]: eq. (5) without saturation.
+        Linear => "linear",
+        /// [`RateDamped`]: eq. (5) plus k theta_E_dot.
+        RateDamped => "rate-damped",
     }
 }
 
 impl std::str::FromStr for RuleKind {
     type Err = RuleError;
     fn from_str(s: &str) -> Result<Self, RuleError> {
-        RuleKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| RuleError::UnknownRule(s.to_string()))
+        RuleKind::from_name(s).ok_or_else(|| RuleError::UnknownRule(s.to_string()))
     }
 }
 
@@ -75,9 +31,7 @@ impl std::str::FromStr for RuleKind {
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RuleError {
     /// The name is not one of [`RuleKind::ALL`].
-    #[error(
-        "unknown rule {0:?} (expected pendulum-cart, balance-only, tracking-only, linear or rate-damped)"
-    )]
+    #[error("unknown rule {0:?} (expected {names})", names = RuleKind::names())]
     UnknownRule(String),
     /// A parameter is out of range.
     #[error("invalid rule parameter {param}: {reason}")]
