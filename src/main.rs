@@ -7,12 +7,13 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use steplearn::approx::ApproxKind;
 use steplearn::experiments::ExperimentKind;
+use steplearn::experiments::reproduce::{self, Claims};
 use steplearn::experiments::run::{Protocols, run_spec};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::sweep::{
-    RunOutcome, RunSpec, Shard, SweepGrid, SweepOptions, merge, run_sweep,
+    RunOutcome, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
 };
-use steplearn::rules::RuleKind;
+use steplearn::rules::{PendulumCart, RuleKind};
 
 #[derive(Parser)]
 #[command(
@@ -27,9 +28,26 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The main job: all four experiments with LWPR + pendulum-cart over several seeds; writes
+    /// one directory per run (CSV, SVG, summary.json) and DIR/claims.{md,json}, whether each of
+    /// the paper's claims holds. Finished runs in DIR are reused.
+    Reproduce {
+        /// Output directory [default: results/paper, or results/quick with --quick].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Seeds 0..N [default: 5, or 2 with --quick].
+        #[arg(long)]
+        seeds: Option<u64>,
+        /// A fast look: every experiment at a tenth of its length.
+        #[arg(long)]
+        quick: bool,
+        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+        #[arg(long)]
+        config: Option<PathBuf>,
+    },
     /// Runs one experiment; writes CSV, SVG and DIR/summary.json.
     Experiment {
-        /// Which experiment (only stability is implemented so far).
+        /// Which experiment.
         experiment: ExperimentKind,
         /// The approximator.
         #[arg(long, default_value = "lwpr")]
@@ -40,10 +58,10 @@ enum Command {
         /// Seed of every random choice.
         #[arg(long, default_value_t = 0)]
         seed: u64,
-        /// Number of pushes (default: the protocol's).
+        /// Number of pushes (default: the protocol's; not for tracking).
         #[arg(long)]
         pushes: Option<usize>,
-        /// Push impulse range in Ns, "A,B".
+        /// Push impulse range in Ns, "A,B" (disturbance and robustness use one impulse: A,A).
         #[arg(long, value_parser = parse_range)]
         impulse_range: Option<(f64, f64)>,
         /// Direction of the pushes.
@@ -56,8 +74,8 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
-    /// Runs the ablation grid (approximator x rule x seed on the implemented experiments),
-    /// skipping runs whose summary.json exists.
+    /// Runs the ablation grid (approximator x rule x seed on experiments C and D), skipping
+    /// runs whose summary.json exists.
     Sweep {
         /// Run only shard I of N (0-based), e.g. 3/50.
         #[arg(long)]
@@ -150,6 +168,66 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
+        Command::Reproduce {
+            out,
+            seeds,
+            quick,
+            config,
+        } => {
+            let mut config = match config {
+                Some(path) => load_config(&path)?,
+                None => FileConfig::default(),
+            };
+            if quick {
+                config.settings.scale = 0.1;
+            }
+            let seeds = seeds.unwrap_or(if quick { 2 } else { 5 });
+            if seeds == 0 {
+                return Err("--seeds must be at least 1".into());
+            }
+            let out = out.unwrap_or_else(|| {
+                PathBuf::from(if quick {
+                    "results/quick"
+                } else {
+                    "results/paper"
+                })
+            });
+            let grid = reproduce::grid(seeds);
+            let runs = grid.runs().map_err(|e| e.to_string())?;
+            let started = std::time::Instant::now();
+            let failed = sweep_with_progress(&runs, &out, &config.settings, &config.protocols)?;
+            let (summaries, missing) =
+                reproduce::read_summaries(&grid, &out).map_err(|e| e.to_string())?;
+            let claims = Claims::from_summaries(&summaries, PendulumCart::default().p_theta);
+            claims.write(&out).map_err(|e| e.to_string())?;
+            for c in claims.all() {
+                let k = c.seeds.iter().filter(|s| s.1).count();
+                println!(
+                    "{} {} ({k}/{} seeds)",
+                    if c.holds {
+                        "REPRODUCED    "
+                    } else {
+                        "NOT REPRODUCED"
+                    },
+                    c.statement,
+                    c.seeds.len()
+                );
+            }
+            println!(
+                "{} runs in {} ({:.0} s); report: {}",
+                runs.len(),
+                out.display(),
+                started.elapsed().as_secs_f64(),
+                out.join("claims.md").display()
+            );
+            if failed > 0 || !missing.is_empty() {
+                return Err(format!(
+                    "{failed} runs failed; missing results: {}",
+                    missing.join(", ")
+                ));
+            }
+            Ok(())
+        }
         Command::Experiment {
             experiment,
             approx,
@@ -165,17 +243,13 @@ fn run(cli: Cli) -> Result<(), String> {
                 Some(path) => load_config(&path)?,
                 None => FileConfig::default(),
             };
-            let p = &mut config.protocols.stability;
-            if let Some(n) = pushes {
-                if n == 0 {
-                    return Err("--pushes must be at least 1".into());
-                }
-                p.pushes = n;
-            }
-            if let Some(r) = impulse_range {
-                p.impulse = r;
-            }
-            p.direction = push_direction.unit();
+            apply_push_options(
+                &mut config.protocols,
+                experiment,
+                pushes,
+                impulse_range,
+                push_direction.unit(),
+            )?;
             let spec = RunSpec {
                 experiment,
                 approx: approx.name().to_string(),
@@ -200,7 +274,7 @@ fn run(cli: Cli) -> Result<(), String> {
         } => {
             let approx: Vec<&str> = ApproxKind::ALL.iter().map(|k| k.name()).collect();
             let grid = SweepGrid {
-                experiments: vec![ExperimentKind::Stability],
+                experiments: vec![ExperimentKind::Stability, ExperimentKind::Robustness],
                 ..SweepGrid::full(&approx, seeds)
             };
             let runs = grid.runs().map_err(|e| e.to_string())?;
@@ -212,21 +286,11 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(n) = pushes {
                 protocols.stability.pushes = n.max(1);
             }
-            let settings = Settings::default();
-            let bar = indicatif::ProgressBar::new(runs.len() as u64);
-            let runner = |spec: &RunSpec, dir: &Path| {
-                run_spec(spec, dir, &settings, &protocols).map_err(|e| e.into())
-            };
-            let outcomes = run_sweep(
-                &runs,
-                &out,
-                &runner,
-                &SweepOptions::default(),
-                &|_: &RunOutcome| bar.inc(1),
-            )
-            .map_err(|e| e.to_string())?;
-            bar.finish_and_clear();
-            println!("{} runs in {}", outcomes.len(), out.display());
+            let failed = sweep_with_progress(&runs, &out, &Settings::default(), &protocols)?;
+            println!("{} runs in {}", runs.len(), out.display());
+            if failed > 0 {
+                return Err(format!("{failed} runs failed"));
+            }
             Ok(())
         }
         Command::Merge { dir } => {
@@ -243,4 +307,87 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
     }
+}
+
+/// Runs `runs` into `out` with a progress bar on stderr (hidden when stderr is not a terminal);
+/// prints each failure and returns how many failed.
+fn sweep_with_progress(
+    runs: &[RunSpec],
+    out: &Path,
+    settings: &Settings,
+    protocols: &Protocols,
+) -> Result<usize, String> {
+    let bar = indicatif::ProgressBar::new(runs.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
+            .map_err(|e| e.to_string())?,
+    );
+    let runner =
+        |spec: &RunSpec, dir: &Path| run_spec(spec, dir, settings, protocols).map_err(|e| e.into());
+    let outcomes = run_sweep(
+        runs,
+        out,
+        &runner,
+        &SweepOptions::default(),
+        &|o: &RunOutcome| {
+            bar.set_message(o.spec.id());
+            bar.inc(1)
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    let mut failed = 0;
+    for o in &outcomes {
+        if let RunStatus::Failed(message) = &o.status {
+            eprintln!("failed: {}: {message}", o.spec.id());
+            failed += 1;
+        }
+    }
+    Ok(failed)
+}
+
+/// Applies the command line's push options to the protocol of `experiment`.
+fn apply_push_options(
+    protocols: &mut Protocols,
+    experiment: ExperimentKind,
+    pushes: Option<usize>,
+    impulse_range: Option<(f64, f64)>,
+    direction: [f64; 3],
+) -> Result<(), String> {
+    if pushes == Some(0) {
+        return Err("--pushes must be at least 1".into());
+    }
+    let single = |r: Option<(f64, f64)>| match r {
+        Some((a, b)) if a != b => Err(format!(
+            "{experiment} pushes with one impulse: give --impulse-range A,A (got {a},{b})"
+        )),
+        Some((a, _)) => Ok(Some(a)),
+        None => Ok(None),
+    };
+    match experiment {
+        ExperimentKind::Tracking => {
+            if pushes.is_some() || impulse_range.is_some() {
+                return Err("the tracking experiment has no pushes".into());
+            }
+        }
+        ExperimentKind::Disturbance => {
+            let p = &mut protocols.disturbance;
+            p.pushes = pushes.unwrap_or(p.pushes);
+            p.impulse = single(impulse_range)?.unwrap_or(p.impulse);
+            p.direction = direction;
+        }
+        ExperimentKind::Stability => {
+            let p = &mut protocols.stability;
+            p.pushes = pushes.unwrap_or(p.pushes);
+            p.impulse = impulse_range.unwrap_or(p.impulse);
+            p.direction = direction;
+        }
+        ExperimentKind::Robustness => {
+            let p = &mut protocols.robustness;
+            p.pushes = pushes.unwrap_or(p.pushes);
+            p.impulse = single(impulse_range)?.unwrap_or(p.impulse);
+            p.direction = direction;
+        }
+    }
+    Ok(())
 }

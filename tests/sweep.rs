@@ -55,8 +55,8 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
         }
         ExperimentKind::Tracking => ExperimentResult::Tracking {
             step_error_std_m: ModelLearned {
-                model: vec![rng.random_range(0.0..0.1); 4],
-                learned: vec![rng.random_range(0.0..0.1); 4],
+                model: vec![Some(rng.random_range(0.0..0.1)); 4],
+                learned: vec![Some(rng.random_range(0.0..0.1)); 4],
             },
             bin_s: 0.5,
         },

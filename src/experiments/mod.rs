@@ -2,13 +2,18 @@
 //! harness that runs and sweeps them.
 
 pub mod aligned;
+pub mod compare;
+pub mod disturbance;
 mod error;
 mod kind;
+pub mod reproduce;
+pub mod robustness;
 pub mod run;
 pub mod schedule;
 pub mod settings;
 pub mod stability;
 pub mod sweep;
+pub mod tracking;
 pub mod trial;
 
 pub use error::ExperimentError;

@@ -2,13 +2,18 @@
 //! and the sweep call.
 
 use super::ExperimentKind;
+use super::disturbance::{self, DisturbanceProtocol};
 use super::error::ExperimentError;
+use super::robustness::{self, RobustnessProtocol};
 use super::settings::Settings;
 use super::stability::{self, ControllerPushes, StabilityProtocol};
 use super::sweep::RunSpec;
-use crate::approx::{AnyApproximator, ApproxKind, InputBox};
+use super::tracking::{self, TrackingProtocol};
+use crate::approx::{AnyApproximator, ApproxKind};
 use crate::control::learner::{FootstepLearner, InputGrid};
-use crate::report::summary::{ControllerFalls, Controllers, ExperimentResult, Summary};
+use crate::report::summary::{
+    ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
+};
 use crate::rules::{LearningRule, RuleConfig};
 use std::path::Path;
 
@@ -16,8 +21,14 @@ use std::path::Path;
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct Protocols {
+    /// Experiment A.
+    pub tracking: TrackingProtocol,
+    /// Experiment B.
+    pub disturbance: DisturbanceProtocol,
     /// Experiment C.
     pub stability: StabilityProtocol,
+    /// Experiment D.
+    pub robustness: RobustnessProtocol,
 }
 
 /// Runs `spec` with `settings`, writes its figures and CSV into `dir` and returns its summary
@@ -32,8 +43,8 @@ pub fn run_spec(
     let rule = RuleConfig::from(spec.rule);
     rule.validate()
         .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
-    let grid = InputGrid::default();
-    let bounds = InputBox::new(grid.lo.to_array().to_vec(), grid.hi.to_array().to_vec())
+    let bounds = InputGrid::default()
+        .input_box()
         .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
     let prototype = approx
         .build(&bounds)
@@ -61,10 +72,37 @@ pub fn run_spec(
                 },
             }
         }
-        other => {
-            return Err(ExperimentError::Invalid(format!(
-                "experiment {other:?} is not implemented yet (only stability is)"
-            )));
+        ExperimentKind::Tracking => {
+            let r = tracking::run(settings, &protocols.tracking, spec.seed, &make)?;
+            r.write(dir)?;
+            let (model, learned) = r.std_per_bin();
+            ExperimentResult::Tracking {
+                step_error_std_m: ModelLearned { model, learned },
+                bin_s: protocols.tracking.bin_s,
+            }
+        }
+        ExperimentKind::Disturbance => {
+            let p = &protocols.disturbance;
+            let r = disturbance::run(settings, p, spec.seed, &make)?;
+            r.write(dir, p.f_r)?;
+            ExperimentResult::Disturbance {
+                return_time_s: ModelLearned {
+                    model: r.model.return_time_s,
+                    learned: r.learned.return_time_s,
+                },
+                max_tda_rad: ModelLearned {
+                    model: r.model.max_tda_rad,
+                    learned: r.learned.max_tda_rad,
+                },
+            }
+        }
+        ExperimentKind::Robustness => {
+            let r = robustness::run(settings, &protocols.robustness, spec.seed, &make)?;
+            r.write(dir)?;
+            ExperimentResult::Robustness {
+                pushes_until_first_absorbed: r.pushes_until_first_absorbed().map(|n| n as u32),
+                falls: r.falls() as u32,
+            }
         }
     };
     Ok(Summary {

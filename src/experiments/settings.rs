@@ -85,11 +85,12 @@ impl Settings {
             push_window_s: self.push_window_s,
             recovery_s: self.recovery_s,
             duration_s,
+            stop_after_last_push_s: None,
         }
     }
 
-    /// A trial with pushes drawn from `plan`, long enough to deliver them all (each push gets
-    /// the time after it that the next gap provides, plus the push window for the last).
+    /// A trial with pushes drawn from `plan`, long enough to deliver them all even if falls
+    /// delay them, ending one push window after the last push.
     pub fn push_trial(
         &self,
         mode: WalkerMode,
@@ -102,13 +103,16 @@ impl Settings {
         // Falls cost recovery time and delay later pushes: leave room for them.
         let slack = plan.count as f64 * (self.recovery_s + self.push_window_s);
         let end = pushes.last().map_or(plan.settle, |p| p.time) + self.push_window_s + slack;
-        self.trial(
-            mode,
-            ReferenceSchedule::constant(f_r),
-            pushes,
-            push_direction,
-            end,
-        )
+        TrialSetup {
+            stop_after_last_push_s: Some(self.push_window_s),
+            ..self.trial(
+                mode,
+                ReferenceSchedule::constant(f_r),
+                pushes,
+                push_direction,
+                end,
+            )
+        }
     }
 }
 

@@ -45,8 +45,13 @@ pub struct TrialSetup {
     pub push_window_s: f64,
     /// Time to stand and start stepping after a reset before anything else happens (s).
     pub recovery_s: f64,
-    /// Length of the trial (s).
+    /// Length of the trial (s): its end at the latest.
     pub duration_s: f64,
+    /// If set, the trial ends this long after the last push was delivered (and not before that
+    /// push's window closed), even if `duration_s` leaves more time: push trials reserve time
+    /// for the delays that falls cause and need not walk through what was not needed.
+    #[serde(default)]
+    pub stop_after_last_push_s: Option<f64>,
 }
 
 impl TrialSetup {
@@ -61,6 +66,13 @@ impl TrialSetup {
             }
         };
         positive("duration_s", self.duration_s)?;
+        if let Some(tail) = self.stop_after_last_push_s
+            && !(tail.is_finite() && tail >= 0.0)
+        {
+            return Err(TrialError::Invalid(format!(
+                "stop_after_last_push_s must be >= 0 and finite, got {tail}"
+            )));
+        }
         positive("push_window_s", self.push_window_s)?;
         if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
             return Err(TrialError::Invalid(format!(
@@ -126,6 +138,32 @@ impl StepRecord {
     /// Step size error F_E = F_hat - F_R (m).
     pub fn f_e(&self) -> f64 {
         self.f_hat - self.f_r
+    }
+
+    /// Column names of [`StepRecord::csv_row`].
+    pub const CSV_HEADER: [&'static str; 8] = [
+        "controller",
+        "time_s",
+        "f_r_m",
+        "f_hat_m",
+        "f_e_m",
+        "theta_e_rad",
+        "theta_e_dot_rad_s",
+        "learned_offset_m",
+    ];
+
+    /// The step as a CSV row whose first column names the controller.
+    pub fn csv_row(&self, controller: &str) -> Vec<String> {
+        vec![
+            controller.to_string(),
+            format!("{:.4}", self.time),
+            format!("{:.4}", self.f_r),
+            format!("{:.5}", self.f_hat),
+            format!("{:.5}", self.f_e()),
+            format!("{:.5}", self.theta_e),
+            format!("{:.5}", self.theta_e_dot),
+            format!("{:.5}", self.learned_offset),
+        ]
     }
 }
 
@@ -202,6 +240,13 @@ pub fn run_trial(
     while offset + robot.time() < setup.duration_s {
         let sensors = robot.sensors();
         let t = offset + sensors.time;
+        if let (Some(tail), Some(last)) = (setup.stop_after_last_push_s, log.pushes.last())
+            && next_push == setup.pushes.len()
+            && watching.is_none()
+            && t >= last.time + tail
+        {
+            break;
+        }
         let f_r = setup.reference.at(t);
         let tick = if t < ready_at && log.falls.last().is_some() {
             // Getting up after a fall: hold the standing pose.

@@ -55,8 +55,10 @@ pub struct Controllers {
 pub enum ExperimentResult {
     /// A: std of the step size error per time bin after a reference change.
     Tracking {
-        /// Std of F_E (m) in consecutive bins of `bin_s` after each change.
-        step_error_std_m: ModelLearned<Vec<f64>>,
+        /// Std of F_E (m) in consecutive bins of `bin_s` after each change; `null` where fewer
+        /// than two steps of that controller fell into the bin (e.g. a walker that kept
+        /// falling).
+        step_error_std_m: ModelLearned<Vec<Option<f64>>>,
         /// Bin width (s).
         bin_s: f64,
     },
@@ -164,6 +166,7 @@ impl Summary {
                     .model
                     .iter()
                     .chain(&step_error_std_m.learned)
+                    .flatten()
                 {
                     finite_non_negative("step_error_std_m", *v)?;
                 }
@@ -300,8 +303,8 @@ mod tests {
             (
                 ExperimentResult::Tracking {
                     step_error_std_m: ModelLearned {
-                        model: vec![0.05, 0.03],
-                        learned: vec![0.04, 0.02],
+                        model: vec![Some(0.05), Some(0.03)],
+                        learned: vec![Some(0.04), None],
                     },
                     bin_s: 0.5,
                 },

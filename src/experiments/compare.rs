@@ -1,0 +1,41 @@
+//! The comparison every experiment but D makes: the same trial for the Capture Step *model*
+//! alone and for the *learned* walker (model plus a fresh learner), run in parallel.
+
+use super::error::ExperimentError;
+use super::settings::LearnerFactory;
+use super::trial::{TrialLog, TrialSetup, run_trial};
+use crate::approx::FunctionApproximator;
+use crate::rules::LearningRule;
+use serde::{Deserialize, Serialize};
+
+/// The two runs of one comparison.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelAndLearned {
+    /// The Capture Step controller alone.
+    pub model: TrialLog,
+    /// The Capture Step controller with the learner, learning from the start.
+    pub learned: TrialLog,
+}
+
+/// Runs `setup` without a learner and with a fresh learner from `learner`, in parallel (the
+/// results do not depend on the number of threads: each run is sequential and seeded).
+pub fn run_model_and_learned<A, R>(
+    setup: &TrialSetup,
+    learner: &(impl LearnerFactory<A, R> + Sync),
+) -> Result<ModelAndLearned, ExperimentError>
+where
+    A: FunctionApproximator,
+    R: LearningRule,
+{
+    let (model, learned) = rayon::join(
+        || run_trial(setup, None, &mut []),
+        || -> Result<TrialLog, ExperimentError> {
+            let mut l = learner.make()?;
+            Ok(run_trial(setup, Some(&mut l), &mut [])?)
+        },
+    );
+    Ok(ModelAndLearned {
+        model: model?,
+        learned: learned?,
+    })
+}

@@ -1,0 +1,363 @@
+//! Experiment B (paper Fig. 5): disturbance rejection. Walking at a reference step size of
+//! 0.20 m, the robot is pushed forward with 8 Ns at random gait phases. The step size and the
+//! trunk deviation angle (TDA, theta_E) of every step are binned by the time since the push;
+//! the model and the learned walker see the same pushes.
+
+use super::aligned::AlignedStats;
+use super::compare::{ModelAndLearned, run_model_and_learned};
+use super::error::ExperimentError;
+use super::schedule::PushPlan;
+use super::settings::{LearnerFactory, Settings};
+use super::trial::{StepRecord, TrialLog, TrialSetup};
+use crate::approx::FunctionApproximator;
+use crate::control::walker::WalkerMode;
+use crate::report::ReportError;
+use crate::report::figures::{LinePlot, Series, line_plot};
+use crate::report::summary::write_csv;
+use crate::rules::LearningRule;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The protocol (paper: F_R = 0.2 m, 8 Ns forward pushes at random times).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DisturbanceProtocol {
+    /// Reference step size (m).
+    pub f_r: f64,
+    /// Push impulse (Ns).
+    pub impulse: f64,
+    /// Pushes per controller before [`Settings::scale`].
+    pub pushes: usize,
+    /// Time between pushes (s): random, so pushes hit random gait phases; its lower end must
+    /// exceed the horizon so that one push's statistics never run into the next.
+    pub gap_s: (f64, f64),
+    /// Width of a time bin after a push (s).
+    pub bin_s: f64,
+    /// Statistics cover this long after each push (s).
+    pub horizon_s: f64,
+    /// The step size counts as back once the binned mean step error stays within this of its
+    /// undisturbed mean (m).
+    pub tolerance_m: f64,
+    /// Unit push direction (forward by default).
+    pub direction: [f64; 3],
+}
+
+impl Default for DisturbanceProtocol {
+    fn default() -> Self {
+        DisturbanceProtocol {
+            f_r: 0.20,
+            impulse: 8.0,
+            pushes: 60,
+            gap_s: (5.0, 7.0),
+            bin_s: 0.5,
+            horizon_s: 4.0,
+            tolerance_m: 0.03,
+            direction: [1.0, 0.0, 0.0],
+        }
+    }
+}
+
+impl DisturbanceProtocol {
+    /// Checks ranges and a horizon shorter than the shortest gap.
+    pub fn validate(&self) -> Result<(), ExperimentError> {
+        let bad = |m: String| Err(ExperimentError::Invalid(format!("disturbance: {m}")));
+        for (name, v) in [
+            ("bin_s", self.bin_s),
+            ("horizon_s", self.horizon_s),
+            ("tolerance_m", self.tolerance_m),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{name} must be positive, got {v}"));
+            }
+        }
+        if !(self.f_r.is_finite() && self.impulse.is_finite() && self.impulse >= 0.0) {
+            return bad(format!(
+                "need a finite F_R and impulse >= 0, got {} and {}",
+                self.f_r, self.impulse
+            ));
+        }
+        let (g0, g1) = self.gap_s;
+        if !(g0.is_finite() && g1.is_finite() && self.horizon_s < g0 && g0 <= g1) {
+            return bad(format!(
+                "gap [{g0}, {g1}] s must be ordered and longer than the horizon {} s",
+                self.horizon_s
+            ));
+        }
+        if self.bin_s > self.horizon_s {
+            return bad(format!("bin {} s exceeds the horizon", self.bin_s));
+        }
+        let n = self.direction.iter().map(|d| d * d).sum::<f64>().sqrt();
+        if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+            return bad(format!(
+                "direction {:?} is not a unit vector",
+                self.direction
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One controller's response to the pushes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PushResponse {
+    /// Step size F_hat by time since an absorbed push.
+    pub step: AlignedStats,
+    /// TDA theta_E by time since an absorbed push.
+    pub tda: AlignedStats,
+    /// Mean step error of the steps outside every push's horizon (m).
+    pub undisturbed_f_e: f64,
+    /// Start of the first bin from which the binned mean step error stays within the tolerance
+    /// of `undisturbed_f_e`; the horizon if it never does or if every push ended in a fall
+    /// (censored).
+    pub return_time_s: f64,
+    /// Largest |binned mean TDA| after an absorbed push (rad); if every push ended in a fall,
+    /// the largest |theta_E| at the touch-downs between a push and its fall.
+    pub max_tda_rad: f64,
+    /// Pushes delivered.
+    pub pushes: usize,
+    /// Pushes followed by a fall (left out of the statistics).
+    pub falls: usize,
+}
+
+impl PushResponse {
+    fn new(log: &TrialLog, p: &DisturbanceProtocol) -> Result<Self, ExperimentError> {
+        let absorbed: Vec<f64> = log
+            .pushes
+            .iter()
+            .filter(|x| !x.fell)
+            .map(|x| x.time)
+            .collect();
+        let all: Vec<f64> = log.pushes.iter().map(|x| x.time).collect();
+        let stats = |f: fn(&StepRecord) -> f64| {
+            let samples: Vec<(f64, f64)> = log.steps.iter().map(|s| (s.time, f(s))).collect();
+            AlignedStats::compute(&samples, &absorbed, p.bin_s, p.horizon_s)
+        };
+        let step = stats(|s| s.f_hat)?;
+        let tda = stats(|s| s.theta_e)?;
+        // Undisturbed: steps not within the horizon after any push.
+        let calm: Vec<f64> = log
+            .steps
+            .iter()
+            .filter(|s| {
+                let i = all.partition_point(|&t| t <= s.time);
+                i == 0 || s.time - all[i - 1] >= p.horizon_s
+            })
+            .map(|s| s.f_e())
+            .collect();
+        if calm.is_empty() {
+            return Err(ExperimentError::Invalid(
+                "disturbance: no undisturbed steps to compare with (run longer)".into(),
+            ));
+        }
+        let undisturbed_f_e = calm.iter().sum::<f64>() / calm.len() as f64;
+        let times = step.times();
+        let off = |k: usize| {
+            step.count[k] > 0 && (step.mean[k] - p.f_r - undisturbed_f_e).abs() > p.tolerance_m
+        };
+        let return_time_s = if absorbed.is_empty() {
+            p.horizon_s
+        } else {
+            match (0..times.len()).rev().find(|&k| off(k)) {
+                None => 0.0,
+                Some(k) => ((k + 1) as f64 * p.bin_s).min(p.horizon_s),
+            }
+        };
+        let max_tda_rad = if absorbed.is_empty() {
+            // Every push ended in a fall: the largest |theta_E| at the touch-downs between a
+            // push and its fall.
+            let falls: Vec<f64> = log.falls.iter().map(|f| f.time).collect();
+            log.pushes
+                .iter()
+                .flat_map(|x| {
+                    let end = falls
+                        .iter()
+                        .copied()
+                        .find(|&f| f >= x.time)
+                        .unwrap_or(f64::INFINITY)
+                        .min(x.time + p.horizon_s);
+                    log.steps
+                        .iter()
+                        .filter(move |s| s.time >= x.time && s.time <= end)
+                        .map(|s| s.theta_e.abs())
+                })
+                .fold(0.0, f64::max)
+        } else {
+            tda.mean
+                .iter()
+                .zip(&tda.count)
+                .filter(|(_, c)| **c > 0)
+                .map(|(m, _)| m.abs())
+                .fold(0.0, f64::max)
+        };
+        Ok(PushResponse {
+            step,
+            tda,
+            undisturbed_f_e,
+            return_time_s,
+            max_tda_rad,
+            pushes: log.pushes.len(),
+            falls: log.pushes.iter().filter(|x| x.fell).count(),
+        })
+    }
+}
+
+/// Experiment B's result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DisturbanceResult {
+    /// Both runs.
+    pub runs: ModelAndLearned,
+    /// The model's response.
+    pub model: PushResponse,
+    /// The learned walker's response.
+    pub learned: PushResponse,
+}
+
+/// Runs experiment B.
+pub fn run<A, R>(
+    settings: &Settings,
+    protocol: &DisturbanceProtocol,
+    seed: u64,
+    learner: &(impl LearnerFactory<A, R> + Sync),
+) -> Result<DisturbanceResult, ExperimentError>
+where
+    A: FunctionApproximator,
+    R: LearningRule,
+{
+    settings.validate().map_err(ExperimentError::Invalid)?;
+    protocol.validate()?;
+    let plan = PushPlan {
+        count: settings.scaled(protocol.pushes, 2),
+        impulse: (protocol.impulse, protocol.impulse),
+        settle: 5.0,
+        gap: protocol.gap_s,
+    };
+    let setup = TrialSetup {
+        // Keep walking through the last push's whole horizon.
+        stop_after_last_push_s: Some(protocol.horizon_s.max(settings.push_window_s)),
+        ..settings.push_trial(
+            WalkerMode::CaptureStep,
+            protocol.f_r,
+            &plan,
+            seed,
+            protocol.direction,
+        )
+    };
+    let runs = run_model_and_learned(&setup, learner)?;
+    Ok(DisturbanceResult {
+        model: PushResponse::new(&runs.model, protocol)?,
+        learned: PushResponse::new(&runs.learned, protocol)?,
+        runs,
+    })
+}
+
+impl DisturbanceResult {
+    /// Writes `disturbance_steps.csv` (every step), `disturbance_aligned.csv` (per bin),
+    /// `disturbance_step.svg` (Fig. 5 left: step size after the push, mean +- std) and
+    /// `disturbance_tda.svg` (Fig. 5 right: TDA after the push).
+    pub fn write(&self, dir: &Path, f_r: f64) -> Result<(), ExperimentError> {
+        std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+        let mut rows = Vec::new();
+        for (name, log) in [("model", &self.runs.model), ("learned", &self.runs.learned)] {
+            for s in &log.steps {
+                rows.push(s.csv_row(name));
+            }
+        }
+        write_csv(
+            &dir.join("disturbance_steps.csv"),
+            &StepRecord::CSV_HEADER,
+            &rows,
+        )?;
+        let mut rows = Vec::new();
+        for (name, r) in [("model", &self.model), ("learned", &self.learned)] {
+            for (k, t) in r.step.times().into_iter().enumerate() {
+                rows.push(vec![
+                    name.to_string(),
+                    format!("{t:.3}"),
+                    format!("{:.6}", r.step.mean[k]),
+                    format!("{:.6}", r.step.std[k]),
+                    format!("{:.6}", r.tda.mean[k]),
+                    format!("{:.6}", r.tda.std[k]),
+                    r.step.count[k].to_string(),
+                ]);
+            }
+        }
+        write_csv(
+            &dir.join("disturbance_aligned.csv"),
+            &[
+                "controller",
+                "time_since_push_s",
+                "mean_step_m",
+                "std_step_m",
+                "mean_tda_rad",
+                "std_tda_rad",
+                "steps",
+            ],
+            &rows,
+        )?;
+        for (file, title, y_label, pick, reference) in [
+            (
+                "disturbance_step.svg",
+                "Step size after an 8 Ns push (mean, band: +-1 std)",
+                "step size (m)",
+                (|r: &PushResponse| &r.step) as fn(&PushResponse) -> &AlignedStats,
+                Some(f_r),
+            ),
+            (
+                "disturbance_tda.svg",
+                "Trunk deviation angle after an 8 Ns push (mean, band: +-1 std)",
+                "TDA theta_E (rad)",
+                |r: &PushResponse| &r.tda,
+                None,
+            ),
+        ] {
+            let curve = |r: &PushResponse| -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+                let st = pick(r);
+                let mut out = (Vec::new(), Vec::new(), Vec::new());
+                for (k, t) in st.times().into_iter().enumerate() {
+                    if st.count[k] > 0 {
+                        out.0.push(t);
+                        out.1.push(st.mean[k]);
+                        out.2.push(st.std[k]);
+                    }
+                }
+                out
+            };
+            let (mt, mm, ms) = curve(&self.model);
+            let (lt, lm, ls) = curve(&self.learned);
+            let rt = vec![
+                0.0,
+                self.model.step.bin_s * self.model.step.mean.len() as f64,
+            ];
+            let rv = vec![reference.unwrap_or(0.0); 2];
+            let mut series = Vec::new();
+            for (name, x, y, spread) in [("model", &mt, &mm, &ms), ("learned", &lt, &lm, &ls)] {
+                if !x.is_empty() {
+                    series.push(Series {
+                        name,
+                        x,
+                        y,
+                        spread: Some(spread),
+                    });
+                }
+            }
+            if reference.is_some() {
+                series.push(Series {
+                    name: "reference",
+                    x: &rt,
+                    y: &rv,
+                    spread: None,
+                });
+            }
+            line_plot(
+                &dir.join(file),
+                &LinePlot {
+                    title,
+                    x_label: "time since the push (s)",
+                    y_label,
+                    series: &series,
+                },
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,292 @@
+//! The main job: the paper's four experiments with LWPR and the pendulum-cart rule over several
+//! seeds, and a report of whether each of the paper's four claims holds, seed by seed.
+//!
+//! The runs go through the sweep machinery ([`super::sweep::run_sweep`]): one directory per
+//! run with its CSV, SVG and `summary.json`, finished runs reused. [`Claims::from_summaries`]
+//! then reads only the summaries, so the verdicts can be recomputed from the files alone.
+
+use super::ExperimentKind;
+use super::error::ExperimentError;
+use super::sweep::{SUMMARY_FILE, SweepGrid};
+use crate::approx::ApproxKind;
+use crate::report::figures::{LinePlot, Series, line_plot};
+use crate::report::summary::{ExperimentResult, Summary};
+use crate::report::{ReportError, write_atomic};
+use crate::rules::RuleKind;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The runs of a reproduction: every experiment, LWPR + pendulum-cart, seeds `0..seeds`.
+pub fn grid(seeds: u64) -> SweepGrid {
+    SweepGrid {
+        experiments: ExperimentKind::ALL.to_vec(),
+        approx: vec![ApproxKind::Lwpr.name().to_string()],
+        rules: vec![RuleKind::PendulumCart],
+        seeds: (0..seeds).collect(),
+    }
+}
+
+/// One claim's verdict per seed and overall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Claim {
+    /// The claim, in words.
+    pub statement: String,
+    /// `(seed, holds, the measured figures in words)`, by seed.
+    pub seeds: Vec<(u64, bool, String)>,
+    /// Whether it holds overall (the rule for "overall" is in `statement`).
+    pub holds: bool,
+}
+
+impl Claim {
+    fn new(
+        statement: &str,
+        seeds: Vec<(u64, bool, String)>,
+        overall: impl Fn(usize, usize) -> bool,
+    ) -> Self {
+        let n = seeds.len();
+        let k = seeds.iter().filter(|s| s.1).count();
+        Claim {
+            statement: statement.to_string(),
+            holds: n > 0 && overall(k, n),
+            seeds,
+        }
+    }
+}
+
+/// The paper's four claims, checked on a set of summaries.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Claims {
+    /// 1: learned std of F_E below the model's at every time after a reference change.
+    pub tracking: Claim,
+    /// 2: after 8 Ns pushes the learned walker returns sooner, TDA near p_theta.
+    pub disturbance: Claim,
+    /// 3: impulse at 50% falls learned > model > open-loop.
+    pub stability: Claim,
+    /// 4: without initialisation, an 8 Ns push absorbed within the first three pushes.
+    pub robustness: Claim,
+    /// Tracking: mean over the seeds with data in every bin of the std of F_E per bin,
+    /// (bin centre s, model, learned); empty if no seed has.
+    pub tracking_std_mean: Vec<(f64, f64, f64)>,
+}
+
+impl Claims {
+    /// Checks the claims on `summaries` (any order; other approximators or rules are ignored
+    /// by the caller's choice of summaries). `p_theta` is the rule's TDA tolerance.
+    pub fn from_summaries(summaries: &[Summary], p_theta: f64) -> Self {
+        let mut tracking = Vec::new();
+        let mut disturbance = Vec::new();
+        let mut stability = Vec::new();
+        let mut robustness = Vec::new();
+        let mut std_sum: Vec<(f64, f64, f64)> = Vec::new();
+        let mut std_n = 0usize;
+        let mut sorted: Vec<&Summary> = summaries.iter().collect();
+        sorted.sort_by_key(|s| (s.experiment(), s.seed));
+        for s in sorted {
+            match &s.result {
+                ExperimentResult::Tracking {
+                    step_error_std_m,
+                    bin_s,
+                } => {
+                    let (m, l) = (&step_error_std_m.model, &step_error_std_m.learned);
+                    let better = m
+                        .iter()
+                        .zip(l)
+                        .filter(|(m, l)| matches!((m, l), (Some(m), Some(l)) if l < m))
+                        .count();
+                    let holds = !m.is_empty() && better == m.len();
+                    tracking.push((
+                        s.seed,
+                        holds,
+                        format!("learned std lower in {better} of {} bins", m.len()),
+                    ));
+                    if std_sum.is_empty() {
+                        std_sum = (0..m.len())
+                            .map(|k| ((k as f64 + 0.5) * bin_s, 0.0, 0.0))
+                            .collect();
+                    }
+                    // The mean over seeds covers the seeds with data in every bin.
+                    if std_sum.len() == m.len() && m.iter().chain(l).all(Option::is_some) {
+                        for (acc, (m, l)) in std_sum.iter_mut().zip(m.iter().zip(l)) {
+                            acc.1 += m.unwrap_or(0.0);
+                            acc.2 += l.unwrap_or(0.0);
+                        }
+                        std_n += 1;
+                    }
+                }
+                ExperimentResult::Disturbance {
+                    return_time_s,
+                    max_tda_rad,
+                } => {
+                    let sooner = return_time_s.learned < return_time_s.model;
+                    let near = max_tda_rad.learned <= 1.5 * p_theta;
+                    disturbance.push((
+                        s.seed,
+                        sooner && near,
+                        format!(
+                            "return {:.2} s learned vs {:.2} s model; max TDA {:.3} vs {:.3} rad",
+                            return_time_s.learned,
+                            return_time_s.model,
+                            max_tda_rad.learned,
+                            max_tda_rad.model
+                        ),
+                    ));
+                }
+                ExperimentResult::Stability { controllers: c } => {
+                    let (o, m, l) = (
+                        c.open_loop.impulse_at_50pct_fall_ns,
+                        c.model.impulse_at_50pct_fall_ns,
+                        c.learned.impulse_at_50pct_fall_ns,
+                    );
+                    stability.push((
+                        s.seed,
+                        l > m && m > o,
+                        format!("I50 learned {l:.2}, model {m:.2}, open-loop {o:.2} Ns"),
+                    ));
+                }
+                ExperimentResult::Robustness {
+                    pushes_until_first_absorbed,
+                    falls,
+                } => {
+                    let n = *pushes_until_first_absorbed;
+                    robustness.push((
+                        s.seed,
+                        n.is_some_and(|n| n <= 3),
+                        match n {
+                            Some(n) => format!("first absorbed: push {n}; {falls} falls"),
+                            None => format!("no push absorbed; {falls} falls"),
+                        },
+                    ));
+                }
+            }
+        }
+        let tracking_std_mean = if std_n == 0 {
+            Vec::new()
+        } else {
+            std_sum
+                .into_iter()
+                .map(|(t, m, l)| (t, m / std_n as f64, l / std_n as f64))
+                .collect()
+        };
+        let every = |k: usize, n: usize| k == n;
+        let most = |k: usize, n: usize| 2 * k > n;
+        Claims {
+            tracking: Claim::new(
+                "1. With learning, the std of the step error is lower than the model's at every time bin after a reference change (every seed).",
+                tracking,
+                every,
+            ),
+            disturbance: Claim::new(
+                "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta (every seed).",
+                disturbance,
+                every,
+            ),
+            stability: Claim::new(
+                "3. Impulse at 50% falls: learned > model > open-loop (every seed).",
+                stability,
+                every,
+            ),
+            robustness: Claim::new(
+                "4. Without initialisation, the learner absorbs an 8 Ns push within its first three pushes (most seeds).",
+                robustness,
+                most,
+            ),
+            tracking_std_mean,
+        }
+    }
+
+    /// The four claims in order.
+    pub fn all(&self) -> [&Claim; 4] {
+        [
+            &self.tracking,
+            &self.disturbance,
+            &self.stability,
+            &self.robustness,
+        ]
+    }
+
+    /// A Markdown report: one section per claim with its verdict and per-seed figures.
+    pub fn to_markdown(&self) -> String {
+        let mut md =
+            String::from("# Reproduction of the paper's claims (LWPR + pendulum-cart)\n\n");
+        for c in self.all() {
+            let k = c.seeds.iter().filter(|s| s.1).count();
+            md.push_str(&format!(
+                "## {}\n\n**{}** ({k} of {} seeds)\n\n| seed | holds | measured |\n|---|---|---|\n",
+                c.statement,
+                if c.holds {
+                    "reproduced"
+                } else {
+                    "not reproduced"
+                },
+                c.seeds.len()
+            ));
+            for (seed, holds, text) in &c.seeds {
+                md.push_str(&format!(
+                    "| {seed} | {} | {text} |\n",
+                    if *holds { "yes" } else { "no" }
+                ));
+            }
+            md.push('\n');
+        }
+        md
+    }
+
+    /// Writes `claims.md`, `claims.json` and `tracking_std_over_seeds.svg` into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<(), ExperimentError> {
+        std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+        write_atomic(&dir.join("claims.md"), self.to_markdown().as_bytes())?;
+        let json =
+            serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))?;
+        write_atomic(&dir.join("claims.json"), json.as_bytes())?;
+        if !self.tracking_std_mean.is_empty() {
+            let t: Vec<f64> = self.tracking_std_mean.iter().map(|r| r.0).collect();
+            let m: Vec<f64> = self.tracking_std_mean.iter().map(|r| r.1).collect();
+            let l: Vec<f64> = self.tracking_std_mean.iter().map(|r| r.2).collect();
+            line_plot(
+                &dir.join("tracking_std_over_seeds.svg"),
+                &LinePlot {
+                    title: "Std of the step size error after a reference change (mean over seeds)",
+                    x_label: "time since the change (s)",
+                    y_label: "std of F_E (m)",
+                    series: &[
+                        Series {
+                            name: "model",
+                            x: &t,
+                            y: &m,
+                            spread: None,
+                        },
+                        Series {
+                            name: "learned",
+                            x: &t,
+                            y: &l,
+                            spread: None,
+                        },
+                    ],
+                },
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Reads the summaries of `grid`'s runs under `out` (one directory per run id); runs without a
+/// summary are left out and listed in the second value.
+pub fn read_summaries(
+    grid: &SweepGrid,
+    out: &Path,
+) -> Result<(Vec<Summary>, Vec<String>), ExperimentError> {
+    let runs = grid
+        .runs()
+        .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
+    let mut summaries = Vec::new();
+    let mut missing = Vec::new();
+    for spec in runs {
+        let path = out.join(spec.id()).join(SUMMARY_FILE);
+        if path.exists() {
+            summaries.push(Summary::read(&path)?);
+        } else {
+            missing.push(spec.id());
+        }
+    }
+    Ok((summaries, missing))
+}

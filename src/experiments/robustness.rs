@@ -1,0 +1,275 @@
+//! Experiment D (paper Figs. 7-8): robustness, learning without initialisation. The analytic
+//! footstep is switched off, so the learned offset dF is the whole sagittal step
+//! ([`WalkerMode::LearnerOnly`]); the robot steps in place and is pushed forward with 8 Ns,
+//! one push per episode, starting with an untrained learner that keeps everything it learns
+//! from one episode to the next (a fall ends the episode, the robot is reset). Counted: the
+//! pushes until the first one absorbed, the falls, and, after every push, the learning metric
+//! (norm of dF over an even grid of the input space) and a map of dF.
+
+use super::error::ExperimentError;
+use super::schedule::{Push, ReferenceSchedule};
+use super::settings::{LearnerFactory, Settings};
+use super::trial::{StepRecord, run_trial};
+use crate::approx::FunctionApproximator;
+use crate::control::learner::{InputGrid, MapSpec, OffsetMap};
+use crate::control::walker::WalkerMode;
+use crate::report::ReportError;
+use crate::report::figures::{HeatMapGrid, HeatPanel, LinePlot, Series, heat_map_grid, line_plot};
+use crate::report::summary::write_csv;
+use crate::rules::LearningRule;
+use rand::rngs::ChaCha8Rng;
+use rand::{RngExt, SeedableRng};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The protocol (paper: stepping in place, 8 Ns forward pushes, no analytic footstep).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RobustnessProtocol {
+    /// Push impulse (Ns).
+    pub impulse: f64,
+    /// Episodes (one push each) before [`Settings::scale`].
+    pub pushes: usize,
+    /// Stepping time before the push in each episode (s), random so that pushes hit random
+    /// gait phases.
+    pub settle_s: (f64, f64),
+    /// Unit push direction (forward by default).
+    pub direction: [f64; 3],
+    /// The input grid of the learning metric.
+    pub metric_grid: InputGrid,
+    /// The dF maps drawn after every push.
+    pub map: MapSpec,
+}
+
+impl Default for RobustnessProtocol {
+    fn default() -> Self {
+        RobustnessProtocol {
+            impulse: 8.0,
+            pushes: 15,
+            settle_s: (3.0, 4.0),
+            direction: [1.0, 0.0, 0.0],
+            metric_grid: InputGrid::default(),
+            map: MapSpec {
+                resolution: (31, 31),
+                ..MapSpec::default()
+            },
+        }
+    }
+}
+
+impl RobustnessProtocol {
+    /// Checks the numbers, the grid and the map.
+    pub fn validate(&self) -> Result<(), ExperimentError> {
+        let bad = |m: String| Err(ExperimentError::Invalid(format!("robustness: {m}")));
+        if !(self.impulse.is_finite() && self.impulse >= 0.0) {
+            return bad(format!("impulse must be >= 0, got {}", self.impulse));
+        }
+        let (s0, s1) = self.settle_s;
+        if !(s0.is_finite() && s1.is_finite() && 0.0 < s0 && s0 <= s1) {
+            return bad(format!(
+                "settle [{s0}, {s1}] s must be positive and ordered"
+            ));
+        }
+        let n = self.direction.iter().map(|d| d * d).sum::<f64>().sqrt();
+        if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+            return bad(format!(
+                "direction {:?} is not a unit vector",
+                self.direction
+            ));
+        }
+        self.metric_grid
+            .validate()
+            .map_err(|e| ExperimentError::Invalid(format!("robustness: {e}")))?;
+        Ok(())
+    }
+}
+
+/// One episode: a push and what the learner knew after it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Episode {
+    /// 1-based push number.
+    pub push: usize,
+    /// When the push came, in the episode's time (s).
+    pub push_time: f64,
+    /// Whether the robot fell within the push window.
+    pub fell: bool,
+    /// Falls in the episode (a fall before the push counts too).
+    pub falls: usize,
+    /// The episode's steps.
+    pub steps: Vec<StepRecord>,
+    /// The learning metric after the episode.
+    pub learning_metric: f64,
+    /// dF over (theta_E, theta_E_dot) at the map's F_R after the episode.
+    pub map: OffsetMap,
+}
+
+/// Experiment D's result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RobustnessResult {
+    /// The learning metric before the first push (0 for an untrained learner).
+    pub initial_metric: f64,
+    /// The episodes in order.
+    pub episodes: Vec<Episode>,
+}
+
+impl RobustnessResult {
+    /// 1-based number of the first push absorbed without a fall, if any.
+    pub fn pushes_until_first_absorbed(&self) -> Option<usize> {
+        self.episodes.iter().find(|e| !e.fell).map(|e| e.push)
+    }
+
+    /// Falls over all episodes.
+    pub fn falls(&self) -> usize {
+        self.episodes.iter().map(|e| e.falls).sum()
+    }
+}
+
+/// Runs experiment D with one learner that learns through all episodes.
+pub fn run<A, R>(
+    settings: &Settings,
+    protocol: &RobustnessProtocol,
+    seed: u64,
+    learner: &impl LearnerFactory<A, R>,
+) -> Result<RobustnessResult, ExperimentError>
+where
+    A: FunctionApproximator,
+    R: LearningRule,
+{
+    settings.validate().map_err(ExperimentError::Invalid)?;
+    protocol.validate()?;
+    let mut learner = learner.make()?;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let initial_metric = learner.learning_metric(&protocol.metric_grid)?;
+    let mut episodes = Vec::new();
+    for push in 1..=settings.scaled(protocol.pushes, 1) {
+        let (s0, s1) = protocol.settle_s;
+        let push_time = if s1 > s0 {
+            rng.random_range(s0..s1)
+        } else {
+            s0
+        };
+        let setup = settings.trial(
+            WalkerMode::LearnerOnly,
+            ReferenceSchedule::constant(protocol.map.f_r),
+            vec![Push {
+                time: push_time,
+                impulse: protocol.impulse,
+            }],
+            protocol.direction,
+            push_time + settings.push_window_s,
+        );
+        let log = run_trial(&setup, Some(&mut learner), &mut [])?;
+        // A fall before the push resets the robot and delays the push; without a delivered
+        // push the episode counts as a fall.
+        let fell = log.pushes.first().is_none_or(|p| p.fell);
+        episodes.push(Episode {
+            push,
+            push_time,
+            fell,
+            falls: log.falls.len(),
+            steps: log.steps,
+            learning_metric: learner.learning_metric(&protocol.metric_grid)?,
+            map: learner.offset_map(&protocol.map)?,
+        });
+    }
+    Ok(RobustnessResult {
+        initial_metric,
+        episodes,
+    })
+}
+
+impl RobustnessResult {
+    /// Writes `robustness_pushes.csv` (per push: fell, falls, learning metric),
+    /// `robustness_steps.csv`, `learning_metric.svg` (Fig. 7) and `df_maps.svg` (Fig. 8: dF
+    /// over theta_E x theta_E_dot after every push, the episode's touch-downs as crosses).
+    pub fn write(&self, dir: &Path) -> Result<(), ExperimentError> {
+        std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+        let rows: Vec<Vec<String>> = self
+            .episodes
+            .iter()
+            .map(|e| {
+                vec![
+                    e.push.to_string(),
+                    format!("{:.4}", e.push_time),
+                    e.fell.to_string(),
+                    e.falls.to_string(),
+                    format!("{:.6}", e.learning_metric),
+                ]
+            })
+            .collect();
+        write_csv(
+            &dir.join("robustness_pushes.csv"),
+            &["push", "push_time_s", "fell", "falls", "learning_metric"],
+            &rows,
+        )?;
+        let mut header = vec!["push"];
+        header.extend_from_slice(&StepRecord::CSV_HEADER[1..]);
+        let rows: Vec<Vec<String>> = self
+            .episodes
+            .iter()
+            .flat_map(|e| e.steps.iter().map(move |s| s.csv_row(&e.push.to_string())))
+            .collect();
+        write_csv(&dir.join("robustness_steps.csv"), &header, &rows)?;
+        let x: Vec<f64> = (0..=self.episodes.len()).map(|i| i as f64).collect();
+        let y: Vec<f64> = std::iter::once(self.initial_metric)
+            .chain(self.episodes.iter().map(|e| e.learning_metric))
+            .collect();
+        line_plot(
+            &dir.join("learning_metric.svg"),
+            &LinePlot {
+                title: "Learning metric (norm of dF over the input grid) after each push",
+                x_label: "push",
+                y_label: "learning metric (m)",
+                series: &[Series {
+                    name: "learner only",
+                    x: &x,
+                    y: &y,
+                    spread: None,
+                }],
+            },
+        )?;
+        let titles: Vec<String> = self
+            .episodes
+            .iter()
+            .map(|e| {
+                format!(
+                    "after push {} ({})",
+                    e.push,
+                    if e.fell { "fell" } else { "absorbed" }
+                )
+            })
+            .collect();
+        let points: Vec<Vec<(f64, f64)>> = self
+            .episodes
+            .iter()
+            .map(|e| e.steps.iter().map(|s| (s.theta_e, s.theta_e_dot)).collect())
+            .collect();
+        let panels: Vec<HeatPanel> = self
+            .episodes
+            .iter()
+            .zip(&titles)
+            .zip(&points)
+            .map(|((e, title), pts)| HeatPanel {
+                title,
+                xs: &e.map.theta_e,
+                ys: &e.map.theta_e_dot,
+                values: &e.map.values,
+                points: pts,
+            })
+            .collect();
+        if !panels.is_empty() {
+            heat_map_grid(
+                &dir.join("df_maps.svg"),
+                &HeatMapGrid {
+                    title: "Learned step dF (m) over the trunk angle and rate, after each push",
+                    x_label: "theta_E (rad)",
+                    y_label: "theta_E_dot (rad/s)",
+                    value_label: "dF (m)",
+                    panels: &panels,
+                    columns: 5,
+                },
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,282 @@
+//! Experiment A (paper Fig. 4): reference tracking. The reference step size jumps to a value
+//! uniform in [-0.10, 0.20] m every 4-8 s; the model and the learned walker see the same
+//! sequence. The step size error F_E of every step is binned by the time since the last
+//! change: its mean and standard deviation per bin are the figure.
+
+use super::aligned::AlignedStats;
+use super::compare::{ModelAndLearned, run_model_and_learned};
+use super::error::ExperimentError;
+use super::schedule::ReferenceSchedule;
+use super::settings::{LearnerFactory, Settings};
+use super::trial::{StepRecord, TrialLog};
+use crate::approx::FunctionApproximator;
+use crate::control::walker::WalkerMode;
+use crate::report::ReportError;
+use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
+use crate::report::summary::write_csv;
+use crate::rules::LearningRule;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The protocol (paper: F_R uniform in [-0.1, 0.2] m held 4-8 s, statistics over 1000 steps).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TrackingProtocol {
+    /// Reference range (m).
+    pub reference: (f64, f64),
+    /// How long each reference is held (s).
+    pub hold_s: (f64, f64),
+    /// Simulated time per controller (s) before [`Settings::scale`] (about 1000 steps).
+    pub duration_s: f64,
+    /// Width of a time bin after a change (s).
+    pub bin_s: f64,
+    /// Statistics cover this long after each change (s); at most the shortest hold.
+    pub horizon_s: f64,
+}
+
+impl Default for TrackingProtocol {
+    fn default() -> Self {
+        TrackingProtocol {
+            reference: (-0.10, 0.20),
+            hold_s: (4.0, 8.0),
+            duration_s: 450.0,
+            bin_s: 0.5,
+            horizon_s: 4.0,
+        }
+    }
+}
+
+impl TrackingProtocol {
+    /// Checks ranges, positive times and a horizon within the shortest hold.
+    pub fn validate(&self) -> Result<(), ExperimentError> {
+        let bad = |m: String| Err(ExperimentError::Invalid(format!("tracking: {m}")));
+        let (lo, hi) = self.reference;
+        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+            return bad(format!("reference range [{lo}, {hi}] is not ordered"));
+        }
+        let (h0, h1) = self.hold_s;
+        if !(h0.is_finite() && h1.is_finite() && 0.0 < h0 && h0 <= h1) {
+            return bad(format!("hold [{h0}, {h1}] s must be positive and ordered"));
+        }
+        for (name, v) in [
+            ("duration_s", self.duration_s),
+            ("bin_s", self.bin_s),
+            ("horizon_s", self.horizon_s),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{name} must be positive, got {v}"));
+            }
+        }
+        if self.horizon_s > h0 {
+            return bad(format!(
+                "horizon {} s exceeds the shortest hold {h0} s",
+                self.horizon_s
+            ));
+        }
+        if self.bin_s > self.horizon_s {
+            return bad(format!("bin {} s exceeds the horizon", self.bin_s));
+        }
+        Ok(())
+    }
+}
+
+/// Experiment A's result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrackingResult {
+    /// The reference both controllers followed.
+    pub reference: ReferenceSchedule,
+    /// Both runs.
+    pub runs: ModelAndLearned,
+    /// F_E statistics by time since a change, model.
+    pub model: AlignedStats,
+    /// F_E statistics by time since a change, learned.
+    pub learned: AlignedStats,
+}
+
+/// Runs experiment A.
+pub fn run<A, R>(
+    settings: &Settings,
+    protocol: &TrackingProtocol,
+    seed: u64,
+    learner: &(impl LearnerFactory<A, R> + Sync),
+) -> Result<TrackingResult, ExperimentError>
+where
+    A: FunctionApproximator,
+    R: LearningRule,
+{
+    settings.validate().map_err(ExperimentError::Invalid)?;
+    protocol.validate()?;
+    // At least enough time for a few changes, whatever the scale.
+    let duration = (protocol.duration_s * settings.scale).max(4.0 * protocol.hold_s.1);
+    let reference = ReferenceSchedule::random(seed, duration, protocol.reference, protocol.hold_s);
+    let setup = settings.trial(
+        WalkerMode::CaptureStep,
+        reference.clone(),
+        Vec::new(),
+        [1.0, 0.0, 0.0],
+        duration,
+    );
+    let runs = run_model_and_learned(&setup, learner)?;
+    let changes = reference.change_times();
+    let stats = |log: &TrialLog| {
+        let samples: Vec<(f64, f64)> = log.steps.iter().map(|s| (s.time, s.f_e())).collect();
+        AlignedStats::compute(&samples, &changes, protocol.bin_s, protocol.horizon_s)
+    };
+    Ok(TrackingResult {
+        model: stats(&runs.model)?,
+        learned: stats(&runs.learned)?,
+        reference,
+        runs,
+    })
+}
+
+impl TrackingResult {
+    /// The standard deviation of F_E per bin for (model, learned); `None` where fewer than two
+    /// of that controller's steps fell into the bin.
+    pub fn std_per_bin(&self) -> (Vec<Option<f64>>, Vec<Option<f64>>) {
+        let pick = |st: &AlignedStats| -> Vec<Option<f64>> {
+            st.std
+                .iter()
+                .zip(&st.count)
+                .map(|(s, c)| (*c >= 2).then_some(*s))
+                .collect()
+        };
+        (pick(&self.model), pick(&self.learned))
+    }
+
+    /// Writes `tracking_steps.csv` (every step of both controllers), `tracking_aligned.csv`
+    /// (mean, std and count per bin), `tracking_std.svg` (Fig. 4 left: mean and std of F_E
+    /// against the time since a change) and `tracking_series.svg` (Fig. 4 right: reference and
+    /// measured step sizes over the first minute).
+    pub fn write(&self, dir: &Path) -> Result<(), ExperimentError> {
+        std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+        let mut rows = Vec::new();
+        for (name, log) in [("model", &self.runs.model), ("learned", &self.runs.learned)] {
+            for s in &log.steps {
+                rows.push(s.csv_row(name));
+            }
+        }
+        write_csv(
+            &dir.join("tracking_steps.csv"),
+            &StepRecord::CSV_HEADER,
+            &rows,
+        )?;
+        let mut rows = Vec::new();
+        for (name, st) in [("model", &self.model), ("learned", &self.learned)] {
+            for (k, t) in st.times().into_iter().enumerate() {
+                rows.push(vec![
+                    name.to_string(),
+                    format!("{t:.3}"),
+                    format!("{:.6}", st.mean[k]),
+                    format!("{:.6}", st.std[k]),
+                    st.count[k].to_string(),
+                ]);
+            }
+        }
+        write_csv(
+            &dir.join("tracking_aligned.csv"),
+            &[
+                "controller",
+                "time_since_change_s",
+                "mean_f_e_m",
+                "std_f_e_m",
+                "steps",
+            ],
+            &rows,
+        )?;
+        // Figure: bins with at least two steps of the controller.
+        let curve = |st: &AlignedStats| -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+            let mut out = (Vec::new(), Vec::new(), Vec::new());
+            for (k, t) in st.times().into_iter().enumerate() {
+                if st.count[k] >= 2 {
+                    out.0.push(t);
+                    out.1.push(st.mean[k]);
+                    out.2.push(st.std[k]);
+                }
+            }
+            out
+        };
+        let (mt, model_mean, model_std) = curve(&self.model);
+        let (lt, learned_mean, learned_std) = curve(&self.learned);
+        let mut series = Vec::new();
+        if !mt.is_empty() {
+            series.push(Series {
+                name: "model",
+                x: &mt,
+                y: &model_mean,
+                spread: Some(&model_std),
+            });
+        }
+        if !lt.is_empty() {
+            series.push(Series {
+                name: "learned",
+                x: &lt,
+                y: &learned_mean,
+                spread: Some(&learned_std),
+            });
+        }
+        line_plot(
+            &dir.join("tracking_std.svg"),
+            &LinePlot {
+                title: "Step size error after a reference change (mean, band: +-1 std)",
+                x_label: "time since the change (s)",
+                y_label: "F_E (m)",
+                series: &series,
+            },
+        )?;
+        let window = 60.0;
+        let series = |log: &TrialLog| -> (Vec<f64>, Vec<f64>) {
+            log.steps
+                .iter()
+                .filter(|s| s.time <= window)
+                .map(|s| (s.time, s.f_hat))
+                .unzip()
+        };
+        let (mt, mf) = series(&self.runs.model);
+        let (lt, lf) = series(&self.runs.learned);
+        let (rt, rf): (Vec<f64>, Vec<f64>) = (0..=(window * 10.0) as usize)
+            .map(|i| {
+                let t = i as f64 * 0.1;
+                (t, self.reference.at(t))
+            })
+            .unzip();
+        let changes: Vec<f64> = self
+            .reference
+            .change_times()
+            .into_iter()
+            .filter(|t| *t <= window)
+            .collect();
+        event_plot(
+            &dir.join("tracking_series.svg"),
+            &EventPlot {
+                title: "Reference and measured step sizes",
+                x_label: "time (s)",
+                y_label: "step size (m)",
+                series: &[
+                    Series {
+                        name: "reference F_R",
+                        x: &rt,
+                        y: &rf,
+                        spread: None,
+                    },
+                    Series {
+                        name: "model",
+                        x: &mt,
+                        y: &mf,
+                        spread: None,
+                    },
+                    Series {
+                        name: "learned",
+                        x: &lt,
+                        y: &lf,
+                        spread: None,
+                    },
+                ],
+                secondary: None,
+                events: &changes,
+                event_label: "reference change",
+            },
+        )?;
+        Ok(())
+    }
+}
