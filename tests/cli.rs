@@ -38,7 +38,7 @@ fn stability_run_writes_summary_and_figures() {
 
     // A failing run leaves what is there untouched.
     let before = std::fs::read(dir.join("summary.json")).unwrap();
-    let o = steplearn(&["experiment", "tracking", "--out", out]);
+    let o = steplearn(&["experiment", "tracking", "--pushes", "3", "--out", out]);
     assert!(!o.status.success());
     assert_eq!(before, std::fs::read(dir.join("summary.json")).unwrap());
     std::fs::remove_dir_all(&dir).ok();
@@ -69,6 +69,17 @@ fn bad_arguments_are_messages_and_failures() {
         vec!["sweep", "--shard", "3/2", "--out", "x"],
         vec!["merge", "/nonexistent-steplearn-dir"],
         vec!["experiment", "walking", "--out", "x"],
+        vec![
+            "experiment",
+            "disturbance",
+            "--impulse-range",
+            "5,8",
+            "--out",
+            "x",
+        ],
+        vec!["reproduce", "--seeds", "0", "--out", "x"],
+        vec!["reproduce", "--config", "/nonexistent.toml", "--out", "x"],
+        vec!["reproduce", "--seeds", "-1"],
     ] {
         let o = steplearn(&args);
         assert!(!o.status.success(), "{args:?} succeeded");
@@ -76,4 +87,47 @@ fn bad_arguments_are_messages_and_failures() {
         assert!(err.contains("error"), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
     }
+}
+
+/// The main job, shrunk by a config file: every experiment runs once, the claims report is
+/// written, and a second call reuses the finished runs and writes the same report.
+#[test]
+fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
+    let dir = std::env::temp_dir().join(format!("steplearn-reproduce-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = dir.join("tiny.toml");
+    std::fs::write(
+        &config,
+        "[settings]\nscale = 0.02\n[protocols.stability]\npushes = 10\n\
+         [protocols.robustness]\npushes = 10\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let args = [
+        "reproduce",
+        "--seeds",
+        "1",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = steplearn(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(stdout.matches("REPRODUCED").count(), 4, "{stdout}");
+    for kind in ["tracking", "disturbance", "stability", "robustness"] {
+        let summary = out.join(format!("{kind}__lwpr__pendulum-cart__s0/summary.json"));
+        assert!(summary.exists(), "{kind}");
+    }
+    let claims: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("claims.json")).unwrap()).unwrap();
+    for c in ["tracking", "disturbance", "stability", "robustness"] {
+        assert_eq!(claims[c]["seeds"].as_array().unwrap().len(), 1, "{c}");
+    }
+    let report = std::fs::read(out.join("claims.md")).unwrap();
+    let o = steplearn(&args);
+    assert!(o.status.success());
+    assert_eq!(report, std::fs::read(out.join("claims.md")).unwrap());
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,6 +1,6 @@
 //! Experiment C, short: three controllers see the same pushes; results and files are written.
 
-use steplearn::approx::{ApproxKind, InputBox};
+use steplearn::approx::ApproxKind;
 use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::{self, StabilityProtocol};
@@ -13,8 +13,7 @@ fn same_pushes_for_every_controller_and_files_written() {
         impulse: (0.0, 20.0),
         ..StabilityProtocol::default()
     };
-    let grid = InputGrid::default();
-    let bounds = InputBox::new(grid.lo.to_array().to_vec(), grid.hi.to_array().to_vec()).unwrap();
+    let bounds = InputGrid::default().input_box().unwrap();
     let make = || {
         FootstepLearner::new(
             ApproxKind::Lwpr.build(&bounds).unwrap(),

@@ -140,6 +140,7 @@ pub struct StepCommand {
 
 /// Settings of the step motion generator.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct MotionConfig {
     /// Extension of both legs in the halt pose.
     pub halt_extension: f64,
@@ -161,7 +162,10 @@ pub struct MotionConfig {
     pub lean_per_step: f64,
     /// Time constant of the low-pass filter on the commanded placement (s; 0 = off).
     pub filter_time: f64,
-    /// Sagittal step range (m).
+    /// Sagittal step range (m): commanded steps are clamped to it. The default reaches
+    /// 0.45 m forward: with 0.3 m the Capture Step walker fell from most 8 Ns forward pushes
+    /// while walking with 0.2 m steps (experiment B), and its 50% fall impulse in place was
+    /// 12.3 instead of 13.9 Ns (seed 0, 100 pushes).
     pub step_x_range: [f64; 2],
     /// Lateral foot distance range (m, magnitude).
     pub step_y_range: [f64; 2],
@@ -186,7 +190,7 @@ impl Default for MotionConfig {
             swing_window: [0.1, 0.9],
             lean_per_step: 0.2,
             filter_time: 0.05,
-            step_x_range: [-0.15, 0.3],
+            step_x_range: [-0.15, 0.45],
             step_y_range: [0.16, 0.4],
             max_turn: 0.5,
             period: 0.4,

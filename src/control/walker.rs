@@ -50,10 +50,13 @@ pub struct WalkerConfig {
     /// How steps are chosen.
     pub mode: WalkerMode,
     /// The balance controller.
+    #[serde(default)]
     pub capture_step: CaptureStepConfig,
     /// State estimation.
+    #[serde(default)]
     pub estimator: EstimatorConfig,
     /// The step motion generator.
+    #[serde(default)]
     pub motion: MotionConfig,
 }
 

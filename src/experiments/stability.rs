@@ -18,6 +18,7 @@ use std::path::Path;
 
 /// The protocol (paper: 400 pushes uniform in [0, 20] Ns, walking in place).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct StabilityProtocol {
     /// Pushes per controller (before [`Settings::scale`]).
     pub pushes: usize,

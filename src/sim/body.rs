@@ -93,6 +93,7 @@ pub struct JointSpec {
 /// Every size, mass, joint limit and servo gain of the humanoid. See the module docs for the
 /// anthropometric sources of [`BodyConfig::default`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct BodyConfig {
     /// The torso (trunk, pelvis, head, arms).
     pub torso: Torso,

@@ -1,0 +1,169 @@
+//! Experiments A, B and D, short: the protocols run on the humanoid, the statistics are
+//! consistent with the logs, and the files are written. Whether learning helps is measured by
+//! `steplearn reproduce`, not asserted here.
+
+use steplearn::approx::{AnyApproximator, ApproxKind};
+use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use steplearn::experiments::disturbance::{self, DisturbanceProtocol};
+use steplearn::experiments::robustness::{self, RobustnessProtocol};
+use steplearn::experiments::settings::Settings;
+use steplearn::experiments::tracking::{self, TrackingProtocol};
+use steplearn::rules::PendulumCart;
+
+fn learner() -> Result<FootstepLearner<AnyApproximator, PendulumCart>, LearnerError> {
+    let bounds = InputGrid::default().input_box().unwrap();
+    FootstepLearner::new(
+        ApproxKind::Lwpr.build(&bounds).unwrap(),
+        PendulumCart::default(),
+        LearnerConfig::default(),
+    )
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("steplearn-{name}-{}", std::process::id()))
+}
+
+#[test]
+fn tracking_bins_every_step_after_a_change_and_the_model_settles() {
+    let settings = Settings {
+        scale: 0.01, // the protocol's floor: four of the longest holds
+        ..Settings::default()
+    };
+    let p = TrackingProtocol::default();
+    let r = tracking::run(&settings, &p, 3, &learner).unwrap();
+    let changes = r.reference.change_times();
+    assert!(changes.len() >= 3, "{changes:?}");
+    // Both controllers followed the same reference, recorded at every step.
+    for log in [&r.runs.model, &r.runs.learned] {
+        for s in &log.steps {
+            assert_eq!(s.f_r, r.reference.at(s.time));
+        }
+    }
+    // Every step within the horizon after a change is in exactly one bin.
+    let in_horizon = r
+        .runs
+        .model
+        .steps
+        .iter()
+        .filter(|s| {
+            let i = changes.partition_point(|&c| c <= s.time);
+            i > 0 && s.time - changes[i - 1] < p.horizon_s
+        })
+        .count();
+    assert_eq!(r.model.count.iter().sum::<usize>(), in_horizon);
+    assert_eq!(r.model.mean.len(), (p.horizon_s / p.bin_s) as usize);
+    // The model has not caught up right after a change and has at the end of the horizon.
+    let (model_std, _) = r.std_per_bin();
+    let first = model_std[0].unwrap();
+    let last = model_std.last().unwrap().unwrap();
+    assert!(
+        first > last,
+        "std right after a change {first} vs later {last}"
+    );
+    assert!(r.runs.model.falls.is_empty());
+
+    let dir = temp_dir("tracking");
+    r.write(&dir).unwrap();
+    for f in [
+        "tracking_steps.csv",
+        "tracking_aligned.csv",
+        "tracking_std.svg",
+        "tracking_series.svg",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        tracking::run(
+            &settings,
+            &TrackingProtocol {
+                horizon_s: 9.0,
+                ..p
+            },
+            3,
+            &learner
+        )
+        .is_err(),
+        "a horizon beyond the shortest hold is rejected"
+    );
+}
+
+#[test]
+fn disturbance_aligns_steps_at_absorbed_pushes() {
+    let settings = Settings {
+        scale: 0.05,
+        ..Settings::default()
+    };
+    let p = DisturbanceProtocol::default();
+    let r = disturbance::run(&settings, &p, 5, &learner).unwrap();
+    assert_eq!(r.model.pushes, 3);
+    assert!(r.runs.model.pushes.iter().all(|x| x.impulse == 8.0));
+    let absorbed = r.model.pushes - r.model.falls;
+    assert!(absorbed >= 1, "the model absorbs 8 Ns at 0.2 m steps");
+    // The first step after an absorbed push is longer than the reference (the push throws the
+    // robot forward), and the model's figures are finite and within the horizon.
+    assert!(r.model.step.mean[0] > p.f_r, "{:?}", r.model.step.mean);
+    assert!((0.0..=p.horizon_s).contains(&r.model.return_time_s));
+    assert!(r.model.max_tda_rad.is_finite() && r.model.max_tda_rad > 0.0);
+    assert!(r.learned.return_time_s.is_finite() && r.learned.max_tda_rad.is_finite());
+
+    let dir = temp_dir("disturbance");
+    r.write(&dir, p.f_r).unwrap();
+    for f in [
+        "disturbance_steps.csv",
+        "disturbance_aligned.csv",
+        "disturbance_step.svg",
+        "disturbance_tda.svg",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let bad = DisturbanceProtocol {
+        gap_s: (3.0, 6.0),
+        ..p
+    };
+    assert!(disturbance::run(&settings, &bad, 5, &learner).is_err());
+}
+
+#[test]
+fn robustness_learns_from_scratch_and_keeps_what_it_learned() {
+    let settings = Settings {
+        scale: 0.2,
+        ..Settings::default()
+    };
+    let p = RobustnessProtocol {
+        map: steplearn::control::learner::MapSpec {
+            resolution: (9, 7),
+            ..Default::default()
+        },
+        ..RobustnessProtocol::default()
+    };
+    let r = robustness::run(&settings, &p, 2, &learner).unwrap();
+    assert_eq!(r.initial_metric, 0.0, "an untrained learner outputs zero");
+    assert_eq!(r.episodes.len(), 3);
+    for (i, e) in r.episodes.iter().enumerate() {
+        assert_eq!(e.push, i + 1);
+        assert!(e.learning_metric.is_finite());
+        assert_eq!(e.map.values.len(), 9 * 7);
+        assert!(e.fell == (e.falls > 0) || e.falls > 0);
+    }
+    // Touch-downs happened, so the learner changed.
+    assert!(r.episodes[0].steps.len() > 3);
+    assert!(r.episodes[0].learning_metric > 0.0);
+    match r.pushes_until_first_absorbed() {
+        Some(n) => assert!(!r.episodes[n - 1].fell && r.episodes[..n - 1].iter().all(|e| e.fell)),
+        None => assert!(r.episodes.iter().all(|e| e.fell)),
+    }
+
+    let dir = temp_dir("robustness");
+    r.write(&dir).unwrap();
+    for f in [
+        "robustness_pushes.csv",
+        "robustness_steps.csv",
+        "learning_metric.svg",
+        "df_maps.svg",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
