@@ -3,10 +3,13 @@
 
 use super::error::ExperimentError;
 use super::settings::LearnerFactory;
-use super::trial::{TrialLog, TrialSetup, run_trial};
+use super::trial::{StepRecord, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
+use crate::report::ReportError;
+use crate::report::summary::write_csv;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 
 /// The two runs of one comparison.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -15,6 +18,18 @@ pub struct ModelAndLearned {
     pub model: TrialLog,
     /// The Capture Step controller with the learner, learning from the start.
     pub learned: TrialLog,
+}
+
+impl ModelAndLearned {
+    /// Writes every step of both runs as CSV ([`StepRecord::CSV_HEADER`], the first column
+    /// `model` or `learned`).
+    pub fn write_steps(&self, path: &Path) -> Result<(), ReportError> {
+        let rows: Vec<Vec<String>> = [("model", &self.model), ("learned", &self.learned)]
+            .into_iter()
+            .flat_map(|(name, log)| log.steps.iter().map(move |s| s.csv_row(name)))
+            .collect();
+        write_csv(path, &StepRecord::CSV_HEADER, &rows)
+    }
 }
 
 /// Runs `setup` without a learner and with a fresh learner from `learner`, in parallel (the

@@ -256,17 +256,7 @@ impl DisturbanceResult {
     /// `disturbance_tda.svg` (Fig. 5 right: TDA after the push).
     pub fn write(&self, dir: &Path, f_r: f64) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
-        let mut rows = Vec::new();
-        for (name, log) in [("model", &self.runs.model), ("learned", &self.runs.learned)] {
-            for s in &log.steps {
-                rows.push(s.csv_row(name));
-            }
-        }
-        write_csv(
-            &dir.join("disturbance_steps.csv"),
-            &StepRecord::CSV_HEADER,
-            &rows,
-        )?;
+        self.runs.write_steps(&dir.join("disturbance_steps.csv"))?;
         let mut rows = Vec::new();
         for (name, r) in [("model", &self.model), ("learned", &self.learned)] {
             for (k, t) in r.step.times().into_iter().enumerate() {

@@ -8,7 +8,7 @@ use super::compare::{ModelAndLearned, run_model_and_learned};
 use super::error::ExperimentError;
 use super::schedule::ReferenceSchedule;
 use super::settings::{LearnerFactory, Settings};
-use super::trial::{StepRecord, TrialLog};
+use super::trial::TrialLog;
 use crate::approx::FunctionApproximator;
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
@@ -150,17 +150,7 @@ impl TrackingResult {
     /// measured step sizes over the first minute).
     pub fn write(&self, dir: &Path) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
-        let mut rows = Vec::new();
-        for (name, log) in [("model", &self.runs.model), ("learned", &self.runs.learned)] {
-            for s in &log.steps {
-                rows.push(s.csv_row(name));
-            }
-        }
-        write_csv(
-            &dir.join("tracking_steps.csv"),
-            &StepRecord::CSV_HEADER,
-            &rows,
-        )?;
+        self.runs.write_steps(&dir.join("tracking_steps.csv"))?;
         let mut rows = Vec::new();
         for (name, st) in [("model", &self.model), ("learned", &self.learned)] {
             for (k, t) in st.times().into_iter().enumerate() {
