@@ -1,6 +1,6 @@
-//! The `steplearn` command: run the paper's experiments for any approximator and rule, sweep the
-//! ablation grid (sharded for clusters), merge the results. It only parses arguments and calls
-//! the library.
+//! The `steplearn` command: reproduce the paper (all four experiments over several seeds, with a
+//! per-claim report), run one experiment for any approximator and rule, sweep the ablation grid
+//! (sharded for clusters), merge the results. It only parses arguments and calls the library.
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};

@@ -201,3 +201,45 @@ fn invalid_trials_are_errors() {
         Err(TrialError::Invalid(_))
     ));
 }
+
+/// A push due while the robot is down waits until it has stood up and walked `resettle_s`;
+/// the trial then ends one push window after its last push.
+#[test]
+fn pushes_delayed_by_a_fall_wait_for_the_gait_and_trials_end_after_the_last_push() {
+    let settings = Settings::default();
+    let setup = steplearn::experiments::trial::TrialSetup {
+        stop_after_last_push_s: Some(settings.push_window_s),
+        ..settings.trial(
+            WalkerMode::CaptureStep,
+            ReferenceSchedule::constant(0.0),
+            vec![
+                Push {
+                    time: 2.0,
+                    impulse: 40.0,
+                },
+                Push {
+                    time: 2.5,
+                    impulse: 0.5,
+                },
+            ],
+            [1.0, 0.0, 0.0],
+            60.0,
+        )
+    };
+    let log = run_trial(&setup, None, &mut []).unwrap();
+    assert_eq!(log.pushes.len(), 2);
+    assert!(log.pushes[0].fell && !log.pushes[1].fell);
+    let fall = log.falls[0].time;
+    let earliest = fall + settings.recovery_s + settings.resettle_s;
+    assert!(
+        log.pushes[1].time >= earliest - 0.011 && log.pushes[1].time < earliest + 0.1,
+        "second push at {} s, fall at {fall} s",
+        log.pushes[1].time
+    );
+    let end = log.pushes[1].time + settings.push_window_s;
+    assert!(
+        (log.sim_time_s - end).abs() < 0.05,
+        "trial ended at {} s, expected about {end} s",
+        log.sim_time_s
+    );
+}

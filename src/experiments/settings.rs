@@ -26,6 +26,8 @@ pub struct Settings {
     pub push_window_s: f64,
     /// Standing time after a reset before walking resumes (s).
     pub recovery_s: f64,
+    /// Walking time after a reset before a push that the fall delayed is delivered (s).
+    pub resettle_s: f64,
 }
 
 impl Default for Settings {
@@ -37,6 +39,7 @@ impl Default for Settings {
             scale: 1.0,
             push_window_s: 3.0,
             recovery_s: 1.0,
+            resettle_s: 2.0,
         }
     }
 }
@@ -55,6 +58,9 @@ impl Settings {
         }
         if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
             return Err(format!("recovery_s must be >= 0, got {}", self.recovery_s));
+        }
+        if !(self.resettle_s.is_finite() && self.resettle_s >= 0.0) {
+            return Err(format!("resettle_s must be >= 0, got {}", self.resettle_s));
         }
         Ok(())
     }
@@ -84,6 +90,7 @@ impl Settings {
             push_direction,
             push_window_s: self.push_window_s,
             recovery_s: self.recovery_s,
+            resettle_s: self.resettle_s,
             duration_s,
             stop_after_last_push_s: None,
         }
@@ -101,7 +108,7 @@ impl Settings {
     ) -> TrialSetup {
         let pushes = plan.draw(seed);
         // Falls cost recovery time and delay later pushes: leave room for them.
-        let slack = plan.count as f64 * (self.recovery_s + self.push_window_s);
+        let slack = plan.count as f64 * (self.recovery_s + self.resettle_s + self.push_window_s);
         let end = pushes.last().map_or(plan.settle, |p| p.time) + self.push_window_s + slack;
         TrialSetup {
             stop_after_last_push_s: Some(self.push_window_s),

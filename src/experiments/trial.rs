@@ -36,8 +36,8 @@ pub struct TrialSetup {
     pub walker: WalkerConfig,
     /// The reference step size over trial time (falls do not rewind it).
     pub reference: ReferenceSchedule,
-    /// Pushes in time order (trial time). A push that falls while the robot is still getting
-    /// up after a fall is delivered once `recovery_s` has passed.
+    /// Pushes in time order (trial time). A push due while the robot is getting up after a
+    /// fall, or has not walked `resettle_s` since, is delayed until it has.
     pub pushes: Vec<Push>,
     /// Unit direction of every push in the world frame (x forward).
     pub push_direction: [f64; 3],
@@ -45,6 +45,11 @@ pub struct TrialSetup {
     pub push_window_s: f64,
     /// Time to stand and start stepping after a reset before anything else happens (s).
     pub recovery_s: f64,
+    /// Walking time after `recovery_s` before a delayed push is delivered (s): without it the
+    /// pushes that falls delayed would hit the robot in its first step, and one fall would
+    /// cause the next.
+    #[serde(default)]
+    pub resettle_s: f64,
     /// Length of the trial (s): its end at the latest.
     pub duration_s: f64,
     /// If set, the trial ends this long after the last push was delivered (and not before that
@@ -74,6 +79,12 @@ impl TrialSetup {
             )));
         }
         positive("push_window_s", self.push_window_s)?;
+        if !(self.resettle_s.is_finite() && self.resettle_s >= 0.0) {
+            return Err(TrialError::Invalid(format!(
+                "resettle_s must be >= 0, got {}",
+                self.resettle_s
+            )));
+        }
         if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
             return Err(TrialError::Invalid(format!(
                 "recovery_s must be >= 0, got {}",
@@ -236,6 +247,7 @@ pub fn run_trial(
     // Trial time = offset + robot time: a reset restarts the robot's clock at zero.
     let mut offset = 0.0;
     let mut ready_at = 0.0;
+    let mut push_ready_at = 0.0;
 
     while offset + robot.time() < setup.duration_s {
         let sensors = robot.sensors();
@@ -287,7 +299,7 @@ pub fn run_trial(
         if next_push < setup.pushes.len()
             && watching.is_none()
             && t >= setup.pushes[next_push].time
-            && t >= ready_at
+            && t >= push_ready_at
         {
             let p = setup.pushes[next_push];
             robot.push(setup.push_direction.map(|d| d * p.impulse));
@@ -324,6 +336,7 @@ pub fn run_trial(
                 p.discard_step();
             }
             ready_at = offset + setup.recovery_s;
+            push_ready_at = ready_at + setup.resettle_s;
         } else if let Some((i, deadline)) = watching
             && offset + robot.time() >= deadline
         {
