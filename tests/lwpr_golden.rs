@@ -117,3 +117,33 @@ fn step_offset_3d_full_metric_meta_is_pinned() {
         (0x365d_2c80_6860_6af0, 310),
     );
 }
+
+/// Saving and loading mid-stream (the scan index is derived, not saved) and then continuing
+/// to train gives exactly the model that was never saved, with diagonal and full metrics.
+#[test]
+fn training_continues_identically_after_a_round_trip() {
+    let p = Problem::step_offset_3d();
+    for config in [demo(&p), demo(&p).diag_only(false).w_prune(0.9)] {
+        let stream = p.train_stream(12, 3000);
+        let mut a = Lwpr::new(config.clone()).unwrap();
+        for (x, y) in &stream[..1500] {
+            a.update(x, &[*y]).unwrap();
+        }
+        let json = serde_json::to_string(&a).unwrap();
+        let mut b: Lwpr = serde_json::from_str(&json).unwrap();
+        for (x, y) in &stream[1500..] {
+            a.update(x, &[*y]).unwrap();
+            b.update(x, &[*y]).unwrap();
+        }
+        assert_eq!(
+            serde_json::to_string(&a).unwrap(),
+            serde_json::to_string(&b).unwrap()
+        );
+        let (mut ya, mut yb) = ([0.0], [0.0]);
+        for (x, _) in p.test_set(5) {
+            a.predict(&x, &mut ya).unwrap();
+            b.predict(&x, &mut yb).unwrap();
+            assert_eq!(ya[0].to_bits(), yb[0].to_bits());
+        }
+    }
+}
