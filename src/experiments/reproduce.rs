@@ -290,3 +290,141 @@ pub fn read_summaries(
     }
     Ok((summaries, missing))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::summary::{ControllerFalls, Controllers, ModelLearned};
+
+    fn summary(seed: u64, result: ExperimentResult) -> Summary {
+        Summary {
+            approx: "lwpr".into(),
+            rule: RuleKind::PendulumCart,
+            seed,
+            result,
+        }
+    }
+
+    fn falls(i50: f64) -> ControllerFalls {
+        ControllerFalls {
+            pushes: 10,
+            falls: 5,
+            impulse_at_50pct_fall_ns: i50,
+        }
+    }
+
+    #[test]
+    fn verdicts_follow_the_claims_seed_by_seed() {
+        let s = vec![
+            // Tracking: seed 0 better everywhere, seed 1 one bin worse, seed 2 a bin without data.
+            summary(
+                0,
+                ExperimentResult::Tracking {
+                    step_error_std_m: ModelLearned {
+                        model: vec![Some(0.05), Some(0.02)],
+                        learned: vec![Some(0.04), Some(0.01)],
+                    },
+                    bin_s: 0.5,
+                },
+            ),
+            summary(
+                1,
+                ExperimentResult::Tracking {
+                    step_error_std_m: ModelLearned {
+                        model: vec![Some(0.05), Some(0.02)],
+                        learned: vec![Some(0.04), Some(0.03)],
+                    },
+                    bin_s: 0.5,
+                },
+            ),
+            summary(
+                2,
+                ExperimentResult::Tracking {
+                    step_error_std_m: ModelLearned {
+                        model: vec![Some(0.05), Some(0.02)],
+                        learned: vec![Some(0.04), None],
+                    },
+                    bin_s: 0.5,
+                },
+            ),
+            // Disturbance: sooner but TDA far above p_theta fails.
+            summary(
+                0,
+                ExperimentResult::Disturbance {
+                    return_time_s: ModelLearned {
+                        model: 3.0,
+                        learned: 2.0,
+                    },
+                    max_tda_rad: ModelLearned {
+                        model: 0.1,
+                        learned: 0.16,
+                    },
+                },
+            ),
+            summary(
+                1,
+                ExperimentResult::Disturbance {
+                    return_time_s: ModelLearned {
+                        model: 3.0,
+                        learned: 2.0,
+                    },
+                    max_tda_rad: ModelLearned {
+                        model: 0.1,
+                        learned: 0.3,
+                    },
+                },
+            ),
+            summary(
+                0,
+                ExperimentResult::Stability {
+                    controllers: Controllers {
+                        open_loop: falls(4.0),
+                        model: falls(12.0),
+                        learned: falls(13.0),
+                    },
+                },
+            ),
+            // Robustness: 2 of 3 seeds within three pushes is "most".
+            summary(
+                0,
+                ExperimentResult::Robustness {
+                    pushes_until_first_absorbed: Some(3),
+                    falls: 2,
+                },
+            ),
+            summary(
+                1,
+                ExperimentResult::Robustness {
+                    pushes_until_first_absorbed: Some(4),
+                    falls: 3,
+                },
+            ),
+            summary(
+                2,
+                ExperimentResult::Robustness {
+                    pushes_until_first_absorbed: Some(1),
+                    falls: 0,
+                },
+            ),
+        ];
+        let c = Claims::from_summaries(&s, 0.15);
+        let holds = |c: &Claim| c.seeds.iter().map(|s| s.1).collect::<Vec<_>>();
+        assert_eq!(holds(&c.tracking), [true, false, false]);
+        assert!(!c.tracking.holds);
+        assert_eq!(holds(&c.disturbance), [true, false]);
+        assert!(!c.disturbance.holds);
+        assert_eq!(holds(&c.stability), [true]);
+        assert!(c.stability.holds);
+        assert_eq!(holds(&c.robustness), [true, false, true]);
+        assert!(c.robustness.holds);
+        // The mean over seeds uses the seeds with data in every bin (0 and 1).
+        assert_eq!(c.tracking_std_mean.len(), 2);
+        assert!((c.tracking_std_mean[1].2 - 0.02).abs() < 1e-12);
+        assert!((c.tracking_std_mean[0].0 - 0.25).abs() < 1e-12);
+        let md = c.to_markdown();
+        assert!(md.contains("**reproduced** (1 of 1 seeds)"), "{md}");
+        assert!(md.contains("**not reproduced** (1 of 3 seeds)"), "{md}");
+        // Nothing measured, nothing reproduced.
+        assert!(!Claims::from_summaries(&[], 0.15).robustness.holds);
+    }
+}
