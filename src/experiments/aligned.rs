@@ -72,6 +72,19 @@ impl AlignedStats {
         })
     }
 
+    /// The bins with at least `min_count` samples, as (bin centre times, means, stds).
+    pub fn populated(&self, min_count: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let mut out = (Vec::new(), Vec::new(), Vec::new());
+        for (k, t) in self.times().into_iter().enumerate() {
+            if self.count[k] >= min_count.max(1) {
+                out.0.push(t);
+                out.1.push(self.mean[k]);
+                out.2.push(self.std[k]);
+            }
+        }
+        out
+    }
+
     /// Bin centre times.
     pub fn times(&self) -> Vec<f64> {
         (0..self.mean.len())
@@ -117,5 +130,17 @@ mod tests {
         assert!(AlignedStats::compute(&[], &[0.0], 0.0, 1.0).is_err());
         assert!(AlignedStats::compute(&[], &[0.0], 1.0, f64::NAN).is_err());
         assert!(AlignedStats::compute(&[], &[2.0, 1.0], 1.0, 1.0).is_err());
+    }
+
+    #[test]
+    fn populated_keeps_bins_with_enough_samples() {
+        let s =
+            AlignedStats::compute(&[(0.1, 1.0), (0.2, 3.0), (1.5, 7.0)], &[0.0], 1.0, 3.0).unwrap();
+        assert_eq!(
+            s.populated(1),
+            (vec![0.5, 1.5], vec![2.0, 7.0], vec![1.0, 0.0])
+        );
+        assert_eq!(s.populated(2), (vec![0.5], vec![2.0], vec![1.0]));
+        assert_eq!(s.populated(0), s.populated(1));
     }
 }

@@ -86,8 +86,7 @@ impl DisturbanceProtocol {
         if self.bin_s > self.horizon_s {
             return bad(format!("bin {} s exceeds the horizon", self.bin_s));
         }
-        let n = self.direction.iter().map(|d| d * d).sum::<f64>().sqrt();
-        if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+        if !super::schedule::is_unit_direction(&self.direction) {
             return bad(format!(
                 "direction {:?} is not a unit vector",
                 self.direction
@@ -300,20 +299,8 @@ impl DisturbanceResult {
                 None,
             ),
         ] {
-            let curve = |r: &PushResponse| -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-                let st = pick(r);
-                let mut out = (Vec::new(), Vec::new(), Vec::new());
-                for (k, t) in st.times().into_iter().enumerate() {
-                    if st.count[k] > 0 {
-                        out.0.push(t);
-                        out.1.push(st.mean[k]);
-                        out.2.push(st.std[k]);
-                    }
-                }
-                out
-            };
-            let (mt, mm, ms) = curve(&self.model);
-            let (lt, lm, ls) = curve(&self.learned);
+            let (mt, mm, ms) = pick(&self.model).populated(1);
+            let (lt, lm, ls) = pick(&self.learned).populated(1);
             let rt = vec![
                 0.0,
                 self.model.step.bin_s * self.model.step.mean.len() as f64,

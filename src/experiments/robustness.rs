@@ -70,8 +70,7 @@ impl RobustnessProtocol {
                 "settle [{s0}, {s1}] s must be positive and ordered"
             ));
         }
-        let n = self.direction.iter().map(|d| d * d).sum::<f64>().sqrt();
-        if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+        if !super::schedule::is_unit_direction(&self.direction) {
             return bad(format!(
                 "direction {:?} is not a unit vector",
                 self.direction

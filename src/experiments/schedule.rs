@@ -50,6 +50,13 @@ impl ReferenceSchedule {
     }
 }
 
+/// Whether `direction` is a finite unit vector (norm within 1e-6 of 1), as every push
+/// direction must be.
+pub fn is_unit_direction(direction: &[f64; 3]) -> bool {
+    let norm = direction.iter().map(|d| d * d).sum::<f64>().sqrt();
+    norm.is_finite() && (norm - 1.0).abs() < 1e-6
+}
+
 /// One scheduled push on the trunk.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Push {
@@ -101,6 +108,16 @@ fn uniform(rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn unit_direction_check() {
+        assert!(is_unit_direction(&[1.0, 0.0, 0.0]));
+        assert!(is_unit_direction(&[0.6, 0.8, 0.0]));
+        assert!(!is_unit_direction(&[1.0, 1.0, 0.0]));
+        assert!(!is_unit_direction(&[0.0, 0.0, 0.0]));
+        assert!(!is_unit_direction(&[f64::NAN, 0.0, 0.0]));
+        assert!(!is_unit_direction(&[f64::INFINITY, 0.0, 0.0]));
+    }
 
     #[test]
     fn random_reference_covers_duration_within_bounds() {

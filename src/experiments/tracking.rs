@@ -175,19 +175,8 @@ impl TrackingResult {
             &rows,
         )?;
         // Figure: bins with at least two steps of the controller.
-        let curve = |st: &AlignedStats| -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-            let mut out = (Vec::new(), Vec::new(), Vec::new());
-            for (k, t) in st.times().into_iter().enumerate() {
-                if st.count[k] >= 2 {
-                    out.0.push(t);
-                    out.1.push(st.mean[k]);
-                    out.2.push(st.std[k]);
-                }
-            }
-            out
-        };
-        let (mt, model_mean, model_std) = curve(&self.model);
-        let (lt, learned_mean, learned_std) = curve(&self.learned);
+        let (mt, model_mean, model_std) = self.model.populated(2);
+        let (lt, learned_mean, learned_std) = self.learned.populated(2);
         let mut series = Vec::new();
         if !mt.is_empty() {
             series.push(Series {

@@ -91,13 +91,7 @@ impl TrialSetup {
                 self.recovery_s
             )));
         }
-        let norm = self
-            .push_direction
-            .iter()
-            .map(|v| v * v)
-            .sum::<f64>()
-            .sqrt();
-        if (norm - 1.0).abs() >= 1e-6 || norm.is_nan() {
+        if !super::schedule::is_unit_direction(&self.push_direction) {
             return Err(TrialError::Invalid(format!(
                 "push_direction must be a unit vector, got {:?}",
                 self.push_direction
