@@ -5,6 +5,7 @@
 //! of one experiment see exactly the same sequence (the paper: "the same random step size
 //! sequence was presented to both controllers").
 
+use super::ExperimentError;
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use serde::{Deserialize, Serialize};
@@ -26,8 +27,34 @@ impl ReferenceSchedule {
 
     /// Random references uniform in `range` (m), each held for a time uniform in `hold` (s),
     /// covering `[0, duration]` (experiment A: [-0.1, 0.2] m held 4-8 s).
-    pub fn random(seed: u64, duration: f64, range: (f64, f64), hold: (f64, f64)) -> Self {
-        assert!(range.0 <= range.1 && hold.0 > 0.0 && hold.0 <= hold.1);
+    ///
+    /// # Errors
+    /// [`ExperimentError::Invalid`] if `range` is not finite and ordered, `hold` not positive,
+    /// finite and ordered, or `duration` not finite and non-negative.
+    pub fn random(
+        seed: u64,
+        duration: f64,
+        range: (f64, f64),
+        hold: (f64, f64),
+    ) -> Result<Self, ExperimentError> {
+        let ordered = |(lo, hi): (f64, f64)| lo.is_finite() && hi.is_finite() && lo <= hi;
+        if !ordered(range) {
+            return Err(ExperimentError::Invalid(format!(
+                "reference range [{}, {}] must be finite and ordered",
+                range.0, range.1
+            )));
+        }
+        if !(ordered(hold) && hold.0 > 0.0) {
+            return Err(ExperimentError::Invalid(format!(
+                "hold [{}, {}] s must be positive, finite and ordered",
+                hold.0, hold.1
+            )));
+        }
+        if !(duration.is_finite() && duration >= 0.0) {
+            return Err(ExperimentError::Invalid(format!(
+                "duration {duration} s must be finite and non-negative"
+            )));
+        }
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut segments = Vec::new();
         let mut t = 0.0;
@@ -35,7 +62,7 @@ impl ReferenceSchedule {
             segments.push((t, uniform(&mut rng, range)));
             t += uniform(&mut rng, hold);
         }
-        ReferenceSchedule { segments }
+        Ok(ReferenceSchedule { segments })
     }
 
     /// The reference in force at time `t`.
@@ -121,10 +148,10 @@ mod tests {
 
     #[test]
     fn random_reference_covers_duration_within_bounds() {
-        let r = ReferenceSchedule::random(3, 100.0, (-0.1, 0.2), (4.0, 8.0));
+        let r = ReferenceSchedule::random(3, 100.0, (-0.1, 0.2), (4.0, 8.0)).unwrap();
         assert_eq!(
             r,
-            ReferenceSchedule::random(3, 100.0, (-0.1, 0.2), (4.0, 8.0))
+            ReferenceSchedule::random(3, 100.0, (-0.1, 0.2), (4.0, 8.0)).unwrap()
         );
         assert_eq!(r.segments[0].0, 0.0);
         for w in r.segments.windows(2) {
@@ -138,6 +165,28 @@ mod tests {
         assert_eq!(r.at(t1), f1);
         assert_eq!(r.at(t1 - 1e-9), r.segments[0].1);
         assert_eq!(r.change_times().len(), r.segments.len() - 1);
+    }
+
+    #[test]
+    fn random_reference_rejects_bad_ranges() {
+        let bad = [
+            (100.0, (0.2, -0.1), (4.0, 8.0)),
+            (100.0, (f64::NAN, 0.2), (4.0, 8.0)),
+            (100.0, (-0.1, 0.2), (0.0, 8.0)),
+            (100.0, (-0.1, 0.2), (8.0, 4.0)),
+            (100.0, (-0.1, 0.2), (4.0, f64::INFINITY)),
+            (f64::INFINITY, (-0.1, 0.2), (4.0, 8.0)),
+            (-1.0, (-0.1, 0.2), (4.0, 8.0)),
+        ];
+        for (duration, range, hold) in bad {
+            assert!(
+                matches!(
+                    ReferenceSchedule::random(1, duration, range, hold),
+                    Err(ExperimentError::Invalid(_))
+                ),
+                "{duration} {range:?} {hold:?}"
+            );
+        }
     }
 
     #[test]

@@ -108,7 +108,7 @@ where
     protocol.validate()?;
     // At least enough time for a few changes, whatever the scale.
     let duration = (protocol.duration_s * settings.scale).max(4.0 * protocol.hold_s.1);
-    let reference = ReferenceSchedule::random(seed, duration, protocol.reference, protocol.hold_s);
+    let reference = ReferenceSchedule::random(seed, duration, protocol.reference, protocol.hold_s)?;
     let setup = settings.trial(
         WalkerMode::CaptureStep,
         reference.clone(),
