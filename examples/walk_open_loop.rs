@@ -2,8 +2,11 @@
 //! balance control. Prints drift, steps and whether (and when) the robot fell.
 //!
 //! `cargo run --release --example walk_open_loop -- --step-x 0.1 --seconds 30`
+//!
+//! `--gait open-loop` uses [`MotionConfig::open_loop_gait`], tuned to walk without balance
+//! control over the whole step range; the default gait is the one the Capture Step walker uses.
 
-use clap::Parser;
+use clap::{Parser, ValueEnum};
 use steplearn::control::motion::{MotionConfig, MotionGenerator};
 use steplearn::sim::{Humanoid, SimConfig};
 
@@ -39,9 +42,21 @@ struct Args {
     /// Time over which the commanded step grows from 0 to `step_x` (s).
     #[arg(long, default_value_t = 4.0)]
     ramp: f64,
-    /// Motion config override as JSON.
-    #[arg(long)]
+    /// Motion preset.
+    #[arg(long, value_enum, default_value_t = Gait::Default)]
+    gait: Gait,
+    /// Motion config override as JSON (fields not given keep their default values).
+    #[arg(long, conflicts_with = "gait")]
     motion: Option<String>,
+}
+
+/// Motion presets.
+#[derive(Clone, Copy, ValueEnum)]
+enum Gait {
+    /// `MotionConfig::default()`, the closed-loop walker's gait.
+    Default,
+    /// `MotionConfig::open_loop_gait()`, tuned for walking without balance control.
+    OpenLoop,
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -67,7 +82,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut sim = Humanoid::new(sim_config.clone())?;
     let motion: MotionConfig = match &args.motion {
         Some(j) => serde_json::from_str(j)?,
-        None => MotionConfig::default(),
+        None => match args.gait {
+            Gait::Default => MotionConfig::default(),
+            Gait::OpenLoop => MotionConfig::open_loop_gait(),
+        },
     };
     let mut motion_gen = MotionGenerator::new(motion, &sim.body().leg_geometry());
     let dt = sim_config.tick();

@@ -148,3 +148,37 @@ fn non_finite_targets_are_rejected_and_change_nothing() {
     assert_eq!(sim.ground_truth(), before);
     assert_eq!(sim.time(), 0.0);
 }
+
+/// Walks open-loop with `motion` at a constant commanded step (reached over a 4 s ramp) for
+/// `seconds`; returns the fall time, if any, and the CoM's sagittal travel.
+fn walk_open_loop(motion: MotionConfig, step_x: f64, seconds: f64) -> (Option<f64>, f64) {
+    let mut sim = Humanoid::new(SimConfig::default()).unwrap();
+    let mut generator = MotionGenerator::new(motion, &sim.body().leg_geometry());
+    let dt = sim.config().tick();
+    let start = sim.ground_truth().com[0];
+    while sim.time() < seconds {
+        let cmd = generator.open_loop(step_x * (sim.time() / 4.0).min(1.0));
+        sim.step(&generator.update(&cmd, dt)).unwrap();
+        if let Some(f) = sim.fall() {
+            return (Some(f.time), sim.ground_truth().com[0] - start);
+        }
+    }
+    (None, sim.ground_truth().com[0] - start)
+}
+
+#[test]
+fn open_loop_gait_walks_the_whole_step_range() {
+    for step_x in [-0.1, 0.2] {
+        // The default gait falls at both ends of the range within 15 s ...
+        let (fall, _) = walk_open_loop(MotionConfig::default(), step_x, 20.0);
+        assert!(fall.is_some(), "default gait at {step_x} m did not fall");
+        // ... the open-loop gait walks 30 s and travels close to the commanded distance.
+        let (fall, travel) = walk_open_loop(MotionConfig::open_loop_gait(), step_x, 30.0);
+        assert_eq!(fall, None, "open-loop gait at {step_x} m fell");
+        let commanded = step_x * (30.0 - 2.0) / 0.4;
+        assert!(
+            travel * commanded.signum() > 0.8 * commanded.abs(),
+            "travel {travel} m for {commanded} m commanded"
+        );
+    }
+}

@@ -199,6 +199,30 @@ impl Default for MotionConfig {
     }
 }
 
+impl MotionConfig {
+    /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
+    /// commanded step in [-0.1, 0.2] m (0.025 m apart) on ground friction 0.7, 0.8 and 1.0,
+    /// and steps in place for 60 s, where [`MotionConfig::default`] falls at -0.10, -0.05,
+    /// +0.15 and +0.20 m. Found by a hill-climbing search over the primitives' amplitudes and
+    /// windows scored by survival time; its slight backward lean per step and later lift end
+    /// keep the feet flat at touch-down. The closed-loop walker keeps the default, which its
+    /// controller gains were tuned on.
+    pub fn open_loop_gait() -> Self {
+        MotionConfig {
+            halt_extension: 0.0344,
+            halt_lean: 0.0213,
+            lift_extension: 0.0665,
+            push_extension: 0.0,
+            sway: 0.0347,
+            sway_lead: -0.007,
+            lift_window: [0.0874, 0.982],
+            swing_window: [0.103, 0.8739],
+            lean_per_step: -0.0582,
+            ..MotionConfig::default()
+        }
+    }
+}
+
 /// The open-loop step motion generator. It knows the leg geometry and nothing of any
 /// simulator.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
