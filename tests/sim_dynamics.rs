@@ -63,7 +63,7 @@ fn a_push_changes_momentum_by_exactly_its_impulse() {
     sim.step(&targets).unwrap();
     let before = sim.ground_truth().momentum;
     let impulse = [2.0, -1.0, 0.5];
-    sim.push(impulse);
+    sim.push(impulse).unwrap();
     for _ in 0..4 {
         sim.step(&targets).unwrap();
     }
@@ -83,7 +83,7 @@ fn a_push_changes_momentum_by_exactly_its_impulse() {
 fn survives_a_2ns_push_standing() {
     let mut sim = Humanoid::new(SimConfig::default()).unwrap();
     assert!(stand(&mut sim, 0.5).is_none());
-    sim.push([2.0, 0.0, 0.0]);
+    sim.push([2.0, 0.0, 0.0]).unwrap();
     assert_eq!(stand(&mut sim, 3.0), None);
 }
 
@@ -92,7 +92,7 @@ fn a_hard_push_is_a_fall_and_reset_stands_again() {
     let fresh = Humanoid::new(SimConfig::default()).unwrap();
     let mut sim = Humanoid::new(SimConfig::default()).unwrap();
     assert!(stand(&mut sim, 0.3).is_none());
-    sim.push([25.0, 0.0, 0.0]);
+    sim.push([25.0, 0.0, 0.0]).unwrap();
     let fall = stand(&mut sim, 4.0).expect("a 25 Ns push must topple it");
     assert!(fall.time > 0.3 && fall.time < 4.0);
     match fall.cause {
@@ -116,7 +116,7 @@ fn stepping_run(seconds: f64) -> Vec<Sensors> {
         let cmd = generator.open_loop(0.0);
         sim.step(&generator.update(&cmd, dt)).unwrap();
         if sim.time() > 1.0 && out.is_empty() {
-            sim.push([1.0, 0.0, 0.0]);
+            sim.push([1.0, 0.0, 0.0]).unwrap();
         }
         out.push(sim.sensors());
     }
@@ -180,5 +180,48 @@ fn open_loop_gait_walks_the_whole_step_range() {
             travel * commanded.signum() > 0.8 * commanded.abs(),
             "travel {travel} m for {commanded} m commanded"
         );
+    }
+}
+
+#[test]
+fn a_non_finite_push_is_rejected_and_changes_nothing() {
+    let mut sim = Humanoid::new(SimConfig::default()).unwrap();
+    assert!(matches!(
+        sim.push([f64::NAN, 0.0, 0.0]),
+        Err(SimError::BadImpulse { .. })
+    ));
+    assert!(!sim.pushing());
+    sim.push([1.0, 0.0, 0.0]).unwrap();
+    assert!(matches!(
+        sim.push([0.0, f64::INFINITY, 0.0]),
+        Err(SimError::BadImpulse { .. })
+    ));
+    // The earlier push is still under way.
+    assert!(sim.pushing());
+}
+
+#[test]
+fn an_exploding_simulation_is_an_error_not_a_nan_state() {
+    let mut sim = Humanoid::new(SimConfig::default()).unwrap();
+    let targets =
+        MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry()).halt_targets();
+    // 1e7 N s on 13.5 kg: far beyond any velocity the check accepts.
+    sim.push([1e7, 0.0, 0.0]).unwrap();
+    let mut error = None;
+    for _ in 0..50 {
+        match sim.step(&targets) {
+            Ok(()) => assert!(sim.ground_truth().com.iter().all(|v| v.is_finite())),
+            Err(e) => {
+                error = Some(e);
+                break;
+            }
+        }
+    }
+    match error {
+        Some(SimError::BlowUp { time, what }) => {
+            assert!(time > 0.0);
+            assert!(!what.is_empty());
+        }
+        other => panic!("expected BlowUp, got {other:?}"),
     }
 }

@@ -39,7 +39,7 @@ pub fn run(mode: Mode, seconds: f64, pushes: &[(f64, [f64; 3])], title: &str) ->
     while sim.time() < seconds {
         if let Some(k) = pending.iter().position(|(t, _)| sim.time() >= *t) {
             let (_, impulse) = pending.remove(k);
-            sim.push(impulse);
+            sim.push(impulse).expect("finite push impulse");
             record.push(sim.time(), impulse);
         }
         let targets = match mode {

@@ -296,7 +296,7 @@ pub fn run_trial(
             && t >= push_ready_at
         {
             let p = setup.pushes[next_push];
-            robot.push(setup.push_direction.map(|d| d * p.impulse));
+            robot.push(setup.push_direction.map(|d| d * p.impulse))?;
             log.pushes.push(PushRecord {
                 time: t,
                 impulse: p.impulse,

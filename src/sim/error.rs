@@ -23,6 +23,12 @@ pub enum SimError {
         /// The rejected value.
         value: f64,
     },
+    /// A push impulse is NaN or infinite; nothing was applied.
+    #[error("push impulse is not finite: {impulse:?}")]
+    BadImpulse {
+        /// The rejected impulse (N s).
+        impulse: [f64; 3],
+    },
     /// The physics produced a non-finite or exploding state.
     #[error("simulation blew up at t = {time} s: {what}")]
     BlowUp {

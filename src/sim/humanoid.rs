@@ -529,14 +529,17 @@ impl Humanoid {
     /// Pushes the torso (at its centre of mass) with `impulse_ns` (N s, world frame), spread as
     /// a constant force over the next `config.push_steps` physics steps, so the momentum of
     /// the robot changes by exactly the impulse (plus what gravity and contacts add). A push
-    /// still under way is replaced. Non-finite impulses are ignored.
-    pub fn push(&mut self, impulse_ns: [f64; 3]) {
+    /// still under way is replaced. A non-finite impulse is rejected and changes nothing.
+    pub fn push(&mut self, impulse_ns: [f64; 3]) -> Result<(), SimError> {
         if impulse_ns.iter().any(|v| !v.is_finite()) {
-            return;
+            return Err(SimError::BadImpulse {
+                impulse: impulse_ns,
+            });
         }
         let duration = self.config.dt * self.config.push_steps as f64;
         self.push_force = impulse_ns.map(|p| p / duration);
         self.push_steps_left = self.config.push_steps;
+        Ok(())
     }
 
     /// Whether a push is still being delivered.
