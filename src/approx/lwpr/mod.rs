@@ -78,6 +78,7 @@ mod linalg;
 mod metric;
 mod model;
 mod receptive_field;
+mod scan;
 mod workspace;
 
 #[cfg(test)]

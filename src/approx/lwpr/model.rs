@@ -2,6 +2,7 @@
 
 use super::config::LwprConfig;
 use super::receptive_field::ReceptiveField;
+use super::scan::ScanIndex;
 use super::workspace::Workspace;
 use crate::approx::{ApproxError, FunctionApproximator, check_output, check_vector};
 use serde::{Deserialize, Serialize};
@@ -48,60 +49,10 @@ pub struct Lwpr {
     sub: Vec<SubModel>,
     #[serde(skip)]
     ws: Workspace,
-    /// Per output, a contiguous copy of every receptive field's centre and metric (derived,
-    /// rebuilt after loading) so that the activation scan reads one flat buffer.
+    /// Per output, a column-wise copy of every receptive field's centre and metric (derived,
+    /// rebuilt after loading) for the activation scan.
     #[serde(skip)]
-    scan: Vec<Vec<f64>>,
-}
-
-/// Length of one receptive field's entry in the scan index: its centre, then the diagonal of
-/// `D` (`diag_only`) or the full factor `M`.
-#[inline]
-fn scan_stride(n: usize, diag_only: bool) -> usize {
-    if diag_only { 2 * n } else { n + n * n }
-}
-
-/// Writes `rf`'s scan-index entry into `out` (length [`scan_stride`]).
-fn write_scan_entry(rf: &ReceptiveField, diag_only: bool, out: &mut [f64]) {
-    let n = rf.c.len();
-    let (c, metric) = out.split_at_mut(n);
-    c.copy_from_slice(&rf.c);
-    if diag_only {
-        for i in 0..n {
-            metric[i] = rf.d[i + i * n];
-        }
-    } else {
-        metric.copy_from_slice(&rf.m);
-    }
-}
-
-/// The same squared distance as `ReceptiveField::squared_distance`, with the same operations
-/// in the same order, read from a scan-index entry.
-#[inline(always)]
-fn scan_distance(entry: &[f64], xn: &[f64], n: usize, limit: f64, diag_only: bool) -> Option<f64> {
-    let (c, metric) = entry.split_at(n);
-    let mut q = 0.0;
-    if diag_only {
-        for i in 0..n {
-            let dx = xn[i] - c[i];
-            q += metric[i] * dx * dx;
-            if q > limit {
-                return None;
-            }
-        }
-    } else {
-        for k in 0..n {
-            let mut row = 0.0;
-            for i in k..n {
-                row += metric[k + i * n] * (xn[i] - c[i]);
-            }
-            q += row * row;
-            if q > limit {
-                return None;
-            }
-        }
-    }
-    Some(q)
+    scan: Vec<ScanIndex>,
 }
 
 /// Top two activations seen in a scan over receptive fields.
@@ -149,7 +100,7 @@ impl Lwpr {
                     n_pruned: 0,
                 })
                 .collect(),
-            scan: vec![Vec::new(); n_out],
+            scan: vec![ScanIndex::default(); n_out],
             config,
             ws,
         })
@@ -214,23 +165,16 @@ impl Lwpr {
             for (k, sub) in self.sub.iter().enumerate() {
                 let (mut sum_w, mut sum_wy, mut sum_wyy, mut sum_conf) = (0.0, 0.0, 0.0, 0.0);
                 let diag_only = self.config.diag_only;
-                let stride = scan_stride(n, diag_only);
                 let index = self
                     .scan
                     .get(k)
-                    .filter(|v| v.len() == sub.rfs.len() * stride);
+                    .filter(|v| v.matches(n, diag_only, sub.rfs.len()));
                 for (idx, rf) in sub.rfs.iter().enumerate() {
                     if !rf.trustworthy {
                         continue;
                     }
                     let q = match index {
-                        Some(v) => scan_distance(
-                            &v[idx * stride..(idx + 1) * stride],
-                            xn,
-                            n,
-                            limit,
-                            diag_only,
-                        ),
+                        Some(v) => v.distance(idx, xn, limit),
                         None => rf.squared_distance(xn, limit, diag_only),
                     };
                     let Some(q) = q else {
@@ -284,29 +228,30 @@ impl Lwpr {
         let mut top = TopTwo::default();
         let xn = std::mem::take(&mut ws.xn);
         let diag_only = config.diag_only;
-        let stride = scan_stride(n, diag_only);
         if self.scan.len() != config.n_out {
-            self.scan.resize(config.n_out, Vec::new());
+            self.scan.resize(config.n_out, ScanIndex::default());
         }
         let scan = &mut self.scan[k];
-        if scan.len() != sub.rfs.len() * stride {
+        if !scan.matches(n, diag_only, sub.rfs.len()) {
             // After loading (the index is not saved): rebuild it once.
-            scan.resize(sub.rfs.len() * stride, 0.0);
-            for (rf, entry) in sub.rfs.iter().zip(scan.chunks_exact_mut(stride)) {
-                write_scan_entry(rf, diag_only, entry);
-            }
+            *scan = ScanIndex::build(n, diag_only, &sub.rfs);
         }
-        for (idx, entry) in scan.chunks_exact_mut(stride).enumerate() {
-            let Some(q) = scan_distance(entry, &xn, n, limit, diag_only) else {
+        // All distances first (vectorised over the fields), then the fields within reach:
+        // the same fields, activations and training as a scan that trains as it goes,
+        // since a field's training changes only its own entry.
+        scan.distances(&xn, &mut ws.q, &mut ws.row);
+        for idx in 0..scan.len() {
+            let q = ws.q[idx];
+            if q > limit {
                 continue;
-            };
+            }
             let act = config.kernel.activation(q);
             top.push(act.w, idx);
             if act.w > W_UPDATE {
                 let rf = &mut sub.rfs[idx];
                 rf.train(config, &xn, yn, act, ws);
                 if config.update_d {
-                    write_scan_entry(rf, diag_only, entry);
+                    scan.write(idx, rf);
                 }
             }
         }
@@ -318,9 +263,7 @@ impl Lwpr {
                 _ => None,
             };
             let rf = ReceptiveField::new(config, &self.init_m, template, &xn[..n], yn);
-            let start = scan.len();
-            scan.resize(start + stride, 0.0);
-            write_scan_entry(&rf, diag_only, &mut scan[start..]);
+            scan.push(&rf);
             sub.rfs.push(rf);
         } else if let (true, Some(a), Some(b)) =
             (top.w_sec > config.w_prune, top.ind_max, top.ind_sec)
@@ -333,9 +276,7 @@ impl Lwpr {
                 b
             };
             sub.rfs.swap_remove(prune);
-            let last = scan.len() - stride;
-            scan.copy_within(last.., prune * stride);
-            scan.truncate(last);
+            scan.swap_remove(prune);
             sub.n_pruned += 1;
         }
         ws.xn = xn;

@@ -33,6 +33,10 @@ pub(crate) struct Workspace {
     pub ps: Vec<f64>,
     /// Whether projection `r` has enough data for the metric gradient.
     pub deriv_ok: Vec<bool>,
+    /// Squared distance of every receptive field to the sample (grows with the field count).
+    pub q: Vec<f64>,
+    /// Scratch of the same length as `q`.
+    pub row: Vec<f64>,
 }
 
 impl Workspace {
