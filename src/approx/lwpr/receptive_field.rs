@@ -263,11 +263,13 @@ impl ReceptiveField {
     ) -> RegressionStep {
         let n = self.n_in();
         let nr = self.n_reg();
-        // Loadings and input residuals with the current projections.
-        ws.xres[..n].copy_from_slice(&ws.xmz[..n]);
+        // Loadings and input residuals with the current projections. The residual before
+        // projection 0 is the mean-free input itself: it is read from `ws.xmz`, and
+        // `ws.xres[..n]` is not used (copying a few numbers costs a library call).
+        let xmz = &ws.xmz[..n];
         for r in 0..nr {
             let (done, rest) = ws.xres.split_at_mut((r + 1) * n);
-            let xr = &done[r * n..];
+            let xr = if r == 0 { xmz } else { &done[r * n..] };
             let s = dot(&self.u[r * n..(r + 1) * n], xr);
             ws.s[r] = s;
             if r + 1 < nr {
@@ -293,7 +295,11 @@ impl ReceptiveField {
             let lambda = self.lambda[r];
             let lambda_slow = 0.9 + 0.1 * lambda;
             let wyt = w * ws.ytarget[r];
-            let xr = &ws.xres[col.clone()];
+            let xr = if r == 0 {
+                &ws.xmz[..n]
+            } else {
+                &ws.xres[col.clone()]
+            };
             let mut norm2 = 0.0;
             for (sxy, x) in self.sxres_yres[col.clone()].iter_mut().zip(xr) {
                 *sxy = *sxy * lambda_slow + wyt * x;
@@ -326,10 +332,17 @@ impl ReceptiveField {
         }
         self.ssp = self.lambda[nr - 1] * self.ssp + ws2_ss_s2;
 
-        // Loadings with the updated projections.
+        // Loadings with the updated projections (the residuals go to `ws.dx` as scratch).
+        let xmz = &ws.xmz[..n];
         let (xu, _) = ws.dx.split_at_mut(n);
-        xu.copy_from_slice(&ws.xmz[..n]);
-        for r in 0..nr {
+        let s = dot(&self.u[..n], xmz);
+        ws.s[0] = s;
+        if nr > 1 {
+            for ((v, x), p) in xu.iter_mut().zip(xmz).zip(&self.p[..n]) {
+                *v = x + -s * p;
+            }
+        }
+        for r in 1..nr {
             let s = dot(&self.u[r * n..(r + 1) * n], xu);
             ws.s[r] = s;
             if r + 1 < nr {

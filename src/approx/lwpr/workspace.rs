@@ -9,7 +9,8 @@ pub(crate) struct Workspace {
     pub xn: Vec<f64>,
     /// Input minus the receptive field's running mean.
     pub xmz: Vec<f64>,
-    /// Input residuals before each projection (`n x R`, projection-major).
+    /// Input residuals before each projection (`n x R`, projection-major; the residual before
+    /// projection 0 is `xmz` itself, so the first `n` entries are unused).
     pub xres: Vec<f64>,
     /// Current PLS loadings.
     pub s: Vec<f64>,
