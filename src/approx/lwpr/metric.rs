@@ -2,6 +2,7 @@
 //! optionally with incremental delta-bar-delta meta learning of the learning rates.
 
 use super::config::LwprConfig;
+use super::dim::InputDim;
 use super::kernel::Activation;
 use super::linalg::metric_from_factor;
 use super::receptive_field::ReceptiveField;
@@ -13,7 +14,8 @@ use super::workspace::Workspace;
 /// `ws.ddwdmdm`, `ws.ddj2dmdm` when `meta` is on), for the diagonal of `M` if `diag_only`, else
 /// for its upper triangle. `penalty` is the per-input penalty `gamma / n`; the cost is
 /// `J2 = penalty * sum_ij D_ij^2`.
-pub(crate) fn distance_derivatives(
+pub(crate) fn distance_derivatives<D: InputDim>(
+    dim: D,
     rf: &ReceptiveField,
     act: Activation,
     penalty: f64,
@@ -21,7 +23,7 @@ pub(crate) fn distance_derivatives(
     meta: bool,
     ws: &mut Workspace,
 ) {
-    let n = rf.n_in();
+    let n = dim.n();
     let dx = &ws.dx;
     let p2 = 2.0 * penalty;
     if diag_only {
@@ -88,8 +90,10 @@ impl ReceptiveField {
     /// `e_cv` and `e` are the cross-validation and training errors from the regression step,
     /// `ws.s` holds the updated loadings. Returns the transient multiplier that scaled the
     /// step (0 if the field has not seen enough data yet).
-    pub(crate) fn update_distance_metric(
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn update_distance_metric<D: InputDim>(
         &mut self,
+        dim: D,
         config: &LwprConfig,
         act: Activation,
         e_cv: f64,
@@ -97,7 +101,7 @@ impl ReceptiveField {
         xn: &[f64],
         ws: &mut Workspace,
     ) -> f64 {
-        let n = self.n_in();
+        let n = dim.n();
         let nr = self.n_reg();
         let w = act.w;
         for r in 0..nr {
@@ -142,7 +146,7 @@ impl ReceptiveField {
             ws.dx[i] = xn[i] - self.c[i];
         }
         let diag_only = config.diag_only;
-        distance_derivatives(self, act, penalty, diag_only, config.meta, ws);
+        distance_derivatives(dim, self, act, penalty, diag_only, config.meta, ws);
 
         let mut max_m = 0.0f64;
         for_each_element(n, diag_only, |off| max_m = max_m.max(self.m[off].abs()));

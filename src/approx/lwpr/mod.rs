@@ -72,6 +72,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod config;
+mod dim;
 mod invariants;
 mod kernel;
 mod linalg;

@@ -5,6 +5,7 @@
 //! (`sxres_yres`, `ssxres`, `u`, `p`) store projection `r` in `[r * n .. (r + 1) * n]`.
 
 use super::config::LwprConfig;
+use super::dim::{Dynamic, Fixed, InputDim};
 use super::kernel::Activation;
 use super::linalg::{axpy, dot};
 use super::workspace::Workspace;
@@ -238,10 +239,17 @@ impl ReceptiveField {
 
     /// Updates the weighted input mean and variance and the intercept; writes `x - mean_x`
     /// into `xmz` and returns `y - beta0`.
-    pub(crate) fn update_means(&mut self, x: &[f64], y: f64, w: f64, xmz: &mut [f64]) -> f64 {
+    pub(crate) fn update_means<D: InputDim>(
+        &mut self,
+        dim: D,
+        x: &[f64],
+        y: f64,
+        w: f64,
+        xmz: &mut [f64],
+    ) -> f64 {
         let swl = self.sum_w[0] * self.lambda[0];
         let inv = 1.0 / (swl + w);
-        for i in 0..x.len() {
+        for i in 0..dim.n() {
             let mean = (swl * self.mean_x[i] + w * x[i]) * inv;
             self.mean_x[i] = mean;
             let dx = x[i] - mean;
@@ -255,13 +263,14 @@ impl ReceptiveField {
     /// One weighted incremental PLS step on the mean-free sample (`ws.xmz`, `y`).
     ///
     /// Leaves the loadings of the updated projections at the sample in `ws.s`.
-    pub(crate) fn update_regression(
+    pub(crate) fn update_regression<D: InputDim>(
         &mut self,
+        dim: D,
         y: f64,
         w: f64,
         ws: &mut Workspace,
     ) -> RegressionStep {
-        let n = self.n_in();
+        let n = dim.n();
         let nr = self.n_reg();
         // Loadings and input residuals with the current projections. The residual before
         // projection 0 is the mean-free input itself: it is read from `ws.xmz`, and
@@ -375,8 +384,12 @@ impl ReceptiveField {
 
     /// Adds a PLS projection when the newest one lowered the cross-validation error enough
     /// and has seen enough data. Returns whether one was added.
-    pub(crate) fn check_add_projection(&mut self, config: &LwprConfig) -> bool {
-        let n = self.n_in();
+    pub(crate) fn check_add_projection<D: InputDim>(
+        &mut self,
+        dim: D,
+        config: &LwprConfig,
+    ) -> bool {
+        let n = dim.n();
         let nr = self.n_reg();
         if nr >= n {
             return false;
@@ -424,16 +437,35 @@ impl ReceptiveField {
         act: Activation,
         ws: &mut Workspace,
     ) -> Option<f64> {
+        match xn.len() {
+            1 => self.train_in(Fixed::<1>, config, xn, y, act, ws),
+            2 => self.train_in(Fixed::<2>, config, xn, y, act, ws),
+            3 => self.train_in(Fixed::<3>, config, xn, y, act, ws),
+            4 => self.train_in(Fixed::<4>, config, xn, y, act, ws),
+            n => self.train_in(Dynamic(n), config, xn, y, act, ws),
+        }
+    }
+
+    /// [`Self::train`] for `dim` inputs.
+    pub(crate) fn train_in<D: InputDim>(
+        &mut self,
+        dim: D,
+        config: &LwprConfig,
+        xn: &[f64],
+        y: f64,
+        act: Activation,
+        ws: &mut Workspace,
+    ) -> Option<f64> {
         let ymz = {
-            let (xmz, _) = ws.xmz.split_at_mut(xn.len());
-            self.update_means(xn, y, act.w, xmz)
+            let (xmz, _) = ws.xmz.split_at_mut(dim.n());
+            self.update_means(dim, xn, y, act.w, xmz)
         };
-        let step = self.update_regression(ymz, act.w, ws);
+        let step = self.update_regression(dim, ymz, act.w, ws);
         let yp = self.trustworthy.then_some(step.yp);
         if config.update_d {
-            self.update_distance_metric(config, act, step.e_cv, step.e, xn, ws);
+            self.update_distance_metric(dim, config, act, step.e_cv, step.e, xn, ws);
         }
-        self.check_add_projection(config);
+        self.check_add_projection(dim, config);
         let tau = config.tau_lambda;
         for r in 0..self.n_reg() {
             self.n_data[r] = self.n_data[r] * self.lambda[r] + 1.0;

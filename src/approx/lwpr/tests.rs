@@ -1,6 +1,7 @@
 //! Unit tests of the PLS and distance-metric updates against hand-derived values.
 
 use super::config::LwprConfig;
+use super::dim::{Dynamic, Fixed};
 use super::kernel::{Activation, Kernel};
 use super::metric::distance_derivatives;
 use super::receptive_field::ReceptiveField;
@@ -21,7 +22,7 @@ fn first_pls_step_matches_hand_derivation() {
     ws.ensure(1);
     let (x, y, w) = (0.4, -0.3, 0.8);
     ws.xmz[0] = x;
-    let step = rf.update_regression(y, w, &mut ws);
+    let step = rf.update_regression(Dynamic(rf.n_in()), y, w, &mut ws);
     // s = u x = x; SSs2 = lambda 1e-10 + w s^2; SSYres = w s y; SSXres = w s x.
     let ss_s2 = 0.999 * 1e-10 + x * (w * x);
     assert_eq!(rf.ss_s2[0], ss_s2);
@@ -53,7 +54,7 @@ fn weighted_means_match_hand_derivation() {
     rf.var_x = vec![0.5, 0.25];
     rf.beta0 = 2.0;
     let mut xmz = [0.0; 2];
-    let ymz = rf.update_means(&[2.5, 0.5], 5.0, 0.5, &mut xmz);
+    let ymz = rf.update_means(Dynamic(2), &[2.5, 0.5], 5.0, 0.5, &mut xmz);
     // swl = 1.5, so every mean moves by w / (swl + w) = 1/4 of the way.
     assert_eq!(rf.mean_x, vec![1.375, -0.625]);
     assert_eq!(xmz, [1.125, 1.125]);
@@ -86,6 +87,39 @@ fn pls_recovers_a_linear_map() {
         // Online PLS keeps a fading trace of the samples seen before its directions settled.
         assert!((y - f(&x)).abs() < 1e-3, "{y} vs {}", f(&x));
     }
+}
+
+#[test]
+fn compile_time_and_run_time_input_counts_train_bit_identically() {
+    // Full metric with meta learning exercises every loop that depends on the input count.
+    let config = LwprConfig::new(3, 1)
+        .diag_only(false)
+        .meta(true)
+        .init_d(4.0);
+    let mut fixed = fresh(&config, &[0.1, -0.2, 0.3]);
+    let mut dynamic = fixed.clone();
+    let (mut ws_a, mut ws_b) = (Workspace::default(), Workspace::default());
+    ws_a.ensure(3);
+    ws_b.ensure(3);
+    for k in 0..2000 {
+        let x = [
+            ((k * 37) % 101) as f64 / 100.0 - 0.4,
+            ((k * 53) % 97) as f64 / 96.0 - 0.6,
+            ((k * 29) % 89) as f64 / 88.0 - 0.2,
+        ];
+        let y = 0.5 * x[0] - x[1] + 2.0 * x[2] + 0.1 * (3.0 * x[0]).sin();
+        let act = Kernel::Gaussian.activation(0.2 + 0.1 * (k % 7) as f64);
+        let a = fixed.train_in(Fixed::<3>, &config, &x, y, act, &mut ws_a);
+        let b = dynamic.train_in(Dynamic(3), &config, &x, y, act, &mut ws_b);
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+    }
+    assert_eq!(fixed, dynamic);
+    assert!(fixed.trustworthy);
+    assert_ne!(
+        fixed.m,
+        fresh(&config, &[0.1, -0.2, 0.3]).m,
+        "the metric adapted"
+    );
 }
 
 /// Activation of a field with factor `m` at offset `dx` (Gaussian), and the penalty.
@@ -126,7 +160,15 @@ fn metric_derivatives_match_finite_differences() {
             ddwdqdq: 0.25 * w,
         };
         let gamma = 0.01;
-        distance_derivatives(&rf, act, gamma, diag_only, true, &mut ws);
+        distance_derivatives(
+            Dynamic(rf.n_in()),
+            &rf,
+            act,
+            gamma,
+            diag_only,
+            true,
+            &mut ws,
+        );
         let h = 1e-6;
         for col in 0..n {
             for row in 0..=col {
@@ -180,7 +222,7 @@ fn metric_step_follows_the_penalty_gradient_when_errors_vanish() {
     ws.ensure(1);
     ws.s[0] = 0.0;
     let act = Kernel::Gaussian.activation(0.0);
-    let transient = rf.update_distance_metric(&config, act, 0.0, 0.0, &[0.0], &mut ws);
+    let transient = rf.update_distance_metric(Dynamic(1), &config, act, 0.0, 0.0, &[0.0], &mut ws);
     let expected_t = (1.0f64 / (1.0 + 1e-10)).powi(4);
     assert_eq!(transient, expected_t);
     // big E = 1, W = 2: dJ1/dw = -E/W^2 = -0.25, dw/dM = 0 at the centre.
