@@ -251,7 +251,7 @@ impl Lwpr {
                 let rf = &mut sub.rfs[idx];
                 rf.train(config, &xn, yn, act, ws);
                 if config.update_d {
-                    scan.write(idx, rf);
+                    scan.write_metric(idx, rf);
                 }
             }
         }

@@ -59,11 +59,16 @@ impl ScanIndex {
 
     /// Copies `rf`'s centre and metric into entry `idx`.
     pub fn write(&mut self, idx: usize, rf: &ReceptiveField) {
-        let n = self.n;
-        let (centre, metric) = self.cols.split_at_mut(n);
-        for (col, c) in centre.iter_mut().zip(&rf.c) {
+        for (col, c) in self.cols.iter_mut().zip(&rf.c) {
             col[idx] = *c;
         }
+        self.write_metric(idx, rf);
+    }
+
+    /// Copies `rf`'s metric into entry `idx` (after training, which never moves a centre).
+    pub fn write_metric(&mut self, idx: usize, rf: &ReceptiveField) {
+        let n = self.n;
+        let metric = &mut self.cols[n..];
         if self.diag_only {
             for (i, col) in metric.iter_mut().enumerate() {
                 col[idx] = rf.d[i + i * n];
