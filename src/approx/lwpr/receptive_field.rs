@@ -272,104 +272,120 @@ impl ReceptiveField {
     ) -> RegressionStep {
         let n = dim.n();
         let nr = self.n_reg();
+        let used = self.n_reg_trusted();
+        // Every array cut to its length up front, so that the loops below need no bounds
+        // checks and keep the data pointers in registers.
+        let ReceptiveField {
+            beta,
+            sum_w,
+            lambda,
+            sxres_yres,
+            u,
+            ss_s2,
+            ss_yres,
+            ss_xres,
+            p,
+            ..
+        } = self;
+        let (beta, sum_w, lambda) = (&mut beta[..nr], &mut sum_w[..nr], &lambda[..nr]);
+        let (ss_s2, ss_yres) = (&mut ss_s2[..nr], &mut ss_yres[..nr]);
+        let (sxres_yres, u) = (&mut sxres_yres[..n * nr], &mut u[..n * nr]);
+        let (ss_xres, p) = (&mut ss_xres[..n * nr], &mut p[..n * nr]);
+        let xmz = &ws.xmz[..n];
+        let xres = &mut ws.xres[..n * nr];
+        let (s_buf, e_cv, ytarget) = (&mut ws.s[..nr], &mut ws.e_cv[..nr], &mut ws.ytarget[..nr]);
         // Loadings and input residuals with the current projections. The residual before
         // projection 0 is the mean-free input itself: it is read from `ws.xmz`, and
         // `ws.xres[..n]` is not used (copying a few numbers costs a library call).
-        let xmz = &ws.xmz[..n];
         for r in 0..nr {
-            let (done, rest) = ws.xres.split_at_mut((r + 1) * n);
+            let (done, rest) = xres.split_at_mut((r + 1) * n);
             let xr = if r == 0 { xmz } else { &done[r * n..] };
-            let s = dot(&self.u[r * n..(r + 1) * n], xr);
-            ws.s[r] = s;
+            let s = dot(&u[r * n..(r + 1) * n], xr);
+            s_buf[r] = s;
             if r + 1 < nr {
-                let next = &mut rest[..n];
-                for i in 0..n {
-                    next[i] = xr[i] - self.p[i + r * n] * s;
+                let pr = &p[r * n..(r + 1) * n];
+                for ((next, x), pi) in rest[..n].iter_mut().zip(xr).zip(pr) {
+                    *next = x - pi * s;
                 }
             }
         }
         let mut yres = 0.0;
         for r in 0..nr {
-            yres += self.beta[r] * ws.s[r];
-            self.sum_w[r] = self.sum_w[r] * self.lambda[r] + w;
-            ws.e_cv[r] = y - yres;
+            yres += beta[r] * s_buf[r];
+            sum_w[r] = sum_w[r] * lambda[r] + w;
+            e_cv[r] = y - yres;
         }
-        ws.ytarget[0] = y;
+        ytarget[0] = y;
         for r in 1..nr {
-            ws.ytarget[r] = ws.e_cv[r - 1];
+            ytarget[r] = e_cv[r - 1];
         }
         let mut ws2_ss_s2 = 0.0;
         for r in 0..nr {
             let col = r * n..(r + 1) * n;
-            let lambda = self.lambda[r];
-            let lambda_slow = 0.9 + 0.1 * lambda;
-            let wyt = w * ws.ytarget[r];
-            let xr = if r == 0 {
-                &ws.xmz[..n]
-            } else {
-                &ws.xres[col.clone()]
-            };
+            let lambda_r = lambda[r];
+            let lambda_slow = 0.9 + 0.1 * lambda_r;
+            let wyt = w * ytarget[r];
+            let xr = if r == 0 { xmz } else { &xres[col.clone()] };
+            let sxy_r = &mut sxres_yres[col.clone()];
             let mut norm2 = 0.0;
-            for (sxy, x) in self.sxres_yres[col.clone()].iter_mut().zip(xr) {
+            for (sxy, x) in sxy_r.iter_mut().zip(xr) {
                 *sxy = *sxy * lambda_slow + wyt * x;
                 norm2 += *sxy * *sxy;
             }
             if norm2 > 1e-24 {
                 let inv = 1.0 / norm2.sqrt();
-                for (u, sxy) in self.u[col.clone()]
-                    .iter_mut()
-                    .zip(&self.sxres_yres[col.clone()])
-                {
+                for (u, sxy) in u[col.clone()].iter_mut().zip(sxy_r.iter()) {
                     *u = inv * sxy;
                 }
             }
-            let s = ws.s[r];
+            let s = s_buf[r];
             let ws_r = w * s;
-            self.ss_s2[r] = lambda * self.ss_s2[r] + s * ws_r;
-            self.ss_yres[r] = lambda * self.ss_yres[r] + ws.ytarget[r] * ws_r;
-            let inv_ss_s2 = 1.0 / self.ss_s2[r];
-            for ((sx, p), x) in self.ss_xres[col.clone()]
+            ss_s2[r] = lambda_r * ss_s2[r] + s * ws_r;
+            ss_yres[r] = lambda_r * ss_yres[r] + ytarget[r] * ws_r;
+            let inv_ss_s2 = 1.0 / ss_s2[r];
+            for ((sx, p), x) in ss_xres[col.clone()]
                 .iter_mut()
-                .zip(&mut self.p[col.clone()])
+                .zip(&mut p[col.clone()])
                 .zip(xr)
             {
-                *sx = lambda * *sx + ws_r * x;
+                *sx = lambda_r * *sx + ws_r * x;
                 *p = *sx * inv_ss_s2;
             }
-            self.beta[r] = self.ss_yres[r] * inv_ss_s2;
+            beta[r] = ss_yres[r] * inv_ss_s2;
             ws2_ss_s2 += ws_r * ws_r * inv_ss_s2;
         }
         self.ssp = self.lambda[nr - 1] * self.ssp + ws2_ss_s2;
 
         // Loadings with the updated projections (the residuals go to `ws.dx` as scratch).
-        let xmz = &ws.xmz[..n];
+        let (u, p, beta) = (&self.u[..n * nr], &self.p[..n * nr], &self.beta[..nr]);
         let (xu, _) = ws.dx.split_at_mut(n);
-        let s = dot(&self.u[..n], xmz);
-        ws.s[0] = s;
+        let s_buf = &mut ws.s[..nr];
+        let s = dot(&u[..n], xmz);
+        s_buf[0] = s;
         if nr > 1 {
-            for ((v, x), p) in xu.iter_mut().zip(xmz).zip(&self.p[..n]) {
+            for ((v, x), p) in xu.iter_mut().zip(xmz).zip(&p[..n]) {
                 *v = x + -s * p;
             }
         }
         for r in 1..nr {
-            let s = dot(&self.u[r * n..(r + 1) * n], xu);
-            ws.s[r] = s;
+            let s = dot(&u[r * n..(r + 1) * n], xu);
+            s_buf[r] = s;
             if r + 1 < nr {
-                axpy(xu, -s, &self.p[r * n..(r + 1) * n]);
+                axpy(xu, -s, &p[r * n..(r + 1) * n]);
             }
         }
-        let used = self.n_reg_trusted();
-        let ypred: f64 = (0..used).map(|r| self.beta[r] * ws.s[r]).sum();
+        let ypred: f64 = (0..used).map(|r| beta[r] * s_buf[r]).sum();
         // With no trusted projection the prediction is the intercept alone, so the
         // cross-validation error is the mean-free target itself (the reference reads the
         // element before `e_cv` here).
-        let e_cv = if used == 0 { y } else { ws.e_cv[used - 1] };
+        let e_cv = &ws.e_cv[..nr];
+        let e_cv_used = if used == 0 { y } else { e_cv[used - 1] };
         let e = y - ypred;
-        if self.n_data[0] * (1.0 - self.lambda[0]) > 0.1 {
-            self.sum_e2 = self.sum_e2 * self.lambda[nr - 1] + w * e * e;
-            for r in 0..nr {
-                self.sum_e_cv2[r] =
-                    self.sum_e_cv2[r] * self.lambda[r] + w * ws.e_cv[r] * ws.e_cv[r];
+        let lambda = &self.lambda[..nr];
+        if self.n_data[0] * (1.0 - lambda[0]) > 0.1 {
+            self.sum_e2 = self.sum_e2 * lambda[nr - 1] + w * e * e;
+            for ((sum, e), l) in self.sum_e_cv2[..nr].iter_mut().zip(e_cv).zip(lambda) {
+                *sum = *sum * l + w * e * e;
             }
         }
         if self.n_data[0] > 2.0 * n as f64 {
@@ -377,7 +393,7 @@ impl ReceptiveField {
         }
         RegressionStep {
             yp: ypred + self.beta0,
-            e_cv,
+            e_cv: e_cv_used,
             e,
         }
     }
