@@ -314,11 +314,12 @@ impl ReceptiveField {
             yres += beta[r] * s_buf[r];
             sum_w[r] = sum_w[r] * lambda[r] + w;
             e_cv[r] = y - yres;
+            // Projection r + 1 regresses what the first r + 1 left unexplained.
+            if r + 1 < nr {
+                ytarget[r + 1] = e_cv[r];
+            }
         }
         ytarget[0] = y;
-        for r in 1..nr {
-            ytarget[r] = e_cv[r - 1];
-        }
         let mut ws2_ss_s2 = 0.0;
         for r in 0..nr {
             let col = r * n..(r + 1) * n;
