@@ -104,22 +104,16 @@ impl ReceptiveField {
         let n = dim.n();
         let nr = self.n_reg();
         let w = act.w;
-        for r in 0..nr {
-            ws.deriv_ok[r] = self.n_data[r] * (1.0 - self.lambda[0]) > 0.1;
-        }
-        if !ws.deriv_ok[0] {
+        let lambda0 = self.lambda[0];
+        // A projection takes part in the gradient once it has seen enough data; the first
+        // has seen the most, so without it nothing does.
+        let warm = self.n_data[0] * (1.0 - lambda0) > 0.1;
+        if !warm {
             return 0.0;
         }
         let penalty = config.penalty / n as f64;
         let e2 = e * e;
         let e_cv2 = e_cv * e_cv;
-        let mut h = 0.0;
-        for r in 0..nr {
-            if ws.deriv_ok[r] {
-                h += ws.s[r] * ws.s[r] / self.ss_s2[r];
-            }
-        }
-        h *= w;
         let big_w = self.sum_w[0];
         let big_e = if nr == 1 || self.n_data[nr - 1] > 2.0 * n as f64 {
             self.sum_e_cv2[nr - 1]
@@ -128,17 +122,29 @@ impl ReceptiveField {
         };
         let transient = (self.sum_e2 / (big_e + 1e-10)).powi(4).min(1.0);
 
-        // dJ1/dw of the leave-one-out cost.
+        // The leverage h and dJ1/dw of the leave-one-out cost, in one pass over the
+        // projections.
+        let (n_data, ss_s2) = (&self.n_data[..nr], &self.ss_s2[..nr]);
+        let (big_h, r_mem) = (&self.big_h[..nr], &self.r[..nr]);
+        let (s_buf, ps_buf) = (&ws.s[..nr], &mut ws.ps[..nr]);
+        let deriv_ok = &mut ws.deriv_ok[..nr];
+        let mut h = 0.0;
         let mut dj1dw = -big_e / big_w + e_cv2;
         for r in 0..nr {
-            ws.ps[r] = if ws.deriv_ok[r] {
-                ws.s[r] / self.ss_s2[r]
+            let ok = n_data[r] * (1.0 - lambda0) > 0.1;
+            deriv_ok[r] = ok;
+            let s = s_buf[r];
+            let ps = if ok {
+                h += s * s / ss_s2[r];
+                s / ss_s2[r]
             } else {
                 0.0
             };
-            let pse = e * ws.ps[r];
-            dj1dw -= 2.0 * pse * self.big_h[r] + 2.0 * ws.ps[r] * ws.ps[r] * self.r[r];
+            ps_buf[r] = ps;
+            let pse = e * ps;
+            dj1dw -= 2.0 * pse * big_h[r] + 2.0 * ps * ps * r_mem[r];
         }
+        h *= w;
         dj1dw /= big_w;
         let w_over_w = w / big_w;
 
