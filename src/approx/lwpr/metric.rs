@@ -155,10 +155,10 @@ impl ReceptiveField {
         distance_derivatives(dim, self, act, penalty, diag_only, config.meta, ws);
 
         let mut max_m = 0.0f64;
-        for_each_element(n, diag_only, |off| max_m = max_m.max(self.m[off].abs()));
-        // Reuse dj2dm as the whole gradient dJ/dM.
         for_each_element(n, diag_only, |off| {
-            ws.dj2dm[off] = w_over_w * ws.dj2dm[off] + ws.dwdm[off] * dj1dw
+            max_m = max_m.max(self.m[off].abs());
+            // Reuse dj2dm as the whole gradient dJ/dM.
+            ws.dj2dm[off] = w_over_w * ws.dj2dm[off] + ws.dwdm[off] * dj1dw;
         });
 
         if config.meta {
@@ -197,23 +197,23 @@ impl ReceptiveField {
             } else {
                 self.m[off] -= delta;
             }
-        });
-        if diag_only {
-            for k in 0..n {
-                let kk = k + k * n;
-                self.d[kk] = self.m[kk] * self.m[kk];
+            if diag_only {
+                self.d[off] = self.m[off] * self.m[off];
             }
-        } else {
+        });
+        if !diag_only {
             metric_from_factor(n, &self.m, &mut self.d);
         }
 
+        let h_gain = w / (1.0 - h);
+        let r_gain = w * w * e_cv2 / (1.0 - h);
+        let (lambda, big_h, r_mem) = (&self.lambda[..nr], &mut self.big_h[..nr], &mut self.r[..nr]);
+        let (s_buf, deriv_ok) = (&ws.s[..nr], &ws.deriv_ok[..nr]);
         for r in 0..nr {
-            if ws.deriv_ok[r] {
-                let s = ws.s[r];
-                self.big_h[r] =
-                    self.lambda[r] * self.big_h[r] + (w / (1.0 - h)) * s * e_cv * transient;
-                self.r[r] =
-                    self.lambda[r] * self.r[r] + (w * w * e_cv2 / (1.0 - h)) * s * s * transient;
+            if deriv_ok[r] {
+                let s = s_buf[r];
+                big_h[r] = lambda[r] * big_h[r] + h_gain * s * e_cv * transient;
+                r_mem[r] = lambda[r] * r_mem[r] + r_gain * s * s * transient;
             }
         }
         transient
