@@ -39,8 +39,13 @@ fn check_rf(rf: &ReceptiveField, lwpr: &Lwpr, label: &str) -> Result<(), ApproxE
     let (config, ..) = lwpr.parts();
     let n = config.n_in;
     let nr = rf.beta.len();
-    if nr == 0 || nr > n {
-        return Err(corrupt(format!("{label}: {nr} projections, need 1..={n}")));
+    // Training starts a field with min(2, n) projections and only adds more, and adding one
+    // compares the newest two: a field with fewer cannot come from a saved model.
+    let least = n.min(2);
+    if nr < least || nr > n {
+        return Err(corrupt(format!(
+            "{label}: {nr} projections, need {least}..={n}"
+        )));
     }
     for (what, v) in [("c", &rf.c), ("mean_x", &rf.mean_x), ("var_x", &rf.var_x)] {
         check_len(&format!("{label}.{what}"), v, n)?;

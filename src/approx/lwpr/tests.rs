@@ -249,3 +249,36 @@ fn rejected_updates_leave_the_model_bit_identical() {
     assert!(model.update(&[0.1, 0.2], &[f64::INFINITY]).is_err());
     assert_eq!(before, serde_json::to_string(&model).unwrap());
 }
+
+#[test]
+fn a_saved_field_with_too_few_projections_is_rejected_on_load() {
+    use crate::approx::{ApproxError, Lwpr, Persist};
+    let mut model = Lwpr::new(LwprConfig::new(2, 1)).unwrap();
+    for k in 0..200 {
+        let x = [(k % 20) as f64 / 10.0 - 1.0, (k % 7) as f64 / 3.5 - 1.0];
+        model.update(&x, &[x[0] * x[1]]).unwrap();
+    }
+    let mut json: serde_json::Value = serde_json::from_str(&model.to_json().unwrap()).unwrap();
+    let rf = &mut json["sub"][0]["rfs"][0];
+    for key in [
+        "beta",
+        "ss_s2",
+        "ss_yres",
+        "big_h",
+        "r",
+        "sum_w",
+        "sum_e_cv2",
+        "n_data",
+        "lambda",
+    ] {
+        rf[key].as_array_mut().unwrap().truncate(1);
+    }
+    for key in ["sxres_yres", "ss_xres", "u", "p"] {
+        rf[key].as_array_mut().unwrap().truncate(2);
+    }
+    let err = Lwpr::from_json(&json.to_string()).unwrap_err();
+    assert!(
+        matches!(err, ApproxError::Corrupt(ref m) if m.contains("1 projections")),
+        "{err}"
+    );
+}
