@@ -45,11 +45,15 @@
 //!   trusted that projection, the C code reads the element before the CV-error array. Here
 //!   the CV error of "no projection" is the mean-free target itself, which is what the
 //!   prediction without projections (the intercept) gets wrong.
-//! - **Skipping far fields**: before evaluating the kernel, the squared distance is
-//!   accumulated with an early exit once it exceeds the distance at which the activation
-//!   drops below the update threshold (`min(0.001, 0.1 w_gen)`) or the prediction cutoff.
-//!   The bound is padded so that skipping never changes a result; it only saves work. For
+//! - **Skipping far fields**: the kernel is evaluated only for fields whose squared distance
+//!   is within the distance at which the activation drops below the update threshold
+//!   (`min(0.001, 0.1 w_gen)`) or the prediction cutoff. The bound is padded so that
+//!   skipping never changes a result; it only saves work. An update computes the distances of
+//!   all fields in one vectorised pass over a column-wise index of centres and metrics. For
 //!   full metrics the distance is computed as `|M (x - c)|^2` (the C code uses `D`).
+//! - **Saved models** whose fields have fewer projections than training starts with
+//!   (`min(2, n_in)`) are rejected on load: the C code would read before an array when
+//!   deciding whether to add a projection.
 //! - **No confidence** where no trustworthy field is active is `f64::INFINITY` (the C code
 //!   returns `1e20`).
 //! - **Prediction cutoff** is a configuration parameter ([`LwprConfig::cutoff`], default
@@ -64,9 +68,12 @@
 //! and agree to 5e-15 with full metrics (where the distance is computed via `M`, not `D`).
 //!
 //! # Cost
-//! Updates and predictions allocate nothing (a preallocated workspace; predictions use a stack
-//! buffer for up to 32 inputs). Creating a receptive field allocates its storage once,
-//! with room for all projections.
+//! Updates and predictions allocate nothing (a preallocated workspace whose distance buffer
+//! grows only with the field count; predictions use a stack buffer for up to 32 inputs).
+//! Creating a receptive field allocates its storage once, with room for all projections.
+//! Training is compiled separately for 1 to 4 inputs so that its small loops unroll. Measured
+//! against the C library on the same machine, updates are 2.0-3.3x and predictions 2.6-2.8x
+//! faster (see the README).
 
 // Column-major matrix code reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
