@@ -139,7 +139,7 @@ fn touch_down_applies_eq6_at_every_recorded_input() {
         PendulumCart::default(),
         LearnerConfig {
             eta: 0.5,
-            ..Default::default()
+            ..LearnerConfig::literal()
         },
     )
     .unwrap();
@@ -181,7 +181,7 @@ fn predictions_are_taken_before_updates() {
     let mut learner = FootstepLearner::new(
         table(),
         Fixed(0.1, AtomicUsize::new(0)),
-        LearnerConfig::default(),
+        LearnerConfig::literal(),
     )
     .unwrap();
     learner.query(input(0.01, 0.0, 0.0)).unwrap();
@@ -195,7 +195,7 @@ fn predictions_are_taken_before_updates() {
 fn recording_is_bounded_and_evenly_spread() {
     let cfg = LearnerConfig {
         max_samples_per_step: 16,
-        ..Default::default()
+        ..LearnerConfig::literal()
     };
     let mut learner = FootstepLearner::new(table(), BalanceOnly, cfg).unwrap();
     for n in 1..=1000usize {
@@ -222,7 +222,7 @@ fn recording_is_bounded_and_evenly_spread() {
 fn output_clamp_limits_the_query_not_the_model() {
     let cfg = LearnerConfig {
         max_offset: Some(0.05),
-        ..Default::default()
+        ..LearnerConfig::literal()
     };
     let mut learner = FootstepLearner::new(table(), Fixed(0.3, AtomicUsize::new(0)), cfg).unwrap();
     let x = input(0.0, 0.0, 0.0);
@@ -237,19 +237,19 @@ fn bad_configs_shapes_and_inputs_are_typed_errors() {
     for cfg in [
         LearnerConfig {
             eta: 0.0,
-            ..Default::default()
+            ..LearnerConfig::literal()
         },
         LearnerConfig {
             eta: f64::NAN,
-            ..Default::default()
+            ..LearnerConfig::literal()
         },
         LearnerConfig {
             max_samples_per_step: 1,
-            ..Default::default()
+            ..LearnerConfig::literal()
         },
         LearnerConfig {
             max_offset: Some(-1.0),
-            ..Default::default()
+            ..LearnerConfig::literal()
         },
     ] {
         assert!(matches!(
@@ -258,13 +258,13 @@ fn bad_configs_shapes_and_inputs_are_typed_errors() {
         ));
     }
     assert!(matches!(
-        FootstepLearner::new(TwoInputs, BalanceOnly, LearnerConfig::default()),
+        FootstepLearner::new(TwoInputs, BalanceOnly, LearnerConfig::literal()),
         Err(LearnerError::WrongApproximatorShape {
             inputs: 2,
             outputs: 1
         })
     ));
-    let mut learner = FootstepLearner::new(table(), BalanceOnly, LearnerConfig::default()).unwrap();
+    let mut learner = FootstepLearner::new(table(), BalanceOnly, LearnerConfig::literal()).unwrap();
     learner.query(input(0.1, 0.0, 0.0)).unwrap();
     assert!(matches!(
         learner.query(input(f64::NAN, 0.0, 0.0)),
@@ -313,7 +313,7 @@ fn approximator_failure_propagates_and_leaves_the_learner_usable() {
     let mut learner = FootstepLearner::new(
         model,
         Fixed(0.2, AtomicUsize::new(0)),
-        LearnerConfig::default(),
+        LearnerConfig::literal(),
     )
     .unwrap();
     let (a, b) = (input(-0.4, 0.0, 0.0), input(0.4, 0.0, 0.0));
@@ -338,7 +338,7 @@ fn metric_and_map_sample_the_model() {
     let mut learner = FootstepLearner::new(
         table(),
         Fixed(0.1, AtomicUsize::new(0)),
-        LearnerConfig::default(),
+        LearnerConfig::literal(),
     )
     .unwrap();
     let grid = InputGrid {
@@ -383,6 +383,7 @@ fn save_load_round_trip_keeps_learning() {
         eta: 0.7,
         max_samples_per_step: 8,
         max_offset: Some(0.3),
+        ..LearnerConfig::literal()
     };
     let mut learner = FootstepLearner::new(table(), PendulumCart::default(), cfg).unwrap();
     let step = StepOutcome {
@@ -544,7 +545,7 @@ proptest::proptest! {
         eta in 0.01..3.0f64,
         g in -1.0..1.0f64,
     ) {
-        let cfg = LearnerConfig { eta, max_samples_per_step: 32, ..Default::default() };
+        let cfg = LearnerConfig { eta, max_samples_per_step: 32, ..LearnerConfig::literal() };
         let mut learner = FootstepLearner::new(table(), Fixed(g, AtomicUsize::new(0)), cfg).unwrap();
         for &(a, b, c) in &points {
             learner.query(input(a, b, c)).unwrap();
@@ -562,11 +563,10 @@ proptest::proptest! {
 }
 
 #[test]
-fn works_with_boxed_approximator_and_rule_chosen_at_run_time() {
+fn works_with_a_rule_chosen_at_run_time() {
     use steplearn::rules::{RuleConfig, RuleKind};
-    let approx: Box<dyn FunctionApproximator> = Box::new(table());
     let rule = RuleConfig::from(RuleKind::BalanceOnly).build().unwrap();
-    let mut learner = FootstepLearner::new(approx, rule, LearnerConfig::default()).unwrap();
+    let mut learner = FootstepLearner::new(table(), rule, LearnerConfig::literal()).unwrap();
     learner.query(input(0.1, 0.0, 0.0)).unwrap();
     let report = learner
         .touch_down(&StepOutcome {
@@ -591,4 +591,193 @@ fn input_grid_box_matches_its_corners_and_rejects_flat_axes() {
     // a single F_R value is a valid grid to sample but not a box to size an approximator by
     assert!(flat.validate().is_ok());
     assert!(flat.input_box().is_err());
+}
+
+/// A table that jumps all the way to its targets (the least stable approximator there is).
+fn jumpy() -> BinTable {
+    BinTable::new([10, 8, 6], 1.0)
+}
+
+fn one_step(learner: &mut FootstepLearner<BinTable, Fixed>, x: LearnerInput, reach: (f64, f64)) {
+    learner.query(x).unwrap();
+    learner.set_reach(reach.0, reach.1).unwrap();
+}
+
+#[test]
+fn gain_guard_keeps_the_applied_gain_at_its_limit_for_a_jumpy_approximator() {
+    let cfg = LearnerConfig {
+        prior: steplearn::control::learner::Prior::none(),
+        ..LearnerConfig::default()
+    };
+    let limit = cfg.max_gain.unwrap();
+    let mut learner = FootstepLearner::new(jumpy(), Fixed(0.3, AtomicUsize::new(0)), cfg).unwrap();
+    let x = input(0.05, 0.1, 0.0);
+    one_step(&mut learner, x, (f64::NEG_INFINITY, f64::INFINITY));
+    let report = learner.touch_down(&StepOutcome::default()).unwrap();
+    // The table moves all the way (response 1); the guard scales eta G = 0.3 to 0.2 * 0.3.
+    assert!((report.response - 1.0).abs() < 1e-12, "{report:?}");
+    assert!(
+        report.gain <= 1.05 * limit && report.gain > 0.5 * limit,
+        "{report:?}"
+    );
+    assert!((report.scale - limit).abs() < 1e-9, "{report:?}");
+    assert!((learner.predict(x).unwrap() - 0.3 * report.gain).abs() < 1e-12);
+    // Without the guard the same table applies the whole step.
+    let mut literal = FootstepLearner::new(
+        jumpy(),
+        Fixed(0.3, AtomicUsize::new(0)),
+        LearnerConfig::literal(),
+    )
+    .unwrap();
+    one_step(&mut literal, x, (f64::NEG_INFINITY, f64::INFINITY));
+    let report = literal.touch_down(&StepOutcome::default()).unwrap();
+    assert_eq!((report.gain, report.scale), (1.0, 1.0));
+    assert_eq!(literal.predict(x).unwrap(), 0.3);
+}
+
+#[test]
+fn anti_windup_bounds_the_offset_by_the_reach_and_unwinds_it() {
+    let cfg = LearnerConfig {
+        max_gain: None,
+        prior: steplearn::control::learner::Prior::none(),
+        ..LearnerConfig::default()
+    };
+    let mut learner = FootstepLearner::new(jumpy(), Fixed(0.5, AtomicUsize::new(0)), cfg).unwrap();
+    let x = input(0.1, 0.0, 0.1);
+    // G keeps asking for more; only 0.12 more can change the step.
+    for _ in 0..50 {
+        one_step(&mut learner, x, (-0.3, 0.12));
+        learner.touch_down(&StepOutcome::default()).unwrap();
+        assert!(learner.predict(x).unwrap() <= 0.12 + 1e-12);
+    }
+    assert!((learner.predict(x).unwrap() - 0.12).abs() < 1e-12);
+    // Past a smaller reach the offset stops where it is (it is not pulled into the reach)...
+    one_step(&mut learner, x, (-0.3, 0.05));
+    learner.touch_down(&StepOutcome::default()).unwrap();
+    assert!((learner.predict(x).unwrap() - 0.12).abs() < 1e-12);
+    // ... and moves on, up to the end of a larger reach.
+    one_step(&mut learner, x, (0.4, 0.6));
+    learner.touch_down(&StepOutcome::default()).unwrap();
+    assert!((learner.predict(x).unwrap() - 0.6).abs() < 1e-12);
+    // The literal eq. (6) integrates without bound.
+    let mut literal = FootstepLearner::new(
+        jumpy(),
+        Fixed(0.5, AtomicUsize::new(0)),
+        LearnerConfig::literal(),
+    )
+    .unwrap();
+    for _ in 0..50 {
+        one_step(&mut literal, x, (-0.3, 0.12));
+        literal.touch_down(&StepOutcome::default()).unwrap();
+    }
+    assert!((literal.predict(x).unwrap() - 25.0).abs() < 1e-9);
+}
+
+#[test]
+fn set_reach_rejects_nan_and_reversed_bounds_without_changing_the_step() {
+    let mut learner = FootstepLearner::new(
+        jumpy(),
+        Fixed(0.5, AtomicUsize::new(0)),
+        LearnerConfig::literal(),
+    )
+    .unwrap();
+    learner.query(input(0.0, 0.0, 0.0)).unwrap();
+    assert!(learner.set_reach(0.2, 0.1).is_err());
+    assert!(learner.set_reach(f64::NAN, 0.1).is_err());
+    assert_eq!(learner.recorded_inputs().len(), 1);
+}
+
+#[test]
+fn the_prior_is_held_and_lowers_lwprs_response() {
+    use steplearn::approx::ApproxKind;
+    let make = |prior| {
+        let lwpr = ApproxKind::Lwpr
+            .build(&InputGrid::default().input_box().unwrap())
+            .unwrap();
+        let cfg = LearnerConfig {
+            max_gain: None,
+            prior,
+            ..LearnerConfig::default()
+        };
+        FootstepLearner::new(lwpr, PendulumCart::default(), cfg).unwrap()
+    };
+    let mut with = make(steplearn::control::learner::Prior::default());
+    let mut without = make(steplearn::control::learner::Prior::none());
+    let x = input(0.05, 0.2, 0.1);
+    assert_eq!(with.predict(x).unwrap(), 0.0);
+    let step = StepOutcome {
+        theta_e: 0.05,
+        ..StepOutcome::default()
+    };
+    for l in [&mut with, &mut without] {
+        for i in 0..20 {
+            l.query(input(0.05 + 0.001 * i as f64, 0.2, 0.1)).unwrap();
+        }
+    }
+    let r_with = with.touch_down(&step).unwrap().response;
+    let r_without = without.touch_down(&step).unwrap().response;
+    eprintln!("response with the prior {r_with}, without {r_without}");
+    assert!(r_without > 0.9, "{r_without}");
+    // measured: 0.32 with the prior, 1.00 without
+    assert!(r_with < 0.5, "{r_with}");
+}
+
+#[test]
+fn a_fall_is_learned_from_only_when_that_setting_is_on() {
+    let fall = StepOutcome {
+        theta_e: 0.9,
+        theta_e_dot: 8.0,
+        f_e: 0.02,
+        f_r: 0.0,
+    };
+    let x = input(0.2, 1.0, 0.0);
+    for on in [false, true] {
+        let cfg = LearnerConfig {
+            learn_from_falls: on,
+            ..LearnerConfig::literal()
+        };
+        let mut learner = FootstepLearner::new(jumpy(), BalanceOnly, cfg).unwrap();
+        learner.query(x).unwrap();
+        let report = learner.fall(&fall).unwrap();
+        assert_eq!(learner.recorded_inputs().len(), 0);
+        if on {
+            // theta_E clamped to the fall limit (0.3) before the rule sees it
+            assert_eq!(report.unwrap().gradient, 0.3);
+            assert_eq!(learner.predict(x).unwrap(), 0.3);
+        } else {
+            assert!(report.is_none());
+            assert_eq!(learner.predict(x).unwrap(), 0.0);
+        }
+    }
+}
+
+#[test]
+fn new_learner_settings_are_validated() {
+    for bad in [
+        LearnerConfig {
+            max_gain: Some(0.0),
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            max_gain: Some(f64::NAN),
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            fall_theta_limit: -1.0,
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            prior: steplearn::control::learner::Prior {
+                lo: input(0.3, 0.0, 0.0),
+                hi: input(-0.3, 1.0, 1.0),
+                samples: 10,
+            },
+            ..LearnerConfig::default()
+        },
+    ] {
+        let err = FootstepLearner::new(table(), BalanceOnly, bad)
+            .err()
+            .unwrap();
+        assert!(matches!(err, LearnerError::InvalidConfig { .. }), "{err}");
+    }
 }

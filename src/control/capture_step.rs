@@ -277,6 +277,9 @@ pub struct StepDecision {
     pub step: [f64; 2],
     /// The learned sagittal offset that was added (m).
     pub learned_offset: f64,
+    /// The sagittal step without the learned offset and before the step limit (m; 0 when the
+    /// analytic footstep is off): the step is `clamp(analytic_step_x + learned_offset)`.
+    pub analytic_step_x: f64,
     /// Whether the CoM is crossing towards the support leg (the step time is then the maximum).
     pub crossing: bool,
 }
@@ -494,12 +497,12 @@ impl CaptureStep {
         let fy = lipm
             .pivot_for(end[1], -l * self.alpha, 0.0)
             .unwrap_or(l * self.alpha);
-        let mut step_x = if cfg.analytic_footstep {
-            end[0].pos + end[0].vel / c * (c * tau).tanh() + learned_offset
+        let analytic_step_x = if cfg.analytic_footstep {
+            end[0].pos + end[0].vel / c * (c * tau).tanh()
         } else {
-            learned_offset
+            0.0
         };
-        step_x = step_x.clamp(-cfg.max_step_x, cfg.max_step_x);
+        let step_x = (analytic_step_x + learned_offset).clamp(-cfg.max_step_x, cfg.max_step_x);
         let footstep = [step_x - end[0].pos, fy];
         let step = [step_x, end[1].pos + fy];
 
@@ -513,6 +516,7 @@ impl CaptureStep {
             footstep,
             step,
             learned_offset,
+            analytic_step_x,
             crossing,
         })
     }

@@ -13,19 +13,37 @@
 //! dF to the Capture Step footstep or uses dF as the whole step. The learner trains dF the same
 //! way in both cases.
 //!
-//! Stability note: near the reference, eq. (5) changes by p_theta p_F = 4.5 per metre of step
-//! error, and eta = 1 adds G (in metres) to dF. If the approximator moved a fraction r of the
-//! way to its targets per step, the step error would evolve as e <- (1 - 4.5 r) e, which
-//! overshoots for r > 0.22 and no longer settles for r > 0.44 (a limit cycle bounded by the
-//! saturation). LWPR's receptive fields average over their history, so r shrinks quickly; an
-//! approximator with a large fixed learning rate needs a smaller eta (see the toy-walker test
-//! in `tests/learner.rs`).
+//! # Stability by construction
 //!
-//! On the simulated humanoid the loop is harder than this estimate (measured, see the README):
-//! the Capture Step controller feeds back on the CoM, so a constant dF is largely cancelled by
-//! the next analytic footsteps (the first step realises about 0.6 dF, later ones less), while
-//! the trunk angle at touch-down follows the realised step (about +0.55 rad per metre). With
-//! eta = 1 dF runs away within seconds even without pushes.
+//! One touch-down moves the prediction at the step's inputs by `gain * G`, where the gain is
+//! eta times the approximator's response r (the share of a requested change its predictions
+//! actually move; a fresh LWPR receptive field moves ~1.0, one that has seen a thousand samples
+//! ~0.03). Near the reference the walker answers a sustained offset with
+//! dG/dF = -k, k ~ 4.8 per metre on the simulated humanoid (the tanh slope p_theta p_F = 4.5
+//! plus d theta_E / dF ~ 0.3 rad/m), so the step error evolves as e <- (1 - gain k) e: it
+//! settles monotonically for gain < 1/k ~ 0.21, oscillates but settles below 2/k ~ 0.42 and
+//! grows beyond (bounded only by saturation and falls). Eq. (6) at the paper's eta = 1 with an
+//! untrained approximator has gain ~ 1: unstable by construction. Three settings of
+//! [`LearnerConfig`] make it stable for any approximator and any eta:
+//!
+//! - **Gain guard** (`max_gain`, default 0.2 ~ 1/k, half the stability limit): the update is
+//!   tried on a copy of the approximator; if its response gives a larger gain, the step is
+//!   scaled to the limit and applied to the original. [`TouchDownReport`] carries r, the gain
+//!   applied and the scale; the trial log records the gain of every touch-down.
+//! - **Anti-windup** (`anti_windup`, conditional integration): no target goes further past the
+//!   offsets that could still change the step at that tick (the walker tells the learner this
+//!   reach: the step range minus the analytic step). Without it eq. (6) kept integrating where
+//!   the step range was exhausted (|dF| reached 24 m in one run). Targets are not pulled *into*
+//!   the reach: after backward pushes the analytic step lay beyond the range's backward end,
+//!   and clamping targets into the reach drove dF to +0.7 m there (stepping forward when pushed
+//!   back; backward I50 4.6-5.3 Ns against the model's 6.2-7.0 on seeds 0-2).
+//! - **Prior** (`prior`): the paper's initialised learner starts at dF = 0 everywhere; training
+//!   that belief in at 1000 points makes the approximator hold it with confidence, so that
+//!   early steps do not move it all the way (the response of the experiments' LWPR to its first
+//!   step drops from 1.00 to 0.32, `tests/learner.rs`).
+//!
+//! [`LearnerConfig::literal`] is eq. (6) as written, without the three.
+//!
 
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, StepOutcome};
@@ -131,22 +149,117 @@ pub struct LearnerConfig {
     /// all of them otherwise. Default 128 (every tick of a 0.5 s step at 250 Hz).
     pub max_samples_per_step: usize,
     /// If set, the offset returned by [`FootstepLearner::query`] is clamped to +-this (m);
-    /// training targets are not clamped. Must be finite and > 0.
+    /// training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
     pub max_offset: Option<f64>,
+    /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
+    /// unit of G (see [`TouchDownReport::gain`] and the module docs for the limit). If the
+    /// approximator's response to the full step eta G would exceed it, the step is scaled down
+    /// and applied again to the approximator as it was. `None` turns the guard off (eq. 6 as
+    /// written). Default 0.2. Must be finite and > 0.
+    pub max_gain: Option<f64>,
+    /// Anti-windup (conditional integration): a training target never goes further past an end
+    /// of the offsets that could still change the step at that tick than the prediction already
+    /// is (the reach told by [`FootstepLearner::set_reach`]: on the walker, the step range minus
+    /// the analytic step). Default on.
+    pub anti_windup: bool,
+    /// Learn from a step that ended in a fall ([`FootstepLearner::fall`]): the step in
+    /// progress at the fall is treated as if it had touched down, with theta_E clamped to
+    /// +-`fall_theta_limit`. Off by default (the paper's learner sees touch-downs only).
+    pub learn_from_falls: bool,
+    /// |theta_E| and |theta_E_dot| / 10 at a fall are clamped to this before the rule sees them
+    /// (rad, finite, > 0; default 0.3): past the fall threshold the angle says nothing more.
+    pub fall_theta_limit: f64,
+    /// The prior held from the start: dF = 0, trained into the approximator at
+    /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`].
+    pub prior: Prior,
+}
+
+/// The learner's initial belief dF = 0, trained into the approximator before any step so
+/// that it holds it with confidence (an untrained LWPR moves nearly all the way to its first
+/// targets, which makes eq. 6 at eta = 1 unstable; see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Prior {
+    /// Number of samples (0: no prior, the approximator starts as built).
+    pub samples: usize,
+    /// Lower corner of the box the samples cover.
+    pub lo: LearnerInput,
+    /// Upper corner.
+    pub hi: LearnerInput,
+}
+
+impl Default for Prior {
+    /// 1000 points of a Halton sequence over theta_E in [-0.3, 0.3] rad, theta_E_dot in
+    /// [-1.5, 1.5] rad/s and F_R in [-0.1, 0.2] m: the states the walker meets without pushes.
+    fn default() -> Self {
+        Prior {
+            samples: 1000,
+            lo: LearnerInput::new(-0.3, -1.5, -0.1),
+            hi: LearnerInput::new(0.3, 1.5, 0.2),
+        }
+    }
+}
+
+impl Prior {
+    /// No prior: the approximator starts as built.
+    pub fn none() -> Self {
+        Prior {
+            samples: 0,
+            ..Prior::default()
+        }
+    }
+
+    /// The `i`-th point of the prior (Halton sequence, bases 2, 3, 5, scaled to the box).
+    pub fn point(&self, i: usize) -> [f64; LEARNER_INPUTS] {
+        let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
+        let mut x = [0.0; LEARNER_INPUTS];
+        for (a, base) in [2usize, 3, 5].into_iter().enumerate() {
+            x[a] = lo[a] + (hi[a] - lo[a]) * radical_inverse(i + 1, base);
+        }
+        x
+    }
+}
+
+/// The van der Corput radical inverse of `i` in `base`, in [0, 1).
+fn radical_inverse(mut i: usize, base: usize) -> f64 {
+    let (mut inv, mut f) = (0.0, 1.0 / base as f64);
+    while i > 0 {
+        inv += (i % base) as f64 * f;
+        i /= base;
+        f /= base as f64;
+    }
+    inv
 }
 
 impl Default for LearnerConfig {
-    /// eta = 1, 128 samples per step, no clamp.
+    /// eta = 1, 128 samples per step, no output clamp, gain guard 0.2, anti-windup on, no
+    /// learning from falls, the default [`Prior`].
     fn default() -> Self {
         LearnerConfig {
             eta: 1.0,
             max_samples_per_step: 128,
             max_offset: None,
+            max_gain: Some(0.2),
+            anti_windup: true,
+            learn_from_falls: false,
+            fall_theta_limit: 0.3,
+            prior: Prior::default(),
         }
     }
 }
 
 impl LearnerConfig {
+    /// Eq. (6) as written: no gain guard, no anti-windup, no prior (the approximator starts as
+    /// built), eta = 1. On the humanoid this learner is unstable (see the module docs).
+    pub fn literal() -> Self {
+        LearnerConfig {
+            max_gain: None,
+            anti_windup: false,
+            prior: Prior::none(),
+            ..LearnerConfig::default()
+        }
+    }
+
     /// Checks every field.
     pub fn validate(&self) -> Result<(), LearnerError> {
         if !(self.eta.is_finite() && self.eta > 0.0) {
@@ -161,25 +274,49 @@ impl LearnerConfig {
                 format!("must be >= 2, got {}", self.max_samples_per_step),
             ));
         }
-        if let Some(m) = self.max_offset
-            && !(m.is_finite() && m > 0.0)
-        {
+        for (name, v) in [("max_offset", self.max_offset), ("max_gain", self.max_gain)] {
+            if let Some(m) = v
+                && !(m.is_finite() && m > 0.0)
+            {
+                return Err(LearnerError::config(
+                    name,
+                    format!("must be finite and > 0, got {m}"),
+                ));
+            }
+        }
+        if !(self.fall_theta_limit.is_finite() && self.fall_theta_limit > 0.0) {
             return Err(LearnerError::config(
-                "max_offset",
-                format!("must be finite and > 0, got {m}"),
+                "fall_theta_limit",
+                format!("must be finite and > 0, got {}", self.fall_theta_limit),
             ));
+        }
+        let (lo, hi) = (self.prior.lo.to_array(), self.prior.hi.to_array());
+        for (axis, name) in ["prior.theta_e", "prior.theta_e_dot", "prior.f_r"]
+            .into_iter()
+            .enumerate()
+        {
+            check_range(name, lo[axis], hi[axis], 1)?;
         }
         Ok(())
     }
 }
 
 /// What a touch-down did.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TouchDownReport {
     /// The rule's gradient G.
     pub gradient: f64,
     /// Number of training samples applied (the recorded inputs of the step).
     pub samples: usize,
+    /// The approximator's response r to the full step: the share of the desired change
+    /// (eta G, after anti-windup) that its predictions at the recorded inputs moved,
+    /// `<dy, d> / <d, d>` (0 when nothing was asked).
+    pub response: f64,
+    /// The learning gain applied: eta times the share of the desired change the predictions
+    /// finally moved (after the guard), metres of dF per unit of G.
+    pub gain: f64,
+    /// The factor the guard scaled the step by (1: not scaled).
+    pub scale: f64,
 }
 
 /// An axis-aligned box over (theta_E, theta_E_dot, F_R) sampled on an even grid.
@@ -329,17 +466,37 @@ pub struct FootstepLearner<A: FunctionApproximator, R: LearningRule> {
     config: LearnerConfig,
     /// Inputs recorded in the current step (capacity `max_samples_per_step`, never grows).
     recorded: Vec<[f64; LEARNER_INPUTS]>,
+    /// The reach (lowest, highest offset that can still change the step) of each recorded
+    /// input; unbounded unless told by [`FootstepLearner::set_reach`].
+    reach: Vec<[f64; 2]>,
+    /// Whether the last query was recorded (so that `set_reach` applies to it).
+    last_recorded: bool,
     /// Record every `stride`-th query of this step.
     stride: usize,
     /// Queries seen in this step.
     queries: usize,
-    /// Scratch for the targets at touch-down (capacity `max_samples_per_step`).
+    /// Scratch at touch-down: predictions before the update, desired changes, targets.
+    before: Vec<f64>,
+    desired: Vec<f64>,
     targets: Vec<f64>,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
-    /// A learner around `approx` (3 inputs, 1 output) and `rule`.
+    /// A learner around `approx` (3 inputs, 1 output) and `rule`, holding the prior of
+    /// `config` (dF = 0 trained in at `config.prior.samples` points; none if 0).
     pub fn new(approx: A, rule: R, config: LearnerConfig) -> Result<Self, LearnerError> {
+        let mut learner = Self::assemble(approx, rule, config)?;
+        for i in 0..config.prior.samples {
+            learner
+                .approx
+                .update(&config.prior.point(i), &[0.0])
+                .map_err(LearnerError::approx)?;
+        }
+        Ok(learner)
+    }
+
+    /// A learner around `approx` as it is (no prior trained in).
+    fn assemble(approx: A, rule: R, config: LearnerConfig) -> Result<Self, LearnerError> {
         config.validate()?;
         if approx.input_dim() != LEARNER_INPUTS || approx.output_dim() != 1 {
             return Err(LearnerError::WrongApproximatorShape {
@@ -352,8 +509,12 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
             rule,
             config,
             recorded: Vec::with_capacity(config.max_samples_per_step),
+            reach: Vec::with_capacity(config.max_samples_per_step),
+            last_recorded: false,
             stride: 1,
             queries: 0,
+            before: Vec::with_capacity(config.max_samples_per_step),
+            desired: Vec::with_capacity(config.max_samples_per_step),
             targets: Vec::with_capacity(config.max_samples_per_step),
         })
     }
@@ -425,86 +586,57 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     }
 
     fn record(&mut self, x: [f64; LEARNER_INPUTS]) {
+        self.last_recorded = false;
         if self.queries.is_multiple_of(self.stride) {
             if self.recorded.len() == self.config.max_samples_per_step {
                 // Keep samples 0, 2, 4, ... (query indices that are multiples of 2 * stride).
                 let mut keep = 0;
                 for i in (0..self.recorded.len()).step_by(2) {
                     self.recorded[keep] = self.recorded[i];
+                    self.reach[keep] = self.reach[i];
                     keep += 1;
                 }
                 self.recorded.truncate(keep);
+                self.reach.truncate(keep);
                 self.stride *= 2;
             }
             if self.queries.is_multiple_of(self.stride) {
                 self.recorded.push(x);
+                self.reach.push([f64::NEG_INFINITY, f64::INFINITY]);
+                self.last_recorded = true;
             }
         }
         self.queries += 1;
+    }
+
+    /// Tells the learner which offsets could change the step at the last query: `lo..=hi`
+    /// (m; infinite bounds allowed). With `anti_windup` the training targets of that input are
+    /// clamped to it, so eq. (6) stops integrating where a larger offset has no effect (the
+    /// step range is exhausted). The walker calls this every tick after [`Self::query`].
+    /// Errors (NaN, or `lo > hi`) leave the learner unchanged.
+    pub fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
+        if lo.is_nan() || hi.is_nan() || lo > hi {
+            return Err(LearnerError::config(
+                "reach",
+                format!("needs lo <= hi, got [{lo}, {hi}]"),
+            ));
+        }
+        if self.last_recorded
+            && let Some(r) = self.reach.last_mut()
+        {
+            *r = [lo, hi];
+        }
+        Ok(())
     }
 
     /// Forgets the inputs of the current step without learning from it (e.g. after a fall and
     /// reset, when the step never touched down).
     pub fn discard_step(&mut self) {
         self.recorded.clear();
+        self.reach.clear();
+        self.last_recorded = false;
         self.stride = 1;
         self.queries = 0;
-    }
-
-    /// Ends the step: computes G with the rule and applies eq. (6) to every recorded input,
-    /// then starts a new step.
-    ///
-    /// All predictions F(x_i) are taken before the first update, so every target is
-    /// F_old(x_i) + eta G whatever the order of the updates (eq. 6 read literally; otherwise an
-    /// update at x_1 would shift the target at a nearby x_2). Everything the learner can check
-    /// (G finite, predictions and targets finite) is checked before the first update: such a
-    /// rejection changes nothing, the recorded inputs included (call [`Self::discard_step`] to
-    /// drop them). If the approximator still fails during an update, the updates already
-    /// applied stay (each one is all-or-nothing by the [`FunctionApproximator`] contract, so the
-    /// model is valid), the error reports how many were applied, and the step is discarded.
-    pub fn touch_down(&mut self, step: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
-        for (what, v) in [
-            ("theta_e", step.theta_e),
-            ("theta_e_dot", step.theta_e_dot),
-            ("f_e", step.f_e),
-            ("f_r", step.f_r),
-        ] {
-            if !v.is_finite() {
-                return Err(LearnerError::NonFinite { what, value: v });
-            }
-        }
-        let g = self.rule.gradient(step);
-        if !g.is_finite() {
-            return Err(LearnerError::NonFinite {
-                what: "gradient G",
-                value: g,
-            });
-        }
-        let step_size = self.config.eta * g;
-        self.targets.clear();
-        for x in &self.recorded {
-            let target = self.predict_array(x)? + step_size;
-            if !target.is_finite() {
-                return Err(LearnerError::NonFinite {
-                    what: "training target",
-                    value: target,
-                });
-            }
-            self.targets.push(target);
-        }
-        let samples = self.recorded.len();
-        let mut result = Ok(TouchDownReport {
-            gradient: g,
-            samples,
-        });
-        for (applied, (x, t)) in self.recorded.iter().zip(&self.targets).enumerate() {
-            if let Err(source) = self.approx.update(x, &[*t]) {
-                result = Err(LearnerError::Approx { applied, source });
-                break;
-            }
-        }
-        self.discard_step();
-        result
     }
 
     /// The learning metric of experiment D: the Euclidean norm of the approximator's outputs
@@ -559,6 +691,166 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     }
 }
 
+impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
+    /// Ends the step: computes G with the rule and applies eq. (6) to every recorded input,
+    /// then starts a new step.
+    ///
+    /// The target at each recorded input x_i is F_old(x_i) + eta G; with `anti_windup` the
+    /// change stops at the end of the input's reach (it is not pulled into the reach). All predictions are taken before the first update, so
+    /// every target is independent of the update order (eq. 6 read literally). With
+    /// `max_gain` set, the approximator is updated on a copy first; if its predictions moved
+    /// by more than `max_gain` per unit of G, the step is scaled down to the limit and applied
+    /// to the approximator as it was (up to three times, as approximators respond not quite
+    /// linearly). Everything the learner can check (G finite, predictions and targets finite)
+    /// is checked before the first update: such a rejection changes nothing, the recorded
+    /// inputs included (call [`Self::discard_step`] to drop them). If the approximator still
+    /// fails during an update, the updates already applied stay (each one is all-or-nothing by
+    /// the [`FunctionApproximator`] contract, so the model is valid), the error reports how
+    /// many were applied, and the step is discarded.
+    pub fn touch_down(&mut self, step: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
+        for (what, v) in [
+            ("theta_e", step.theta_e),
+            ("theta_e_dot", step.theta_e_dot),
+            ("f_e", step.f_e),
+            ("f_r", step.f_r),
+        ] {
+            if !v.is_finite() {
+                return Err(LearnerError::NonFinite { what, value: v });
+            }
+        }
+        let g = self.rule.gradient(step);
+        if !g.is_finite() {
+            return Err(LearnerError::NonFinite {
+                what: "gradient G",
+                value: g,
+            });
+        }
+        let step_size = self.config.eta * g;
+        self.before.clear();
+        self.desired.clear();
+        for (x, reach) in self.recorded.iter().zip(&self.reach) {
+            let before = self.predict_array(x)?;
+            let mut change = step_size;
+            if self.config.anti_windup {
+                // Conditional integration: never further past an end of the reach than the
+                // prediction already is (and never pulled into it: outside the reach every
+                // offset has the same effect at this tick).
+                if change > 0.0 {
+                    change = change.min((reach[1] - before).max(0.0));
+                } else if change < 0.0 {
+                    change = change.max((reach[0] - before).min(0.0));
+                }
+            }
+            let target = before + change;
+            if !target.is_finite() {
+                return Err(LearnerError::NonFinite {
+                    what: "training target",
+                    value: target,
+                });
+            }
+            self.before.push(before);
+            self.desired.push(target - before);
+        }
+        let samples = self.recorded.len();
+        let asked: f64 = self.desired.iter().map(|d| d * d).sum();
+        let gain_of = |response: f64| {
+            if g == 0.0 {
+                0.0
+            } else {
+                response * step_size / g
+            }
+        };
+        let mut scale = 1.0;
+        let guard = self.config.max_gain.filter(|_| asked > 0.0);
+        let original = guard.map(|_| self.approx.clone());
+        let mut response = 0.0;
+        let mut applied_response = 0.0;
+        for attempt in 0..4 {
+            if attempt > 0
+                && let Some(o) = &original
+            {
+                self.approx = o.clone();
+            }
+            let result = self.apply(scale);
+            if let Err(e) = result {
+                self.discard_step();
+                return Err(e);
+            }
+            applied_response = self.response(asked)?;
+            if attempt == 0 {
+                response = applied_response;
+            }
+            let gain = gain_of(applied_response).abs();
+            match guard {
+                Some(limit) if gain > 1.05 * limit && attempt < 3 => scale *= limit / gain,
+                _ => break,
+            }
+        }
+        self.discard_step();
+        Ok(TouchDownReport {
+            gradient: g,
+            samples,
+            response,
+            gain: gain_of(applied_response),
+            scale,
+        })
+    }
+
+    /// Trains the approximator toward `before + scale * desired` at every recorded input.
+    fn apply(&mut self, scale: f64) -> Result<(), LearnerError> {
+        self.targets.clear();
+        self.targets.extend(
+            self.before
+                .iter()
+                .zip(&self.desired)
+                .map(|(b, d)| b + scale * d),
+        );
+        for (applied, (x, t)) in self.recorded.iter().zip(&self.targets).enumerate() {
+            self.approx
+                .update(x, &[*t])
+                .map_err(|source| LearnerError::Approx { applied, source })?;
+        }
+        Ok(())
+    }
+
+    /// The share `<dy, d> / <d, d>` of the desired change the predictions moved (0 if `asked`,
+    /// `<d, d>`, is 0).
+    fn response(&self, asked: f64) -> Result<f64, LearnerError> {
+        if asked == 0.0 {
+            return Ok(0.0);
+        }
+        let mut moved = 0.0;
+        for ((x, b), d) in self.recorded.iter().zip(&self.before).zip(&self.desired) {
+            moved += (self.predict_array(x)? - b) * d;
+        }
+        Ok(moved / asked)
+    }
+
+    /// A step that ended in a fall: with `learn_from_falls`, learns from `step` (the step in
+    /// progress when the robot fell) as from a touch-down, with theta_E clamped to
+    /// +-`fall_theta_limit` and theta_E_dot to ten times that; otherwise discards the step.
+    /// Returns what the update did, if one was made.
+    pub fn fall(&mut self, step: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
+        if !self.config.learn_from_falls || self.recorded.is_empty() {
+            self.discard_step();
+            return Ok(None);
+        }
+        let lim = self.config.fall_theta_limit;
+        let clamped = StepOutcome {
+            theta_e: step.theta_e.clamp(-lim, lim),
+            theta_e_dot: step.theta_e_dot.clamp(-10.0 * lim, 10.0 * lim),
+            ..*step
+        };
+        match self.touch_down(&clamped) {
+            Ok(r) => Ok(Some(r)),
+            Err(e) => {
+                self.discard_step();
+                Err(e)
+            }
+        }
+    }
+}
+
 impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner<A, R> {
     /// Saves the config and the approximator to `path` as JSON (atomically: temporary file and
     /// rename, so a failed save leaves an existing file intact). The current step's recorded
@@ -576,6 +868,6 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
     /// corrupt file or a wrongly shaped approximator is an error.
     pub fn load(path: impl AsRef<Path>, rule: R) -> Result<Self, LearnerError> {
         let saved = SavedLearner::<A>::load(path).map_err(LearnerError::approx)?;
-        Self::new(saved.approximator, rule, saved.config)
+        Self::assemble(saved.approximator, rule, saved.config)
     }
 }

@@ -175,6 +175,11 @@ pub struct MotionConfig {
     pub period: f64,
     /// Time over which the step primitives fade in after start (s).
     pub fade_in: f64,
+    /// Share of the commanded sagittal swing-foot placement the leg realises (1: all). A value
+    /// below 1 models a leg that under-reaches (a kinematic calibration error, a soft hip): a
+    /// robot that differs from the controller's model in a way the model does not absorb
+    /// (`configs/mismatch.toml`). The estimator measures the real step.
+    pub swing_step_scale: f64,
 }
 
 impl Default for MotionConfig {
@@ -195,6 +200,7 @@ impl Default for MotionConfig {
             max_turn: 0.5,
             period: 0.4,
             fade_in: 1.0,
+            swing_step_scale: 1.0,
         }
     }
 }
@@ -350,7 +356,8 @@ impl MotionGenerator {
         // side's direction), turn.
         let mut want = self.filtered;
         if command.step_x.is_finite() {
-            want[0] = command.step_x.clamp(c.step_x_range[0], c.step_x_range[1]);
+            want[0] =
+                c.swing_step_scale * command.step_x.clamp(c.step_x_range[0], c.step_x_range[1]);
         }
         if command.step_y.is_finite() {
             let w = (command.step_y * swing.sign()).clamp(c.step_y_range[0], c.step_y_range[1]);

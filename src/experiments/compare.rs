@@ -39,7 +39,7 @@ pub fn run_model_and_learned<A, R>(
     learner: &(impl LearnerFactory<A, R> + Sync),
 ) -> Result<ModelAndLearned, ExperimentError>
 where
-    A: FunctionApproximator,
+    A: FunctionApproximator + Clone,
     R: LearningRule,
 {
     let (model, learned) = rayon::join(

@@ -219,7 +219,7 @@ pub fn run<A, R>(
     learner: &(impl LearnerFactory<A, R> + Sync),
 ) -> Result<DisturbanceResult, ExperimentError>
 where
-    A: FunctionApproximator,
+    A: FunctionApproximator + Clone,
     R: LearningRule,
 {
     settings.validate().map_err(ExperimentError::Invalid)?;

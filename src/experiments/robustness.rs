@@ -131,7 +131,7 @@ pub fn run<A, R>(
     learner: &impl LearnerFactory<A, R>,
 ) -> Result<RobustnessResult, ExperimentError>
 where
-    A: FunctionApproximator,
+    A: FunctionApproximator + Clone,
     R: LearningRule,
 {
     settings.validate().map_err(ExperimentError::Invalid)?;

@@ -82,7 +82,7 @@ pub fn run<A, R>(
     learner: &(impl LearnerFactory<A, R> + Sync),
 ) -> Result<StabilityResult, ExperimentError>
 where
-    A: FunctionApproximator,
+    A: FunctionApproximator + Clone,
     R: LearningRule,
 {
     settings.validate().map_err(ExperimentError::Invalid)?;

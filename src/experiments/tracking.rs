@@ -101,7 +101,7 @@ pub fn run<A, R>(
     learner: &(impl LearnerFactory<A, R> + Sync),
 ) -> Result<TrackingResult, ExperimentError>
 where
-    A: FunctionApproximator,
+    A: FunctionApproximator + Clone,
     R: LearningRule,
 {
     settings.validate().map_err(ExperimentError::Invalid)?;

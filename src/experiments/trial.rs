@@ -137,6 +137,10 @@ pub struct StepRecord {
     pub theta_e_dot: f64,
     /// The learned offset dF in force at touch-down (m).
     pub learned_offset: f64,
+    /// The learning gain the learner applied at this touch-down (m of dF per unit of G; see
+    /// [`crate::control::learner::TouchDownReport::gain`]); `None` without a learner.
+    #[serde(default)]
+    pub learning_gain: Option<f64>,
 }
 
 impl StepRecord {
@@ -146,7 +150,7 @@ impl StepRecord {
     }
 
     /// Column names of [`StepRecord::csv_row`].
-    pub const CSV_HEADER: [&'static str; 8] = [
+    pub const CSV_HEADER: [&'static str; 9] = [
         "controller",
         "time_s",
         "f_r_m",
@@ -155,6 +159,7 @@ impl StepRecord {
         "theta_e_rad",
         "theta_e_dot_rad_s",
         "learned_offset_m",
+        "learning_gain",
     ];
 
     /// The step as a CSV row whose first column names the controller.
@@ -168,6 +173,8 @@ impl StepRecord {
             format!("{:.5}", self.theta_e),
             format!("{:.5}", self.theta_e_dot),
             format!("{:.5}", self.learned_offset),
+            self.learning_gain
+                .map_or(String::new(), |g| format!("{g:.5}")),
         ]
     }
 }
@@ -190,6 +197,10 @@ pub struct FallRecord {
     pub time: f64,
     /// What the simulator reported.
     pub fall: Fall,
+    /// The learning gain of the update the learner made from the fall, if it learns from
+    /// falls.
+    #[serde(default)]
+    pub learning_gain: Option<f64>,
 }
 
 /// Everything a trial recorded.
@@ -242,6 +253,8 @@ pub fn run_trial(
     let mut offset = 0.0;
     let mut ready_at = 0.0;
     let mut push_ready_at = 0.0;
+    // The step in progress as of the last walker tick (what a fall interrupts).
+    let mut last_outcome = None;
 
     while offset + robot.time() < setup.duration_s {
         let sensors = robot.sensors();
@@ -254,12 +267,15 @@ pub fn run_trial(
             break;
         }
         let f_r = setup.reference.at(t);
-        let tick = if t < ready_at && log.falls.last().is_some() {
+        let tick = if t < ready_at && !log.falls.is_empty() {
             // Getting up after a fall: hold the standing pose.
             None
         } else {
             Some(walker.tick(&sensors, f_r, policy.as_deref_mut())?)
         };
+        if let Some(tick) = &tick {
+            last_outcome = Some(Walker::outcome_at(&tick.estimate, f_r));
+        }
         let targets = match &tick {
             Some(tick) => {
                 for o in observers.iter_mut() {
@@ -273,6 +289,7 @@ pub fn run_trial(
                         theta_e: s.theta_e,
                         theta_e_dot: s.theta_e_dot,
                         learned_offset: tick.learned_offset,
+                        learning_gain: tick.learning.map(|r| r.gain),
                     };
                     for o in observers.iter_mut() {
                         o.on_step(&record);
@@ -309,9 +326,20 @@ pub fn run_trial(
         robot.step(&targets)?;
 
         if let Some(fall) = robot.fall() {
+            // The learner learns from the step in progress or forgets it (its setting).
+            let mut learning_gain = None;
+            if let Some(p) = policy.as_deref_mut() {
+                match last_outcome.take() {
+                    Some(outcome) => {
+                        learning_gain = p.fall(&outcome).map_err(WalkerError::from)?.map(|r| r.gain)
+                    }
+                    None => p.discard_step(),
+                }
+            }
             let record = FallRecord {
                 time: offset + robot.time(),
                 fall,
+                learning_gain,
             };
             for o in observers.iter_mut() {
                 o.on_fall(&record);
@@ -326,9 +354,6 @@ pub fn run_trial(
             offset += robot.time();
             robot.reset();
             walker.reset();
-            if let Some(p) = policy.as_deref_mut() {
-                p.discard_step();
-            }
             ready_at = offset + setup.recovery_s;
             push_ready_at = ready_at + setup.resettle_s;
         } else if let Some((i, deadline)) = watching
