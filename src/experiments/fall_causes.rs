@@ -6,8 +6,12 @@
 //! [`classify`] then combines these events with the trial log's pushes (delivery times and
 //! outcomes) into one [`FallCause`] per fall:
 //!
-//! * [`FallCause::NoPush`]: no push window was open when the robot fell (it fell walking,
-//!   starting again after a reset, or more than the window after the last push);
+//! * falls with no push window open (no push delivered within the window before the fall, or
+//!   the window already closed by an earlier fall), by the steps taken since the previous fall
+//!   (or the trial's start):
+//!   [`FallCause::NoPushOnRestart`] none at all (the robot fell starting again after a
+//!   reset), [`FallCause::NoPushStepClamped`] at least one commanded at a step length limit,
+//!   [`FallCause::NoPush`] otherwise (it fell walking, every step within range);
 //! * [`FallCause::BeforeTouchDown`]: pushed, and fell before the next touch-down (the step in
 //!   progress could not catch the push, or the catch step came too late);
 //! * [`FallCause::CatchStepClamped`]: the catch step (the one that landed first after the
@@ -31,8 +35,13 @@ use std::collections::BTreeMap;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FallCause {
-    /// No push window open at the fall.
+    /// No push window open at the fall; walked at least one step since the previous fall,
+    /// every one within the step length limits.
     NoPush,
+    /// No push window open, and not one touch-down since the previous fall (or the start).
+    NoPushOnRestart,
+    /// No push window open, and a step since the previous fall commanded at a limit.
+    NoPushStepClamped,
     /// Pushed, fell before the next touch-down.
     BeforeTouchDown,
     /// The catch step was commanded at a step length limit.
@@ -45,8 +54,10 @@ pub enum FallCause {
 
 impl FallCause {
     /// Every cause, in report order.
-    pub const ALL: [FallCause; 5] = [
+    pub const ALL: [FallCause; 7] = [
         FallCause::NoPush,
+        FallCause::NoPushOnRestart,
+        FallCause::NoPushStepClamped,
         FallCause::BeforeTouchDown,
         FallCause::CatchStepClamped,
         FallCause::LaterStepClamped,
@@ -57,11 +68,26 @@ impl FallCause {
     pub fn name(self) -> &'static str {
         match self {
             FallCause::NoPush => "no_push",
+            FallCause::NoPushOnRestart => "no_push_on_restart",
+            FallCause::NoPushStepClamped => "no_push_step_clamped",
             FallCause::BeforeTouchDown => "before_touch_down",
             FallCause::CatchStepClamped => "catch_step_clamped",
             FallCause::LaterStepClamped => "later_step_clamped",
             FallCause::TippedAfterCatchStep => "tipped_after_catch_step",
         }
+    }
+
+    /// The cause named `name` ([`FallCause::name`]), if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == name)
+    }
+
+    /// Whether a fall of this cause ended a push's window (the others came without one).
+    pub fn after_push(self) -> bool {
+        !matches!(
+            self,
+            FallCause::NoPush | FallCause::NoPushOnRestart | FallCause::NoPushStepClamped
+        )
     }
 }
 
@@ -178,6 +204,9 @@ pub fn classify(
 ) -> Vec<ClassifiedFall> {
     let mut out = Vec::new();
     let mut previous_fall = f64::NEG_INFINITY;
+    // Index in `events` just after the previous fall.
+    let mut since = 0;
+    let clamped = |s: &Option<f64>| s.is_some_and(|x| limits.at_limit(x));
     for (k, e) in events.iter().enumerate() {
         let FallEvent::Fall { time, step_x: _ } = *e else {
             continue;
@@ -186,19 +215,29 @@ pub fn classify(
         let push = last_push
             .checked_sub(1)
             .filter(|&i| pushes[i].fell && pushes[i].time > previous_fall);
+        // The commanded steps that touched down after `t0` and before this fall.
+        let steps_after = |t0: f64| -> Vec<Option<f64>> {
+            events[since..k]
+                .iter()
+                .filter_map(|e| match *e {
+                    FallEvent::TouchDown { time: t, step_x } if t > t0 => Some(step_x),
+                    _ => None,
+                })
+                .collect()
+        };
         let cause = match push {
-            None => FallCause::NoPush,
+            None => {
+                let steps = steps_after(f64::NEG_INFINITY);
+                if steps.is_empty() {
+                    FallCause::NoPushOnRestart
+                } else if steps.iter().any(clamped) {
+                    FallCause::NoPushStepClamped
+                } else {
+                    FallCause::NoPush
+                }
+            }
             Some(i) => {
-                let p = pushes[i].time;
-                // Touch-downs after the push and before this fall (events k' < k).
-                let steps: Vec<Option<f64>> = events[..k]
-                    .iter()
-                    .filter_map(|e| match *e {
-                        FallEvent::TouchDown { time: t, step_x } if t > p => Some(step_x),
-                        _ => None,
-                    })
-                    .collect();
-                let clamped = |s: &Option<f64>| s.is_some_and(|x| limits.at_limit(x));
+                let steps = steps_after(pushes[i].time);
                 match steps.split_first() {
                     None => FallCause::BeforeTouchDown,
                     Some((catch, _)) if clamped(catch) => FallCause::CatchStepClamped,
@@ -209,6 +248,7 @@ pub fn classify(
         };
         out.push(ClassifiedFall { time, push, cause });
         previous_fall = time;
+        since = k + 1;
     }
     out
 }
@@ -308,7 +348,12 @@ mod tests {
             // 6: pushed at 10.0 and absorbed; fell 5 s later: no push window open.
             td(10.3, 0.2),
             fall(15.0),
-            // 7: a push whose outcome says absorbed never owns a fall, even within its time.
+            // 7: fell again before a single step.
+            fall(15.5),
+            // 8: fell walking, a step at the limit, no push.
+            td(15.8, 0.0),
+            td(16.1, 0.45),
+            fall(16.3),
         ];
         let pushes = vec![
             push(2.0, true),
@@ -328,17 +373,24 @@ mod tests {
                 FallCause::LaterStepClamped,
                 FallCause::TippedAfterCatchStep,
                 FallCause::NoPush,
+                FallCause::NoPushOnRestart,
+                FallCause::NoPushStepClamped,
             ]
         );
         assert_eq!(
             c.iter().map(|f| f.push).collect::<Vec<_>>(),
-            [None, Some(0), Some(1), Some(2), Some(3), None]
+            [None, Some(0), Some(1), Some(2), Some(3), None, None, None]
         );
+        for f in &c {
+            assert_eq!(f.push.is_some(), f.cause.after_push());
+            assert_eq!(FallCause::from_name(f.cause.name()), Some(f.cause));
+        }
         // Counts cover every cause and sum to the falls.
         let n = count(&c);
         assert_eq!(n.len(), FallCause::ALL.len());
         assert_eq!(n.values().sum::<u32>() as usize, c.len());
         assert_eq!(n["no_push"], 2);
+        assert_eq!(n["no_push_on_restart"], 1);
         assert_eq!(n["tipped_after_catch_step"], 1);
         // Each fell push has the cause of its fall, the absorbed one none.
         let by_push = cause_by_push(&c, pushes.len());
@@ -357,6 +409,7 @@ mod tests {
         let events = vec![td(0.9, 0.45), fall(1.2), td(1.5, 0.0), fall(1.8)];
         let c = classify(&events, &[push(1.0, true)], &LIMITS);
         assert_eq!(c[0].cause, FallCause::BeforeTouchDown);
+        // The clamped step before the first fall does not count for the second.
         assert_eq!(c[1].cause, FallCause::NoPush);
     }
 

@@ -229,13 +229,19 @@ impl Summary {
                     ("learned", &controllers.learned, &fall_causes.learned),
                 ] {
                     c.validate(name)?;
-                    // Every push that ended in a fall owns exactly one fall with a cause other
-                    // than `no_push`.
-                    let pushed: u64 = causes
-                        .iter()
-                        .filter(|(k, _)| k.as_str() != FallCause::NoPush.name())
-                        .map(|(_, &n)| u64::from(n))
-                        .sum();
+                    // Every push that ended in a fall owns exactly one fall with a cause after a
+                    // push.
+                    let mut pushed = 0u64;
+                    for (k, &n) in causes {
+                        match FallCause::from_name(k) {
+                            Some(cause) => pushed += u64::from(cause.after_push()) * u64::from(n),
+                            None => {
+                                return Err(ReportError::invalid(format!(
+                                    "{name}: unknown fall cause {k:?}"
+                                )));
+                            }
+                        }
+                    }
                     if !causes.is_empty() && pushed != u64::from(c.falls) {
                         return Err(ReportError::invalid(format!(
                             "{name}: fall causes count {pushed} falls after pushes, the pushes {}",
@@ -574,6 +580,11 @@ mod tests {
             *fall_causes.learned.get_mut("no_push").unwrap() += 5;
         }
         s.validate().unwrap();
+        let mut s = stability();
+        if let ExperimentResult::Stability { fall_causes, .. } = &mut s.result {
+            fall_causes.model.insert("gremlins".into(), 0);
+        }
+        assert!(s.validate().is_err());
 
         let with = |f: &dyn Fn(&mut ExperimentResult)| {
             let mut r = robustness();
