@@ -45,12 +45,16 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 model: controller(40),
                 learned: controller(40),
             },
+            fall_causes: Default::default(),
         },
         ExperimentKind::Robustness => {
             let first = rng.random_range(1..=6u32);
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed: (first < 6).then_some(first),
                 falls: first - 1,
+                impulse_ns: None,
+                absorbed_by_push: Vec::new(),
+                no_learning: None,
             }
         }
         ExperimentKind::Tracking => ExperimentResult::Tracking {
@@ -302,7 +306,7 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
             &dir.join(spec(ExperimentKind::Stability).id()),
         )
         .unwrap();
-        if let ExperimentResult::Stability { controllers } = s.result {
+        if let ExperimentResult::Stability { controllers, .. } = s.result {
             learned.push(controllers.learned.impulse_at_50pct_fall_ns);
         }
         let s = fake(

@@ -5,6 +5,7 @@ pub mod aligned;
 pub mod compare;
 pub mod disturbance;
 mod error;
+pub mod fall_causes;
 mod kind;
 pub mod reproduce;
 pub mod robustness;

@@ -70,6 +70,7 @@ pub fn run_spec(
                     model: falls(&r.model),
                     learned: falls(&r.learned),
                 },
+                fall_causes: r.fall_cause_counts(),
             }
         }
         ExperimentKind::Tracking => {
@@ -99,10 +100,7 @@ pub fn run_spec(
         ExperimentKind::Robustness => {
             let r = robustness::run(settings, &protocols.robustness, spec.seed, &make)?;
             r.write(dir)?;
-            ExperimentResult::Robustness {
-                pushes_until_first_absorbed: r.pushes_until_first_absorbed().map(|n| n as u32),
-                falls: r.falls() as u32,
-            }
+            r.summary_result()
         }
     };
     Ok(Summary {

@@ -3,17 +3,21 @@
 //! pushes of random impulse at random gait phases.
 
 use super::error::ExperimentError;
+use super::fall_causes::{
+    ClassifiedFall, FallCause, FallCauseObserver, StepLimits, cause_by_push, classify, count,
+};
 use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
-use super::trial::{PushRecord, run_trial};
+use super::trial::{PushRecord, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
-use crate::control::walker::WalkerMode;
+use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
-use crate::report::summary::write_csv;
+use crate::report::summary::{FallCauseCounts, write_csv};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The protocol (paper: 400 pushes uniform in [0, 20] Ns, walking in place).
@@ -48,18 +52,41 @@ pub struct ControllerPushes {
     pub pushes: Vec<PushRecord>,
     /// The impulse at 50% falls.
     pub fall50: Fall50Estimate,
+    /// Every fall of the trial (within a push window or not) with its cause, in time order.
+    #[serde(default)]
+    pub classified_falls: Vec<ClassifiedFall>,
 }
 
 impl ControllerPushes {
-    fn new(pushes: Vec<PushRecord>) -> Result<Self, ExperimentError> {
-        let samples: Vec<PushResult> = pushes.iter().map(|p| (p.impulse, p.fell)).collect();
+    fn new(
+        log: TrialLog,
+        causes: &FallCauseObserver,
+        limits: &StepLimits,
+    ) -> Result<Self, ExperimentError> {
+        let samples: Vec<PushResult> = log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
         let fall50 = impulse_at_50pct_fall(&samples)?;
-        Ok(ControllerPushes { pushes, fall50 })
+        let classified_falls = classify(causes.events(), &log.pushes, limits);
+        Ok(ControllerPushes {
+            pushes: log.pushes,
+            fall50,
+            classified_falls,
+        })
     }
 
-    /// Number of falls.
+    /// Number of pushes followed by a fall within the push window.
     pub fn falls(&self) -> usize {
         self.pushes.iter().filter(|p| p.fell).count()
+    }
+
+    /// Falls per cause (every cause present); sums to all falls of the trial, of which the
+    /// ones other than `no_push` are the pushes' [`ControllerPushes::falls`].
+    pub fn fall_causes(&self) -> BTreeMap<String, u32> {
+        count(&self.classified_falls)
+    }
+
+    /// The cause of the fall after each push, `None` where it was absorbed.
+    pub fn cause_by_push(&self) -> Vec<Option<FallCause>> {
+        cause_by_push(&self.classified_falls, self.pushes.len())
     }
 }
 
@@ -94,26 +121,33 @@ where
     };
     let trial = |mode| settings.push_trial(mode, 0.0, &plan, seed, protocol.direction);
     let (open_loop, (model, learned)) = rayon::join(
-        || run_trial(&trial(WalkerMode::OpenLoop), None, &mut []),
+        || observed(trial(WalkerMode::OpenLoop), None),
         || {
             rayon::join(
-                || run_trial(&trial(WalkerMode::CaptureStep), None, &mut []),
+                || observed(trial(WalkerMode::CaptureStep), None),
                 || {
                     let mut l = learner.make()?;
-                    Ok::<_, ExperimentError>(run_trial(
-                        &trial(WalkerMode::CaptureStep),
-                        Some(&mut l),
-                        &mut [],
-                    )?)
+                    observed(trial(WalkerMode::CaptureStep), Some(&mut l))
                 },
             )
         },
     );
     Ok(StabilityResult {
-        open_loop: ControllerPushes::new(open_loop?.pushes)?,
-        model: ControllerPushes::new(model?.pushes)?,
-        learned: ControllerPushes::new(learned?.pushes)?,
+        open_loop: open_loop?,
+        model: model?,
+        learned: learned?,
     })
+}
+
+/// Runs one controller's trial with a fall-cause observer; its events and the log classify
+/// the falls.
+fn observed(
+    setup: TrialSetup,
+    policy: Option<&mut (dyn FootstepPolicy + '_)>,
+) -> Result<ControllerPushes, ExperimentError> {
+    let mut causes = FallCauseObserver::new();
+    let log = run_trial(&setup, policy, &mut [&mut causes])?;
+    ControllerPushes::new(log, &causes, &StepLimits::of(&setup.walker))
 }
 
 impl StabilityResult {
@@ -126,24 +160,34 @@ impl StabilityResult {
         ]
     }
 
-    /// Writes `pushes.csv` (controller, time, impulse, fell) and `fall_probability.svg`
+    /// Falls per cause of each controller, for `summary.json`.
+    pub fn fall_cause_counts(&self) -> FallCauseCounts {
+        FallCauseCounts {
+            open_loop: self.open_loop.fall_causes(),
+            model: self.model.fall_causes(),
+            learned: self.learned.fall_causes(),
+        }
+    }
+
+    /// Writes `pushes.csv` (controller, time, impulse, fell, the cause of the fall) and `fall_probability.svg`
     /// (logistic fits and 2 Ns bins, as the paper's Fig. 6) into `dir`.
     pub fn write(&self, dir: &Path, impulse: (f64, f64)) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         let mut rows = Vec::new();
         for (name, c) in self.controllers() {
-            for p in &c.pushes {
+            for (p, cause) in c.pushes.iter().zip(c.cause_by_push()) {
                 rows.push(vec![
                     name.to_string(),
                     format!("{:.4}", p.time),
                     format!("{:.4}", p.impulse),
                     p.fell.to_string(),
+                    cause.map_or("", FallCause::name).to_string(),
                 ]);
             }
         }
         write_csv(
             &dir.join("pushes.csv"),
-            &["controller", "time_s", "impulse_ns", "fell"],
+            &["controller", "time_s", "impulse_ns", "fell", "fall_cause"],
             &rows,
         )?;
         let bins_per_controller = ((impulse.1 - impulse.0) / 2.0).ceil().max(1.0) as usize;

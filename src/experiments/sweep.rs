@@ -658,7 +658,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
             }
         }
         match summary.result {
-            ExperimentResult::Stability { controllers } => {
+            ExperimentResult::Stability { controllers, .. } => {
                 for (i, c) in [
                     controllers.open_loop,
                     controllers.model,
@@ -675,6 +675,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed,
                 falls,
+                ..
             } => {
                 group.robustness_seeds += 1;
                 group.robustness_falls.push(f64::from(falls));

@@ -9,8 +9,10 @@
 
 use super::{ReportError, write_atomic};
 use crate::experiments::ExperimentKind;
+use crate::experiments::fall_causes::FallCause;
 use crate::rules::RuleKind;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// A pair of results for the Capture Step model alone and with learning.
@@ -48,6 +50,30 @@ pub struct Controllers {
     pub learned: ControllerFalls,
 }
 
+/// Experiment C: falls per cause (names from [`crate::experiments::fall_causes::FallCause`])
+/// of each controller, over every fall of its trial. Empty in summaries written before the
+/// causes were recorded.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FallCauseCounts {
+    /// The open-loop walker.
+    pub open_loop: BTreeMap<String, u32>,
+    /// The Capture Step controller.
+    pub model: BTreeMap<String, u32>,
+    /// Capture Step plus the learned offset.
+    pub learned: BTreeMap<String, u32>,
+}
+
+/// Experiment D: the same episodes walked without learning (dF = 0 throughout).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoLearning {
+    /// Whether each push (in order) was absorbed.
+    pub absorbed_by_push: Vec<bool>,
+    /// Falls over the whole run.
+    pub falls: u32,
+}
+
 /// The experiment-specific part of a summary; serialized flat next to the common fields, with
 /// the `"experiment"` name as its tag.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -73,6 +99,9 @@ pub enum ExperimentResult {
     Stability {
         /// Per controller.
         controllers: Controllers,
+        /// Falls per cause, per controller (empty in older summaries).
+        #[serde(default)]
+        fall_causes: FallCauseCounts,
     },
     /// D: learning from scratch.
     Robustness {
@@ -80,6 +109,16 @@ pub enum ExperimentResult {
         pushes_until_first_absorbed: Option<u32>,
         /// Falls over the whole run.
         falls: u32,
+        /// The push impulse (Ns); absent in older summaries.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        impulse_ns: Option<f64>,
+        /// The learned walker: whether each push (in order) was absorbed (empty in older
+        /// summaries).
+        #[serde(default)]
+        absorbed_by_push: Vec<bool>,
+        /// The same episodes without learning; absent in older summaries.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        no_learning: Option<NoLearning>,
     },
 }
 
@@ -180,19 +219,83 @@ impl Summary {
                 finite_non_negative("max_tda_rad.model", max_tda_rad.model)?;
                 finite_non_negative("max_tda_rad.learned", max_tda_rad.learned)?;
             }
-            ExperimentResult::Stability { controllers } => {
-                controllers.open_loop.validate("open_loop")?;
-                controllers.model.validate("model")?;
-                controllers.learned.validate("learned")?;
+            ExperimentResult::Stability {
+                controllers,
+                fall_causes,
+            } => {
+                for (name, c, causes) in [
+                    ("open_loop", &controllers.open_loop, &fall_causes.open_loop),
+                    ("model", &controllers.model, &fall_causes.model),
+                    ("learned", &controllers.learned, &fall_causes.learned),
+                ] {
+                    c.validate(name)?;
+                    // Every push that ended in a fall owns exactly one fall with a cause after a
+                    // push.
+                    let mut pushed = 0u64;
+                    for (k, &n) in causes {
+                        match FallCause::from_name(k) {
+                            Some(cause) => pushed += u64::from(cause.after_push()) * u64::from(n),
+                            None => {
+                                return Err(ReportError::invalid(format!(
+                                    "{name}: unknown fall cause {k:?}"
+                                )));
+                            }
+                        }
+                    }
+                    if !causes.is_empty() && pushed != u64::from(c.falls) {
+                        return Err(ReportError::invalid(format!(
+                            "{name}: fall causes count {pushed} falls after pushes, the pushes {}",
+                            c.falls
+                        )));
+                    }
+                }
             }
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed,
-                ..
+                falls,
+                impulse_ns,
+                absorbed_by_push,
+                no_learning,
             } => {
                 if *pushes_until_first_absorbed == Some(0) {
                     return Err(ReportError::invalid(
                         "pushes_until_first_absorbed is 1-based, got 0",
                     ));
+                }
+                if let Some(i) = impulse_ns {
+                    finite_non_negative("impulse_ns", *i)?;
+                }
+                let first = absorbed_by_push
+                    .iter()
+                    .position(|&a| a)
+                    .map(|i| i as u32 + 1);
+                if !absorbed_by_push.is_empty() && first != *pushes_until_first_absorbed {
+                    return Err(ReportError::invalid(format!(
+                        "absorbed_by_push first absorbs push {first:?}, \
+                         pushes_until_first_absorbed says {pushes_until_first_absorbed:?}"
+                    )));
+                }
+                // A push not absorbed means at least one fall in its episode.
+                let check_falls = |what: &str, absorbed: &[bool], falls: u32| {
+                    let missed = absorbed.iter().filter(|&&a| !a).count();
+                    if (falls as usize) < missed {
+                        Err(ReportError::invalid(format!(
+                            "{what}: {missed} pushes not absorbed but only {falls} falls"
+                        )))
+                    } else {
+                        Ok(())
+                    }
+                };
+                check_falls("learned", absorbed_by_push, *falls)?;
+                if let Some(n) = no_learning {
+                    if n.absorbed_by_push.len() != absorbed_by_push.len() {
+                        return Err(ReportError::invalid(format!(
+                            "no_learning has {} pushes, the learned walker {}",
+                            n.absorbed_by_push.len(),
+                            absorbed_by_push.len()
+                        )));
+                    }
+                    check_falls("no_learning", &n.absorbed_by_push, n.falls)?;
                 }
             }
         }
@@ -267,6 +370,15 @@ mod tests {
         }
     }
 
+    fn causes(no_push: u32, pushed: [u32; 2]) -> BTreeMap<String, u32> {
+        [
+            ("no_push".to_string(), no_push),
+            ("before_touch_down".to_string(), pushed[0]),
+            ("tipped_after_catch_step".to_string(), pushed[1]),
+        ]
+        .into()
+    }
+
     fn stability() -> Summary {
         Summary {
             approx: "lwpr".into(),
@@ -278,7 +390,25 @@ mod tests {
                     model: falls(400, 120, 11.0),
                     learned: falls(400, 90, 13.25),
                 },
+                fall_causes: FallCauseCounts {
+                    open_loop: causes(3, [200, 50]),
+                    model: causes(0, [100, 20]),
+                    learned: causes(1, [60, 30]),
+                },
             },
+        }
+    }
+
+    fn robustness() -> ExperimentResult {
+        ExperimentResult::Robustness {
+            pushes_until_first_absorbed: Some(3),
+            falls: 2,
+            impulse_ns: Some(8.0),
+            absorbed_by_push: vec![false, false, true],
+            no_learning: Some(NoLearning {
+                absorbed_by_push: vec![false, false, false],
+                falls: 4,
+            }),
         }
     }
 
@@ -289,8 +419,16 @@ mod tests {
         keys.sort();
         assert_eq!(
             keys,
-            ["approx", "controllers", "experiment", "rule", "seed"]
+            [
+                "approx",
+                "controllers",
+                "experiment",
+                "fall_causes",
+                "rule",
+                "seed"
+            ]
         );
+        assert_eq!(v["fall_causes"]["model"]["before_touch_down"], 100);
         assert_eq!(v["experiment"], "stability");
         assert_eq!(v["rule"], "pendulum-cart");
         assert_eq!(
@@ -324,11 +462,14 @@ mod tests {
                 vec!["max_tda_rad", "return_time_s"],
             ),
             (
-                ExperimentResult::Robustness {
-                    pushes_until_first_absorbed: Some(3),
-                    falls: 2,
-                },
-                vec!["falls", "pushes_until_first_absorbed"],
+                robustness(),
+                vec![
+                    "absorbed_by_push",
+                    "falls",
+                    "impulse_ns",
+                    "no_learning",
+                    "pushes_until_first_absorbed",
+                ],
             ),
         ];
         for (result, fields) in others {
@@ -358,7 +499,7 @@ mod tests {
         assert_eq!(Summary::read(&path).unwrap(), s);
         // an invalid summary is refused and the file stays as it was
         let mut bad = s.clone();
-        if let ExperimentResult::Stability { controllers } = &mut bad.result {
+        if let ExperimentResult::Stability { controllers, .. } = &mut bad.result {
             controllers.model.impulse_at_50pct_fall_ns = f64::NAN;
         }
         assert!(matches!(bad.write(&path), Err(ReportError::Invalid(_))));
@@ -393,5 +534,107 @@ mod tests {
             "a,b\n1,\"x,y\"\n"
         );
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn older_summaries_without_causes_or_baseline_still_read() {
+        let old_c = r#"{"approx": "lwpr", "rule": "pendulum-cart", "seed": 1,
+            "experiment": "stability", "controllers": {
+            "open_loop": {"pushes": 4, "falls": 2, "impulse_at_50pct_fall_ns": 5.0},
+            "model": {"pushes": 4, "falls": 1, "impulse_at_50pct_fall_ns": 9.0},
+            "learned": {"pushes": 4, "falls": 1, "impulse_at_50pct_fall_ns": 10.0}}}"#;
+        match Summary::from_json(old_c).unwrap().result {
+            ExperimentResult::Stability { fall_causes, .. } => {
+                assert_eq!(fall_causes, FallCauseCounts::default())
+            }
+            other => panic!("{other:?}"),
+        }
+        let old_d = r#"{"approx": "lwpr", "rule": "pendulum-cart", "seed": 1,
+            "experiment": "robustness", "pushes_until_first_absorbed": 2, "falls": 1}"#;
+        let s = Summary::from_json(old_d).unwrap();
+        assert_eq!(
+            s.result,
+            ExperimentResult::Robustness {
+                pushes_until_first_absorbed: Some(2),
+                falls: 1,
+                impulse_ns: None,
+                absorbed_by_push: vec![],
+                no_learning: None,
+            }
+        );
+        // Written back, it has no invented fields.
+        assert!(!s.to_json().unwrap().contains("no_learning"));
+    }
+
+    #[test]
+    fn inconsistent_causes_and_robustness_series_are_refused() {
+        let mut s = stability();
+        if let ExperimentResult::Stability { fall_causes, .. } = &mut s.result {
+            // 91 falls after pushes for 90 fell pushes.
+            *fall_causes.learned.get_mut("before_touch_down").unwrap() += 1;
+        }
+        assert!(s.validate().is_err());
+        // no_push falls are outside the pushes' count.
+        let mut s = stability();
+        if let ExperimentResult::Stability { fall_causes, .. } = &mut s.result {
+            *fall_causes.learned.get_mut("no_push").unwrap() += 5;
+        }
+        s.validate().unwrap();
+        let mut s = stability();
+        if let ExperimentResult::Stability { fall_causes, .. } = &mut s.result {
+            fall_causes.model.insert("gremlins".into(), 0);
+        }
+        assert!(s.validate().is_err());
+
+        let with = |f: &dyn Fn(&mut ExperimentResult)| {
+            let mut r = robustness();
+            f(&mut r);
+            Summary {
+                result: r,
+                ..stability()
+            }
+            .validate()
+        };
+        with(&|_| {}).unwrap();
+        // the first absorbed push disagrees with the series
+        assert!(
+            with(&|r| if let ExperimentResult::Robustness {
+                absorbed_by_push, ..
+            } = r
+            {
+                absorbed_by_push[1] = true;
+            })
+            .is_err()
+        );
+        // different lengths
+        assert!(
+            with(&|r| if let ExperimentResult::Robustness {
+                no_learning: Some(n),
+                ..
+            } = r
+            {
+                n.absorbed_by_push.push(true);
+            })
+            .is_err()
+        );
+        // fewer falls than pushes not absorbed
+        assert!(
+            with(&|r| if let ExperimentResult::Robustness {
+                no_learning: Some(n),
+                ..
+            } = r
+            {
+                n.falls = 2;
+            })
+            .is_err()
+        );
+        assert!(
+            with(
+                &|r| if let ExperimentResult::Robustness { impulse_ns, .. } = r {
+                    *impulse_ns = Some(f64::NAN);
+                }
+            )
+            .is_err()
+        );
     }
 }

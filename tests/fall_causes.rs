@@ -1,0 +1,216 @@
+//! Fall causes (experiment C) and the no-learning baseline (experiment D), short: the observer
+//! sees every fall and touch-down of a real trial, the causes account for every fall, and both
+//! summaries carry their new fields with consistent sizes.
+
+use steplearn::control::walker::WalkerMode;
+use steplearn::experiments::ExperimentKind;
+use steplearn::experiments::fall_causes::{
+    FallCause, FallCauseObserver, FallEvent, StepLimits, classify,
+};
+use steplearn::experiments::run::{Protocols, run_spec};
+use steplearn::experiments::schedule::PushPlan;
+use steplearn::experiments::settings::Settings;
+use steplearn::experiments::stability::StabilityProtocol;
+use steplearn::experiments::sweep::RunSpec;
+use steplearn::experiments::trial::run_trial;
+use steplearn::report::summary::ExperimentResult;
+use steplearn::rules::RuleKind;
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("steplearn-{name}-{}", std::process::id()))
+}
+
+fn spec(experiment: ExperimentKind, seed: u64) -> RunSpec {
+    RunSpec {
+        experiment,
+        approx: "lwpr".into(),
+        rule: RuleKind::PendulumCart,
+        seed,
+    }
+}
+
+#[test]
+fn the_observer_sees_every_fall_and_touch_down_of_a_trial() {
+    let settings = Settings::default();
+    // Hard pushes: the model falls on some of them.
+    let plan = PushPlan {
+        count: 4,
+        impulse: (14.0, 20.0),
+        settle: 3.0,
+        gap: (3.0, 4.0),
+    };
+    let setup = settings.push_trial(WalkerMode::CaptureStep, 0.0, &plan, 5, [1.0, 0.0, 0.0]);
+    let mut observer = FallCauseObserver::new();
+    let log = run_trial(&setup, None, &mut [&mut observer]).unwrap();
+    let events = observer.events();
+    let falls = events
+        .iter()
+        .filter(|e| matches!(e, FallEvent::Fall { .. }))
+        .count();
+    let touch_downs = events.len() - falls;
+    assert_eq!(falls, log.falls.len());
+    assert_eq!(touch_downs, log.steps.len());
+    assert!(!log.falls.is_empty(), "no fall at 14-20 Ns");
+    // The Capture Step walker commands every step it takes.
+    assert!(
+        events
+            .iter()
+            .any(|e| matches!(e, FallEvent::TouchDown { step_x: Some(x), .. } if x.is_finite()))
+    );
+
+    let c = classify(events, &log.pushes, &StepLimits::of(&setup.walker));
+    assert_eq!(c.len(), log.falls.len());
+    for (f, r) in c.iter().zip(&log.falls) {
+        assert_eq!(f.time, r.time);
+        match f.push {
+            Some(i) => {
+                assert!(log.pushes[i].fell);
+                assert!(log.pushes[i].time < f.time);
+                assert!(f.time - log.pushes[i].time <= settings.push_window_s + 0.05);
+                assert!(f.cause.after_push());
+            }
+            None => assert!(!f.cause.after_push()),
+        }
+    }
+    // Every push that ended in a fall owns exactly one fall.
+    assert_eq!(
+        c.iter().filter(|f| f.push.is_some()).count(),
+        log.pushes.iter().filter(|p| p.fell).count()
+    );
+}
+
+#[test]
+fn stability_summary_counts_every_fall_by_cause() {
+    let settings = Settings::default();
+    let protocols = Protocols {
+        stability: StabilityProtocol {
+            pushes: 5,
+            impulse: (6.0, 20.0),
+            ..StabilityProtocol::default()
+        },
+        ..Protocols::default()
+    };
+    let dir = temp_dir("fall-causes-c");
+    let s = run_spec(
+        &spec(ExperimentKind::Stability, 4),
+        &dir,
+        &settings,
+        &protocols,
+    )
+    .unwrap();
+    s.validate().unwrap();
+    let ExperimentResult::Stability {
+        controllers,
+        fall_causes,
+    } = &s.result
+    else {
+        panic!("{:?}", s.result)
+    };
+    let mut any_fall = false;
+    for (c, causes) in [
+        (&controllers.open_loop, &fall_causes.open_loop),
+        (&controllers.model, &fall_causes.model),
+        (&controllers.learned, &fall_causes.learned),
+    ] {
+        assert_eq!(causes.len(), FallCause::ALL.len());
+        let pushed: u32 = causes
+            .iter()
+            .filter(|(k, _)| FallCause::from_name(k).unwrap().after_push())
+            .map(|(_, n)| n)
+            .sum();
+        assert_eq!(pushed, c.falls);
+        any_fall |= c.falls > 0;
+    }
+    assert!(any_fall, "no controller fell at 6-20 Ns");
+    let json: serde_json::Value = serde_json::from_str(&s.to_json().unwrap()).unwrap();
+    assert!(json["fall_causes"]["learned"]["catch_step_clamped"].is_u64());
+
+    // pushes.csv: a cause exactly for the pushes that ended in a fall.
+    let csv = std::fs::read_to_string(dir.join("pushes.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "controller,time_s,impulse_ns,fell,fall_cause"
+    );
+    let mut rows = 0;
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), 5, "{line}");
+        assert_eq!(cells[3] == "true", !cells[4].is_empty(), "{line}");
+        if !cells[4].is_empty() {
+            assert!(
+                FallCause::ALL
+                    .iter()
+                    .any(|c| c.name() == cells[4] && c.after_push())
+            );
+        }
+        rows += 1;
+    }
+    assert_eq!(rows, 3 * 5);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn robustness_summary_carries_the_baseline_on_the_same_pushes() {
+    let settings = Settings {
+        scale: 0.2, // 3 of the protocol's 15 pushes
+        ..Settings::default()
+    };
+    let protocols = Protocols::default();
+    let dir = temp_dir("fall-causes-d");
+    let s = run_spec(
+        &spec(ExperimentKind::Robustness, 1),
+        &dir,
+        &settings,
+        &protocols,
+    )
+    .unwrap();
+    s.validate().unwrap();
+    let ExperimentResult::Robustness {
+        pushes_until_first_absorbed,
+        falls,
+        impulse_ns,
+        absorbed_by_push,
+        no_learning,
+    } = &s.result
+    else {
+        panic!("{:?}", s.result)
+    };
+    assert_eq!(*impulse_ns, Some(protocols.robustness.impulse));
+    assert_eq!(absorbed_by_push.len(), 3);
+    let b = no_learning.as_ref().expect("baseline");
+    assert_eq!(b.absorbed_by_push.len(), absorbed_by_push.len());
+    assert_eq!(
+        *pushes_until_first_absorbed,
+        absorbed_by_push
+            .iter()
+            .position(|&a| a)
+            .map(|i| i as u32 + 1)
+    );
+    assert!(*falls as usize >= absorbed_by_push.iter().filter(|&&a| !a).count());
+    assert!(b.falls as usize >= b.absorbed_by_push.iter().filter(|&&a| !a).count());
+    let json: serde_json::Value = serde_json::from_str(&s.to_json().unwrap()).unwrap();
+    assert_eq!(json["absorbed_by_push"].as_array().unwrap().len(), 3);
+    assert_eq!(
+        json["no_learning"]["absorbed_by_push"]
+            .as_array()
+            .unwrap()
+            .len(),
+        3
+    );
+    assert!(json["impulse_ns"].is_f64());
+
+    // The per-push CSV has both walkers' outcomes, matching the summary.
+    let csv = std::fs::read_to_string(dir.join("robustness_pushes.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 3);
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r[2] == "true", !absorbed_by_push[i]);
+        assert_eq!(r[5] == "true", !b.absorbed_by_push[i]);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
