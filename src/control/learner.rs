@@ -28,7 +28,8 @@
 //!
 //! - **Gain guard** (`max_gain`, default 0.2 ~ 1/k, half the stability limit): the update is
 //!   tried on a copy of the approximator; if its response gives a larger gain, the step is
-//!   scaled to the limit and applied to the original. [`TouchDownReport`] carries r, the gain
+//!   scaled to just below the limit and applied to the original (never above it: if retries
+//!   do not get there, that touch-down changes nothing). [`TouchDownReport`] carries r, the gain
 //!   applied and the scale; the trial log records the gain of every touch-down.
 //! - **Anti-windup** (`anti_windup`, conditional integration): no target goes further past the
 //!   offsets that could still change the step at that tick (the walker tells the learner this
@@ -50,6 +51,10 @@ use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use thiserror::Error;
+
+/// Retries of the gain guard before it gives up on a touch-down (and leaves the model as it
+/// was).
+const GUARD_RETRIES: usize = 6;
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
 pub const LEARNER_INPUTS: usize = 3;
@@ -699,9 +704,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
     /// change stops at the end of the input's reach (it is not pulled into the reach). All predictions are taken before the first update, so
     /// every target is independent of the update order (eq. 6 read literally). With
     /// `max_gain` set, the approximator is updated on a copy first; if its predictions moved
-    /// by more than `max_gain` per unit of G, the step is scaled down to the limit and applied
-    /// to the approximator as it was (up to three times, as approximators respond not quite
-    /// linearly). Everything the learner can check (G finite, predictions and targets finite)
+    /// by more than `max_gain` per unit of G, the step is scaled to just below the limit and
+    /// applied to the approximator as it was (retried, as approximators respond not quite
+    /// linearly; if no retry lands within the limit, the approximator is left as it was and the
+    /// report says scale 0). The applied gain never exceeds `max_gain`. Everything the learner can check (G finite, predictions and targets finite)
     /// is checked before the first update: such a rejection changes nothing, the recorded
     /// inputs included (call [`Self::discard_step`] to drop them). If the approximator still
     /// fails during an update, the updates already applied stay (each one is all-or-nothing by
@@ -765,14 +771,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
         let original = guard.map(|_| self.approx.clone());
         let mut response = 0.0;
         let mut applied_response = 0.0;
-        for attempt in 0..4 {
+        for attempt in 0..=GUARD_RETRIES {
             if attempt > 0
                 && let Some(o) = &original
             {
                 self.approx = o.clone();
             }
-            let result = self.apply(scale);
-            if let Err(e) = result {
+            if let Err(e) = self.apply(scale) {
                 self.discard_step();
                 return Err(e);
             }
@@ -782,7 +787,19 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             }
             let gain = gain_of(applied_response).abs();
             match guard {
-                Some(limit) if gain > 1.05 * limit && attempt < 3 => scale *= limit / gain,
+                Some(limit) if gain > limit => {
+                    if attempt == GUARD_RETRIES {
+                        // No scale found within the retries: keep the model as it was.
+                        if let Some(o) = original {
+                            self.approx = o;
+                        }
+                        scale = 0.0;
+                        applied_response = 0.0;
+                        break;
+                    }
+                    // Aim a little below the limit: responses are not quite linear.
+                    scale *= 0.95 * limit / gain;
+                }
                 _ => break,
             }
         }

@@ -1,0 +1,106 @@
+//! The learner's stability properties on the simulated humanoid, on short runs: the gain
+//! applied at every touch-down stays within the guard's limit, the offset stays within the
+//! step range's reach (no windup), the literal eq. (6) does neither, and a fall produces an
+//! update exactly when learning from falls is on.
+
+use steplearn::approx::{AnyApproximator, ApproxKind};
+use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::walker::WalkerMode;
+use steplearn::experiments::schedule::{Push, ReferenceSchedule};
+use steplearn::experiments::settings::Settings;
+use steplearn::experiments::trial::{TrialLog, run_trial};
+use steplearn::rules::PendulumCart;
+
+fn learner(config: LearnerConfig) -> FootstepLearner<AnyApproximator, PendulumCart> {
+    let bounds = InputGrid::default().input_box().unwrap();
+    FootstepLearner::new(
+        ApproxKind::Lwpr.build(&bounds).unwrap(),
+        PendulumCart::default(),
+        config,
+    )
+    .unwrap()
+}
+
+/// Stepping in place for `seconds` with forward pushes of `impulses`, one every 3 s from 3 s.
+fn run(config: LearnerConfig, seconds: f64, impulses: &[f64]) -> TrialLog {
+    let settings = Settings {
+        learner: config,
+        ..Settings::default()
+    };
+    let pushes = impulses
+        .iter()
+        .enumerate()
+        .map(|(i, &impulse)| Push {
+            time: 3.0 * (i + 1) as f64,
+            impulse,
+        })
+        .collect();
+    let setup = settings.trial(
+        WalkerMode::CaptureStep,
+        ReferenceSchedule::constant(0.0),
+        pushes,
+        [1.0, 0.0, 0.0],
+        seconds,
+    );
+    let mut l = learner(config);
+    run_trial(&setup, Some(&mut l), &mut []).unwrap()
+}
+
+#[test]
+fn the_guarded_learner_keeps_its_gain_and_offset_bounded_through_pushes() {
+    let config = LearnerConfig::default();
+    let limit = config.max_gain.unwrap();
+    let log = run(config, 15.0, &[8.0, 12.0, 16.0, 10.0]);
+    assert!(log.steps.len() > 25, "{} steps", log.steps.len());
+    for s in &log.steps {
+        let gain = s.learning_gain.expect("every touch-down reports its gain");
+        assert!(gain.abs() <= limit, "gain {gain} at {}", s.time);
+        // The reach on this walker spans at most the step range plus the analytic step.
+        assert!(
+            s.learned_offset.abs() < 0.6,
+            "dF {} at {}",
+            s.learned_offset,
+            s.time
+        );
+    }
+    // The prior keeps dF small while stepping in place.
+    let before_push: Vec<_> = log.steps.iter().filter(|s| s.time < 3.0).collect();
+    assert!(!before_push.is_empty());
+    assert!(before_push.iter().all(|s| s.learned_offset.abs() < 0.03));
+}
+
+#[test]
+fn the_literal_eq6_learner_exceeds_the_gain_limit_and_winds_up() {
+    let log = run(LearnerConfig::literal(), 6.0, &[]);
+    let max_gain = log
+        .steps
+        .iter()
+        .filter_map(|s| s.learning_gain)
+        .fold(0.0f64, |m, g| m.max(g.abs()));
+    // measured: ~1 at the first touch-downs (a fresh LWPR moves all the way)
+    assert!(max_gain > 0.5, "max gain {max_gain}");
+    let max_offset = log
+        .steps
+        .iter()
+        .fold(0.0f64, |m, s| m.max(s.learned_offset.abs()));
+    assert!(
+        max_offset > 0.1 || !log.falls.is_empty(),
+        "max dF {max_offset}"
+    );
+}
+
+#[test]
+fn a_fall_updates_the_learner_only_when_learning_from_falls() {
+    for on in [false, true] {
+        let config = LearnerConfig {
+            learn_from_falls: on,
+            ..LearnerConfig::default()
+        };
+        // 25 Ns is far beyond what the walker can absorb.
+        let log = run(config, 5.0, &[25.0]);
+        assert!(!log.falls.is_empty(), "no fall");
+        for f in &log.falls {
+            assert_eq!(f.learning_gain.is_some(), on, "{f:?}");
+        }
+    }
+}
