@@ -11,7 +11,7 @@ use steplearn::experiments::sweep::{
     RunError, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
 };
 use steplearn::report::summary::{
-    ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
+    ControllerFalls, Controllers, ExperimentResult, ModelLearned, NoLearning, Summary,
 };
 use steplearn::rules::RuleKind;
 
@@ -52,9 +52,13 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed: (first < 6).then_some(first),
                 falls: first - 1,
-                impulse_ns: None,
-                absorbed_by_push: Vec::new(),
-                no_learning: None,
+                impulse_ns: Some(6.0),
+                // 5 pushes, absorbed from the first absorbed one on
+                absorbed_by_push: (1..=5).map(|p| p >= first).collect(),
+                no_learning: Some(NoLearning {
+                    absorbed_by_push: (1..=5).map(|p| p == 5).collect(),
+                    falls: 4,
+                }),
             }
         }
         ExperimentKind::Tracking => ExperimentResult::Tracking {
@@ -294,6 +298,7 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
     let row = &merged.rows[2];
     let mut learned = Vec::new();
     let mut absorbed_within_3 = 0;
+    let mut absorbed = (0, 0);
     for seed in 0..3 {
         let spec = |experiment| RunSpec {
             experiment,
@@ -315,11 +320,17 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
         )
         .unwrap();
         if let ExperimentResult::Robustness {
-            pushes_until_first_absorbed: Some(n),
+            pushes_until_first_absorbed,
+            absorbed_by_push,
+            no_learning: Some(b),
             ..
         } = s.result
         {
-            absorbed_within_3 += usize::from(n <= 3);
+            if let Some(n) = pushes_until_first_absorbed {
+                absorbed_within_3 += usize::from(n <= 3);
+            }
+            absorbed.0 += absorbed_by_push.iter().filter(|&&a| a).count() as u64;
+            absorbed.1 += b.absorbed_by_push.iter().filter(|&&a| a).count() as u64;
         }
     }
     let mean = learned.iter().sum::<f64>() / 3.0;
@@ -327,6 +338,8 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
     assert_eq!(row.i50_learned.n, 3);
     assert_eq!(row.robustness_seeds, 3);
     assert_eq!(row.absorbed_within_3, absorbed_within_3);
+    assert_eq!(row.absorbed_vs_no_learning, absorbed);
+    assert_eq!(absorbed.1, 3);
     // every experiment's run is timed, except runs[0] (this row) whose run.json was broken
     assert_eq!(runs[0].id(), "tracking__lwpr__pendulum-cart__s0");
     assert_eq!(row.run_time_s.n, 4 * 3 - 1);
@@ -337,7 +350,7 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
     assert_eq!(md.lines().count(), 2 + 4);
     assert!(md.contains("| lwpr | pendulum-cart |"));
     let mut csv = csv::Reader::from_path(dir.join("ablation.csv")).unwrap();
-    assert_eq!(csv.headers().unwrap().len(), 20);
+    assert_eq!(csv.headers().unwrap().len(), 22);
     assert_eq!(csv.records().count(), 4);
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(merge(&dir).is_err(), "a missing directory is an error");

@@ -10,7 +10,7 @@ use super::stability::{self, ControllerPushes, StabilityProtocol};
 use super::sweep::RunSpec;
 use super::tracking::{self, TrackingProtocol};
 use crate::approx::{AnyApproximator, ApproxKind};
-use crate::control::learner::{FootstepLearner, InputGrid};
+use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, Prior};
 use crate::report::summary::{
     ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
 };
@@ -98,7 +98,21 @@ pub fn run_spec(
             }
         }
         ExperimentKind::Robustness => {
-            let r = robustness::run(settings, &protocols.robustness, spec.seed, &make)?;
+            // Not initialised: without the dF = 0 prior unless the protocol asks for it.
+            let p = &protocols.robustness;
+            let config = if p.learner_prior {
+                settings.learner
+            } else {
+                LearnerConfig {
+                    prior: Prior::none(),
+                    ..settings.learner
+                }
+            };
+            let make = || -> Result<FootstepLearner<AnyApproximator, Box<dyn LearningRule>>, _> {
+                let r = rule.build().expect("validated rule config");
+                FootstepLearner::new(prototype.clone(), r, config)
+            };
+            let r = robustness::run(settings, p, spec.seed, &make)?;
             r.write(dir)?;
             r.summary_result()
         }

@@ -479,6 +479,9 @@ pub struct AblationRow {
     pub pushes_until_absorbed: Stat,
     /// Experiment D: falls per run.
     pub robustness_falls: Stat,
+    /// Experiment D: pushes absorbed by the learner and by the same walker without learning,
+    /// summed over the seeds that ran both.
+    pub absorbed_vs_no_learning: (u64, u64),
     /// Wall time per run (s) over every finished run of this pair with a `run.json`.
     pub run_time_s: Stat,
 }
@@ -496,7 +499,7 @@ pub struct Merged {
     pub problems: Vec<MergeProblem>,
 }
 
-const CSV_HEADER: [&str; 20] = [
+const CSV_HEADER: [&str; 22] = [
     "approx",
     "rule",
     "stability_seeds",
@@ -514,6 +517,8 @@ const CSV_HEADER: [&str; 20] = [
     "pushes_until_absorbed_std",
     "robustness_falls_mean",
     "robustness_falls_std",
+    "absorbed_learned",
+    "absorbed_no_learning",
     "runs_timed",
     "run_time_s_mean",
     "run_time_s_std",
@@ -525,7 +530,8 @@ impl Merged {
         let mut s = String::from(
             "| approx | rule | C: I50 open-loop (Ns) | C: I50 model (Ns) | C: I50 learned (Ns) \
              | C: learned falls / pushes | D: absorbed within 3 pushes | D: pushes to first \
-             absorbed | D: falls | run time (s) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+             absorbed | D: falls | D: absorbed, learned / no learning | run time (s) |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|\n",
         );
         for r in &self.rows {
             let (falls, pushes) = r.learned_falls_pushes;
@@ -539,8 +545,9 @@ impl Merged {
             } else {
                 "-".into()
             };
+            let (al, an) = r.absorbed_vs_no_learning;
             s.push_str(&format!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {al} / {an} | {} |\n",
                 r.approx,
                 r.rule,
                 r.i50_open_loop.markdown(),
@@ -578,6 +585,8 @@ impl Merged {
                     row.push(Stat::csv(st.mean));
                     row.push(Stat::csv(st.std));
                 }
+                row.push(r.absorbed_vs_no_learning.0.to_string());
+                row.push(r.absorbed_vs_no_learning.1.to_string());
                 row.push(r.run_time_s.n.to_string());
                 row.push(Stat::csv(r.run_time_s.mean));
                 row.push(Stat::csv(r.run_time_s.std));
@@ -602,6 +611,7 @@ struct Collected {
     absorbed_within_3: usize,
     pushes_until_absorbed: Vec<f64>,
     robustness_falls: Vec<f64>,
+    absorbed_vs_no_learning: (u64, u64),
     run_time_s: Vec<f64>,
 }
 
@@ -675,8 +685,15 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed,
                 falls,
+                absorbed_by_push,
+                no_learning,
                 ..
             } => {
+                if let Some(b) = no_learning {
+                    let count = |v: &[bool]| v.iter().filter(|&&a| a).count() as u64;
+                    group.absorbed_vs_no_learning.0 += count(&absorbed_by_push);
+                    group.absorbed_vs_no_learning.1 += count(&b.absorbed_by_push);
+                }
                 group.robustness_seeds += 1;
                 group.robustness_falls.push(f64::from(falls));
                 if let Some(n) = pushes_until_first_absorbed {
@@ -700,6 +717,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
             absorbed_within_3: c.absorbed_within_3,
             pushes_until_absorbed: Stat::of(&c.pushes_until_absorbed),
             robustness_falls: Stat::of(&c.robustness_falls),
+            absorbed_vs_no_learning: c.absorbed_vs_no_learning,
             run_time_s: Stat::of(&c.run_time_s),
         })
         .collect();
