@@ -55,6 +55,13 @@ fn the_guarded_learner_keeps_its_gain_and_offset_bounded_through_pushes() {
     for s in &log.steps {
         let gain = s.learning_gain.expect("every touch-down reports its gain");
         assert!(gain.abs() <= limit, "gain {gain} at {}", s.time);
+        // The guard only ever scales the step down: the gain is at most eta times the
+        // approximator's response to the full step (eta = 1).
+        let response = s.learning_response.expect("and its response");
+        assert!(
+            gain.abs() <= response.abs() + 1e-9,
+            "gain {gain} > r {response}"
+        );
         // The reach on this walker spans at most the step range plus the analytic step.
         assert!(
             s.learned_offset.abs() < 0.6,

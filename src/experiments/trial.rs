@@ -141,6 +141,11 @@ pub struct StepRecord {
     /// [`crate::control::learner::TouchDownReport::gain`]); `None` without a learner.
     #[serde(default)]
     pub learning_gain: Option<f64>,
+    /// The approximator's response r at this touch-down: the share of the requested change
+    /// its predictions moved under the full step, before the gain guard scaled it
+    /// ([`crate::control::learner::TouchDownReport::response`]); `None` without a learner.
+    #[serde(default)]
+    pub learning_response: Option<f64>,
 }
 
 impl StepRecord {
@@ -150,7 +155,7 @@ impl StepRecord {
     }
 
     /// Column names of [`StepRecord::csv_row`].
-    pub const CSV_HEADER: [&'static str; 9] = [
+    pub const CSV_HEADER: [&'static str; 10] = [
         "controller",
         "time_s",
         "f_r_m",
@@ -160,6 +165,7 @@ impl StepRecord {
         "theta_e_dot_rad_s",
         "learned_offset_m",
         "learning_gain",
+        "learning_response",
     ];
 
     /// The step as a CSV row whose first column names the controller.
@@ -175,6 +181,8 @@ impl StepRecord {
             format!("{:.5}", self.learned_offset),
             self.learning_gain
                 .map_or(String::new(), |g| format!("{g:.5}")),
+            self.learning_response
+                .map_or(String::new(), |r| format!("{r:.5}")),
         ]
     }
 }
@@ -290,6 +298,7 @@ pub fn run_trial(
                         theta_e_dot: s.theta_e_dot,
                         learned_offset: tick.learned_offset,
                         learning_gain: tick.learning.map(|r| r.gain),
+                        learning_response: tick.learning.map(|r| r.response),
                     };
                     for o in observers.iter_mut() {
                         o.on_step(&record);
