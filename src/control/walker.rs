@@ -10,8 +10,9 @@
 //! footstep off) are all configurations of this one type.
 //!
 //! In the Capture Step modes the controller's step places only the swing foot; the support
-//! leg's sweep (and the trunk lean) follow the reference step `F_R`
-//! ([`StepCommand::gait_x`]). Driving the sweep with the controller's step fed back
+//! leg's sweep follows the reference step `F_R` plus the learned offset
+//! ([`StepCommand::gait_x`], [`WalkerConfig::offset_in_gait`]) and the trunk lean follows
+//! `F_R`. Driving the sweep with the controller's step fed back
 //! positively on the stiff robot: a backward catch step swept the hips backward over the
 //! support foot, the controller saw more backward velocity and stepped further back (the
 //! robot walked backward with -0.116 m steps whatever `F_R` was).
