@@ -156,18 +156,15 @@ fn save_load_round_trip<A: FunctionApproximator + Persist, F: Fn(usize) -> A>(
     assert_eq!(m.to_json().unwrap(), loaded.to_json().unwrap());
 
     // Through a file too, and a failed save (into a missing directory) leaves nothing behind.
-    let dir = std::env::temp_dir().join(format!(
-        "steplearn-conformance-{}-{}",
-        std::process::id(),
-        std::any::type_name::<A>().replace("::", "_")
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
+    // A directory of its own: tests of the same approximator type run in parallel.
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let path = dir.join(format!("model-{n_out}.json"));
     m.save(&path).unwrap();
     let from_file = A::load(&path).unwrap();
     assert_eq!(m.to_json().unwrap(), from_file.to_json().unwrap());
     assert!(m.save(dir.join("missing-dir").join("m.json")).is_err());
-    std::fs::remove_dir_all(&dir).ok();
+    assert!(!dir.join("missing-dir").exists());
 }
 
 fn same_seed_same_model<A: FunctionApproximator + Persist, F: Fn(usize) -> A>(
