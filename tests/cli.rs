@@ -46,47 +46,138 @@ fn stability_run_writes_summary_and_figures() {
 
 #[test]
 fn bad_arguments_are_messages_and_failures() {
-    for args in [
-        vec!["experiment", "stability", "--approx", "lwrp", "--out", "x"],
-        vec!["experiment", "stability", "--rule", "nope", "--out", "x"],
-        vec![
-            "experiment",
-            "stability",
-            "--impulse-range",
-            "5,2",
-            "--out",
-            "x",
-        ],
-        vec!["experiment", "stability", "--pushes", "0", "--out", "x"],
-        vec![
-            "experiment",
-            "stability",
-            "--config",
-            "/nonexistent.toml",
-            "--out",
-            "x",
-        ],
-        vec!["sweep", "--shard", "3/2", "--out", "x"],
-        vec!["merge", "/nonexistent-steplearn-dir"],
-        vec!["experiment", "walking", "--out", "x"],
-        vec![
-            "experiment",
-            "disturbance",
-            "--impulse-range",
-            "5,8",
-            "--out",
-            "x",
-        ],
-        vec!["reproduce", "--seeds", "0", "--out", "x"],
-        vec!["reproduce", "--config", "/nonexistent.toml", "--out", "x"],
-        vec!["reproduce", "--seeds", "-1"],
-    ] {
+    let dir = tempfile::tempdir().unwrap();
+    let config = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let malformed = config("malformed.toml", "[settings\nx = 1\n");
+    let unknown = config("unknown.toml", "[settings.learner]\nmax_gian = 0.1\n");
+    let out_of_range = config("range.toml", "[settings.learner]\nmax_gain = -1.0\n");
+    let out = dir.path().join("out");
+    let out = out.to_str().unwrap();
+    // Each case and a piece of the message it must give.
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["experiment", "stability", "--approx", "lwrp", "--out", "x"],
+            "'lwrp'",
+        ),
+        (
+            vec!["experiment", "stability", "--rule", "nope", "--out", "x"],
+            "'nope'",
+        ),
+        (
+            vec![
+                "experiment",
+                "stability",
+                "--impulse-range",
+                "5,2",
+                "--out",
+                "x",
+            ],
+            "need 0 <= A <= B",
+        ),
+        (
+            vec!["experiment", "stability", "--pushes", "0", "--out", "x"],
+            "--pushes must be at least 1",
+        ),
+        (
+            vec![
+                "experiment",
+                "stability",
+                "--config",
+                "/nonexistent.toml",
+                "--out",
+                "x",
+            ],
+            "cannot read /nonexistent.toml",
+        ),
+        (
+            vec!["sweep", "--shard", "3/2", "--out", "x"],
+            "shard index must be below 2",
+        ),
+        (
+            vec!["merge", "/nonexistent-steplearn-dir"],
+            "/nonexistent-steplearn-dir",
+        ),
+        (vec!["experiment", "walking", "--out", "x"], "'walking'"),
+        (
+            vec![
+                "experiment",
+                "disturbance",
+                "--impulse-range",
+                "5,8",
+                "--out",
+                "x",
+            ],
+            "give --impulse-range A,A",
+        ),
+        (
+            vec!["reproduce", "--seeds", "0", "--out", "x"],
+            "--seeds must be at least 1",
+        ),
+        (
+            vec!["reproduce", "--config", "/nonexistent.toml", "--out", "x"],
+            "cannot read /nonexistent.toml",
+        ),
+        (
+            vec!["reproduce", "--seeds", "-1"],
+            "unexpected argument '-1'",
+        ),
+        (
+            vec![
+                "experiment",
+                "stability",
+                "--pushes",
+                "1",
+                "--config",
+                &malformed,
+                "--out",
+                out,
+            ],
+            "unclosed table",
+        ),
+        (
+            vec![
+                "experiment",
+                "stability",
+                "--pushes",
+                "1",
+                "--config",
+                &unknown,
+                "--out",
+                out,
+            ],
+            "unknown field `max_gian`",
+        ),
+        (
+            vec![
+                "experiment",
+                "stability",
+                "--pushes",
+                "1",
+                "--config",
+                &out_of_range,
+                "--out",
+                out,
+            ],
+            "max_gain must be finite and > 0, got -1",
+        ),
+    ];
+    for (args, message) in cases {
         let o = steplearn(&args);
         assert!(!o.status.success(), "{args:?} succeeded");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains("error"), "{args:?}: {err}");
+        assert!(
+            err.contains(message),
+            "{args:?}: expected {message:?} in {err}"
+        );
         assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
     }
+    // None of the failed runs wrote a result.
+    assert!(!dir.path().join("out").join("summary.json").exists());
 }
 
 /// The main job, shrunk by a config file: every experiment runs once, the claims report is
@@ -126,8 +217,17 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
         assert_eq!(claims[c]["seeds"].as_array().unwrap().len(), 1, "{c}");
     }
     let report = std::fs::read(out.join("claims.md")).unwrap();
+    let summaries: Vec<_> = ["tracking", "disturbance", "stability", "robustness"]
+        .iter()
+        .map(|k| out.join(format!("{k}__lwpr__pendulum-cart__s0/summary.json")))
+        .collect();
+    let modified = |p: &std::path::Path| std::fs::metadata(p).unwrap().modified().unwrap();
+    let before: Vec<_> = summaries.iter().map(|p| modified(p)).collect();
     let o = steplearn(&args);
     assert!(o.status.success());
     assert_eq!(report, std::fs::read(out.join("claims.md")).unwrap());
+    // The finished runs were reused, not run again: their files were not rewritten.
+    let after: Vec<_> = summaries.iter().map(|p| modified(p)).collect();
+    assert_eq!(before, after);
     std::fs::remove_dir_all(&dir).ok();
 }
