@@ -59,7 +59,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let wall = std::time::Instant::now();
     let result = stability::run(&Settings::default(), &protocol, args.seed, &make)?;
-    result.write(&args.out, protocol.impulse)?;
+    result.write(&args.out, protocol.impulse, protocol.direction)?;
     println!("| controller | pushes | falls | impulse at 50% falls (Ns) | method |");
     println!("|---|---|---|---|---|");
     for (name, c) in result.controllers() {

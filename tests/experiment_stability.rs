@@ -33,7 +33,7 @@ fn same_pushes_for_every_controller_and_files_written() {
     }
 
     let dir = std::env::temp_dir().join(format!("steplearn-stability-{}", std::process::id()));
-    r.write(&dir, protocol.impulse).unwrap();
+    r.write(&dir, protocol.impulse, protocol.direction).unwrap();
     let csv = std::fs::read_to_string(dir.join("pushes.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 12);
     let svg = std::fs::read_to_string(dir.join("fall_probability.svg")).unwrap();

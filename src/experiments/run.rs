@@ -58,7 +58,7 @@ pub fn run_spec(
         ExperimentKind::Stability => {
             let p = &protocols.stability;
             let r = stability::run(settings, p, spec.seed, &make)?;
-            r.write(dir, p.impulse)?;
+            r.write(dir, p.impulse, p.direction)?;
             let falls = |c: &ControllerPushes| ControllerFalls {
                 pushes: c.pushes.len() as u32,
                 falls: c.falls() as u32,

@@ -171,7 +171,12 @@ impl StabilityResult {
 
     /// Writes `pushes.csv` (controller, time, impulse, fell, the cause of the fall) and `fall_probability.svg`
     /// (logistic fits and 2 Ns bins, as the paper's Fig. 6) into `dir`.
-    pub fn write(&self, dir: &Path, impulse: (f64, f64)) -> Result<(), ExperimentError> {
+    pub fn write(
+        &self,
+        dir: &Path,
+        impulse: (f64, f64),
+        direction: [f64; 3],
+    ) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         let mut rows = Vec::new();
         for (name, c) in self.controllers() {
@@ -215,14 +220,44 @@ impl StabilityResult {
                 bins,
             })
             .collect();
+        let title = format!(
+            "Probability to fall vs {} push impulse",
+            direction_name(direction)
+        );
         fall_probability_plot(
             &dir.join("fall_probability.svg"),
             &FallPlot {
-                title: "Probability to fall vs forward push impulse",
+                title: &title,
                 x_label: "push impulse (Ns)",
                 curves: &curves,
             },
         )?;
         Ok(())
+    }
+}
+
+/// `forward`, `backward`, `left` or `right` for the unit axes of the horizontal plane, else the
+/// vector itself.
+pub fn direction_name(d: [f64; 3]) -> String {
+    match d {
+        [1.0, 0.0, 0.0] => "forward".into(),
+        [-1.0, 0.0, 0.0] => "backward".into(),
+        [0.0, 1.0, 0.0] => "left".into(),
+        [0.0, -1.0, 0.0] => "right".into(),
+        [x, y, z] => format!("({x}, {y}, {z})"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::direction_name;
+
+    #[test]
+    fn titles_name_the_push_direction() {
+        assert_eq!(direction_name([1.0, 0.0, 0.0]), "forward");
+        assert_eq!(direction_name([-1.0, 0.0, 0.0]), "backward");
+        assert_eq!(direction_name([0.0, 1.0, 0.0]), "left");
+        assert_eq!(direction_name([0.0, -1.0, 0.0]), "right");
+        assert_eq!(direction_name([0.6, 0.8, 0.0]), "(0.6, 0.8, 0)");
     }
 }
