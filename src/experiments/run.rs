@@ -10,7 +10,7 @@ use super::stability::{self, ControllerPushes, StabilityProtocol};
 use super::sweep::RunSpec;
 use super::tracking::{self, TrackingProtocol};
 use crate::approx::{AnyApproximator, ApproxKind};
-use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, Prior};
+use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError, Prior};
 use crate::report::summary::{
     ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
 };
@@ -49,11 +49,15 @@ pub fn run_spec(
     let prototype = approx
         .build(&bounds)
         .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
-    let make = || -> Result<FootstepLearner<AnyApproximator, Box<dyn LearningRule>>, _> {
+    let build = |config: LearnerConfig| -> Result<
+        FootstepLearner<AnyApproximator, Box<dyn LearningRule>>,
+        LearnerError,
+    > {
         // The rule config was validated above, so building it cannot fail.
         let r = rule.build().expect("validated rule config");
-        FootstepLearner::new(prototype.clone(), r, settings.learner)
+        FootstepLearner::new(prototype.clone(), r, config)
     };
+    let make = || build(settings.learner);
     let result = match spec.experiment {
         ExperimentKind::Stability => {
             let p = &protocols.stability;
@@ -108,11 +112,7 @@ pub fn run_spec(
                     ..settings.learner
                 }
             };
-            let make = || -> Result<FootstepLearner<AnyApproximator, Box<dyn LearningRule>>, _> {
-                let r = rule.build().expect("validated rule config");
-                FootstepLearner::new(prototype.clone(), r, config)
-            };
-            let r = robustness::run(settings, p, spec.seed, &make)?;
+            let r = robustness::run(settings, p, spec.seed, &|| build(config))?;
             r.write(dir)?;
             r.summary_result()
         }
