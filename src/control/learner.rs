@@ -701,18 +701,21 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
     /// then starts a new step.
     ///
     /// The target at each recorded input x_i is F_old(x_i) + eta G; with `anti_windup` the
-    /// change stops at the end of the input's reach (it is not pulled into the reach). All predictions are taken before the first update, so
-    /// every target is independent of the update order (eq. 6 read literally). With
-    /// `max_gain` set, the approximator is updated on a copy first; if its predictions moved
-    /// by more than `max_gain` per unit of G, the step is scaled to just below the limit and
-    /// applied to the approximator as it was (retried, as approximators respond not quite
-    /// linearly; if no retry lands within the limit, the approximator is left as it was and the
-    /// report says scale 0). The applied gain never exceeds `max_gain`. Everything the learner can check (G finite, predictions and targets finite)
-    /// is checked before the first update: such a rejection changes nothing, the recorded
-    /// inputs included (call [`Self::discard_step`] to drop them). If the approximator still
-    /// fails during an update, the updates already applied stay (each one is all-or-nothing by
-    /// the [`FunctionApproximator`] contract, so the model is valid), the error reports how
-    /// many were applied, and the step is discarded.
+    /// change stops at the end of the input's reach (it is not pulled into the reach). All
+    /// predictions are taken before the first update, so every target is independent of the
+    /// update order (eq. 6 read literally). With `max_gain` set, the approximator is updated
+    /// on a copy first; if its predictions moved by more than `max_gain` per unit of G, the
+    /// step is scaled to just below the limit and applied to the approximator as it was
+    /// (retried, as approximators respond not quite linearly; if no retry lands within the
+    /// limit, the approximator is left as it was and the report says scale 0). The applied
+    /// gain never exceeds `max_gain`.
+    ///
+    /// Everything the learner can check (G finite, predictions and targets finite) is checked
+    /// before the first update: such a rejection changes nothing, the recorded inputs included
+    /// (call [`Self::discard_step`] to drop them). If the approximator still fails during an
+    /// update, the updates already applied stay (each one is all-or-nothing by the
+    /// [`FunctionApproximator`] contract, so the model is valid), the error reports how many
+    /// were applied, and the step is discarded.
     pub fn touch_down(&mut self, step: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
         for (what, v) in [
             ("theta_e", step.theta_e),

@@ -62,9 +62,11 @@ pub struct WalkerConfig {
     /// Feed the learned offset into the support leg's sweep as well as the footstep
     /// (`gait_x = F_R + dF`), as the authors' gait turns the step into a gait velocity. Off:
     /// the sweep follows F_R alone. Default on: with it the learned walker's 50% fall impulse
-    /// in experiment C was 14.37 / 13.40 / 13.78 Ns on seeds 0-2 (100 pushes), without it
-    /// 11.81 / 11.05 / 13.71 Ns (model 14.07 / 13.76 / 13.47). Without a learner dF = 0, so
-    /// the model is the same either way.
+    /// in experiment C was 14.37 / 13.40 / 13.78 Ns on seeds 0-2 (100 pushes, forward, with
+    /// an earlier anti-windup that clamped targets into the reach), without it 11.81 / 11.05 /
+    /// 13.71 Ns (model 14.07 / 13.76 / 13.47); backward, with the current learner, 6.24 /
+    /// 7.39 / 6.96 Ns with it and 6.70 / 5.84 / 6.64 without (model 6.46 / 6.19 / 6.99).
+    /// Without a learner dF = 0, so the model is the same either way.
     #[serde(default = "default_offset_in_gait")]
     pub offset_in_gait: bool,
 }

@@ -47,8 +47,8 @@ pub struct RobustnessProtocol {
     /// | 8 Ns | 15 | 15 | 15 | 15 | 15 | 75/75 = 1.00 |
     /// | 10 Ns | 15 | 15 | 15 | 15 | 15 | 75/75 = 1.00 |
     ///
-    /// In the same runs the learned walker absorbed, of 15, for seeds 0-4: 15 each at 4 and
-    /// 5 Ns; 14, 10, 15, 14, 15 at 6 Ns; 11, 1, 6, 6, 12 at 8 Ns; 2, 0, 0, 0, 0 at 10 Ns.
+    /// With the stable learner (no prior, the default here) the learned walker absorbed 14,
+    /// 15, 14, 15, 15 of 15 at 6 Ns and 12, 10, 10, 12, 11 at 8 Ns (seeds 0-4).
     pub impulse: f64,
     /// Episodes (one push each) before [`Settings::scale`].
     pub pushes: usize,
