@@ -169,8 +169,9 @@ impl StabilityResult {
         }
     }
 
-    /// Writes `pushes.csv` (controller, time, impulse, fell, the cause of the fall) and `fall_probability.svg`
-    /// (logistic fits and 2 Ns bins, as the paper's Fig. 6) into `dir`.
+    /// Writes `pushes.csv` (controller, time, impulse, fell, the cause of the fall) and
+    /// `fall_probability.svg` (logistic fits and 2 Ns bins, as the paper's Fig. 6, titled by
+    /// the push `direction`) into `dir`.
     pub fn write(
         &self,
         dir: &Path,
