@@ -27,15 +27,24 @@
 //! - [`approx`]: online function approximators behind [`approx::FunctionApproximator`].
 //! - [`rules`]: learning rules behind [`rules::LearningRule`].
 //! - [`control`]: state estimation, Capture Step control, step motion generation, the learner.
-//! - [`sim`]: the humanoid in rapier3d.
-//! - [`experiments`]: the trial harness, the paper's protocols, sweeps.
-//! - [`report`]: CSV, `summary.json` and SVG figures.
+//! - `sim` (feature `sim`): the humanoid in rapier3d.
+//! - `experiments` (feature `experiments`): the trial harness, the paper's protocols, sweeps.
+//! - `report` (feature `experiments`): CSV, `summary.json` and SVG figures.
+//!
+//! ## Features
+//! The default feature `cli` gives everything, the `steplearn` binary included. With
+//! `default-features = false` the crate is the learning layer alone (approximators, rules and
+//! the control stack with the learner), without rapier3d, plotters, clap, indicatif or rayon:
+//! `sim` adds the humanoid, `experiments` the harness and reports.
 #![warn(missing_docs)]
 
 pub mod approx;
 pub mod control;
+#[cfg(feature = "experiments")]
 pub mod experiments;
 mod names;
+#[cfg(feature = "experiments")]
 pub mod report;
 pub mod rules;
+#[cfg(feature = "sim")]
 pub mod sim;

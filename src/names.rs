@@ -36,13 +36,13 @@ macro_rules! named_choices {
             Ord,
             serde::Serialize,
             serde::Deserialize,
-            clap::ValueEnum,
         )]
+        #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
         pub enum $name {
             $(
                 $(#[$vmeta])*
                 #[serde(rename = $text)]
-                #[value(name = $text)]
+                #[cfg_attr(feature = "cli", value(name = $text))]
                 $variant,
             )+
         }
@@ -100,6 +100,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "cli")]
     fn names_agree_across_serde_clap_display_and_lookup() {
         use clap::ValueEnum;
         assert_eq!(Colour::ALL, [Colour::Red, Colour::DarkBlue, Colour::Green]);

@@ -142,6 +142,7 @@ mod tests {
     use crate::rules::StepOutcome;
 
     #[test]
+    #[cfg(feature = "cli")]
     fn names_round_trip_through_str_serde_and_clap() {
         use clap::ValueEnum;
         for kind in RuleKind::ALL {
