@@ -39,6 +39,7 @@
 #![warn(missing_docs)]
 
 pub mod approx;
+pub mod atomic_file;
 pub mod control;
 #[cfg(feature = "experiments")]
 pub mod experiments;

@@ -7,8 +7,8 @@ use std::path::Path;
 /// JSON persistence for a model whose invariants can be checked after loading.
 ///
 /// Floats round-trip exactly (serde_json's `float_roundtrip`), so a loaded model predicts
-/// bit-identically to the saved one. [`Persist::save`] writes to a temporary file and renames
-/// it, so a failed save never damages a file that was already there.
+/// bit-identically to the saved one. [`Persist::save`] writes to a uniquely named temporary file
+/// and renames it, so a failed save never damages a file that was already there.
 pub trait Persist: Serialize + DeserializeOwned {
     /// Checks the invariants a deserialized model must satisfy (dimensions agree, numbers are
     /// finite, parameters in range). Called by every load.
@@ -27,14 +27,10 @@ pub trait Persist: Serialize + DeserializeOwned {
         Ok(model)
     }
 
-    /// Writes the model to `path` atomically (temporary file, then rename).
+    /// Writes the model to `path` atomically ([`crate::atomic_file::write_atomic`]).
     fn save(&self, path: impl AsRef<Path>) -> Result<(), ApproxError> {
-        let path = path.as_ref();
         let json = self.to_json()?;
-        let mut tmp = path.as_os_str().to_owned();
-        tmp.push(".tmp");
-        std::fs::write(&tmp, json)?;
-        std::fs::rename(&tmp, path)?;
+        crate::atomic_file::write_atomic(path.as_ref(), json.as_bytes())?;
         Ok(())
     }
 

@@ -110,7 +110,7 @@ impl RunRecord {
         {
             std::fs::create_dir_all(dir)?;
         }
-        std::fs::write(path, self.to_svg(interval))
+        crate::atomic_file::write_atomic(path, self.to_svg(interval).as_bytes())
     }
 }
 
