@@ -1,4 +1,5 @@
-//! The sweep machinery with a fake runner: determinism across thread counts, resumption,
+//! The sweep machinery with a fake runner: determinism across thread counts (and with real
+//! experiments, every file byte for byte), resumption,
 //! failures, sharding into one directory, and merging into the ablation table.
 
 use rand::rngs::ChaCha8Rng;
@@ -354,4 +355,85 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
     assert_eq!(csv.records().count(), 4);
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(merge(&dir).is_err(), "a missing directory is an error");
+}
+
+/// Every file under `dir` except the runs' `run.json` (wall times), by relative path.
+fn all_files(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.file_name().unwrap() != steplearn::experiments::sweep::RECORD_FILE {
+                let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
+                out.push((rel, std::fs::read(&p).unwrap()));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn real_experiments_are_byte_identical_under_1_and_4_threads() {
+    use steplearn::experiments::run::{Protocols, run_spec};
+    use steplearn::experiments::settings::Settings;
+    let settings = Settings {
+        scale: 0.02,
+        ..Settings::default()
+    };
+    let protocols = Protocols::default();
+    let runs = SweepGrid {
+        experiments: vec![ExperimentKind::Stability, ExperimentKind::Robustness],
+        approx: vec!["lwpr".into(), "grid".into()],
+        rules: vec![RuleKind::PendulumCart],
+        seeds: vec![3],
+    }
+    .runs()
+    .unwrap();
+    let runner = |spec: &RunSpec, dir: &Path| -> Result<Summary, RunError> {
+        run_spec(spec, dir, &settings, &protocols).map_err(|e| e.into())
+    };
+    let mut results = Vec::new();
+    for threads in [1, 4] {
+        let dir = temp_dir(&format!("real-threads{threads}"));
+        let outcomes = run_sweep(
+            &runs,
+            &dir,
+            &runner,
+            &SweepOptions {
+                threads: Some(threads),
+            },
+            &|_| {},
+        )
+        .unwrap();
+        assert!(
+            outcomes
+                .iter()
+                .all(|o| matches!(o.status, RunStatus::Done { .. })),
+            "{outcomes:?}"
+        );
+        results.push(all_files(&dir));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    // every run wrote its summary and its pushes
+    for run in &runs {
+        let pushes = match run.experiment {
+            ExperimentKind::Stability => "pushes.csv",
+            _ => "robustness_pushes.csv",
+        };
+        for file in ["summary.json", pushes] {
+            let want = format!("{}/{file}", run.id());
+            assert!(results[0].iter().any(|(p, _)| *p == want), "{want} missing");
+        }
+    }
+    assert_eq!(
+        results[0].iter().map(|f| &f.0).collect::<Vec<_>>(),
+        results[1].iter().map(|f| &f.0).collect::<Vec<_>>()
+    );
+    for (a, b) in results[0].iter().zip(&results[1]) {
+        assert!(a.1 == b.1, "{} differs between 1 and 4 threads", a.0);
+    }
 }
