@@ -26,6 +26,7 @@
 //!
 //! - [`approx`]: online function approximators behind [`approx::FunctionApproximator`].
 //! - [`rules`]: learning rules behind [`rules::LearningRule`].
+//! - [`robot`]: the robot interface (sensors, joint targets, legs, leg geometry).
 //! - [`control`]: state estimation, Capture Step control, step motion generation, the learner.
 //! - `sim` (feature `sim`): the humanoid in rapier3d.
 //! - `experiments` (feature `experiments`): the trial harness, the paper's protocols, sweeps.
@@ -46,6 +47,8 @@ pub mod experiments;
 mod names;
 #[cfg(feature = "experiments")]
 pub mod report;
+pub mod robot;
 pub mod rules;
 #[cfg(feature = "sim")]
 pub mod sim;
+pub mod stats;

@@ -55,7 +55,7 @@
 //! ## The robot the defaults are for
 //! One place for the numbers (the simulated humanoid of the paper, built after Winter's
 //! anthropometric fractions of a 2.0 m, 13.5 kg body; see also
-//! [`LegGeometry::default`](crate::control::kinematics::LegGeometry)):
+//! [`LegGeometry::default`](crate::robot::kinematics::LegGeometry)):
 //!
 //! | quantity | value | from |
 //! |---|---|---|

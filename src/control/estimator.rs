@@ -26,9 +26,9 @@ use nalgebra::{Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::kinematics::{KinematicsError, LegGeometry};
 use super::lipm::LipmState;
-use super::{Sensors, Side};
+use crate::robot::kinematics::{KinematicsError, LegGeometry};
+use crate::robot::{Sensors, Side};
 
 /// What can go wrong estimating the state.
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -356,16 +356,7 @@ impl Default for InputGrid {
     }
 }
 
-/// `n` evenly spaced values from `lo` to `hi` (the midpoint when `n == 1`).
-pub fn linspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    match n {
-        0 => Vec::new(),
-        1 => vec![0.5 * (lo + hi)],
-        _ => (0..n)
-            .map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
-            .collect(),
-    }
-}
+use crate::stats::linspace;
 
 fn check_range(param: &'static str, lo: f64, hi: f64, n: usize) -> Result<(), LearnerError> {
     if !(lo.is_finite() && hi.is_finite() && lo <= hi) {

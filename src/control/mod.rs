@@ -5,12 +5,14 @@
 
 pub mod capture_step;
 pub mod estimator;
-mod io;
-pub mod kinematics;
 pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
 pub mod motion;
 pub mod walker;
 
-pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+// The robot interface, re-exported where control's users look for it.
+pub use crate::robot::kinematics;
+pub use crate::robot::{
+    FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side,
+};

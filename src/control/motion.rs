@@ -20,8 +20,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::kinematics::LegGeometry;
-use super::{JOINTS_PER_LEG, JointTargets, LegJoint, Side};
+use crate::robot::kinematics::LegGeometry;
+use crate::robot::{JOINTS_PER_LEG, JointTargets, LegJoint, Side};
 
 /// The pose of one leg in abstract leg space (angles in rad, relative to the torso frame).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

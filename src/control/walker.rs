@@ -21,12 +21,12 @@ use super::capture_step::{
     CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
 };
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
-use super::kinematics::LegGeometry;
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
 use super::motion::{MotionConfig, MotionGenerator, StepCommand};
-use super::{JointTargets, Sensors, Side};
 use crate::approx::FunctionApproximator;
+use crate::robot::kinematics::LegGeometry;
+use crate::robot::{JointTargets, Sensors, Side};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;

@@ -37,9 +37,7 @@ impl AlignedStats {
             return Err(ReportError::invalid("event times must be sorted"));
         }
         let n_bins = (horizon / bin_s).ceil() as usize;
-        let mut sum = vec![0.0; n_bins];
-        let mut sum_sq = vec![0.0; n_bins];
-        let mut count = vec![0usize; n_bins];
+        let mut bins = vec![crate::stats::MeanStd::new(); n_bins];
         for &(t, v) in samples {
             let i = events.partition_point(|&e| e <= t);
             if i == 0 {
@@ -47,23 +45,12 @@ impl AlignedStats {
             }
             let k = ((t - events[i - 1]) / bin_s) as usize;
             if k < n_bins {
-                sum[k] += v;
-                sum_sq[k] += v * v;
-                count[k] += 1;
+                bins[k].push(v);
             }
         }
-        let mean: Vec<f64> = (0..n_bins)
-            .map(|k| match count[k] {
-                0 => f64::NAN,
-                c => sum[k] / c as f64,
-            })
-            .collect();
-        let std = (0..n_bins)
-            .map(|k| match count[k] {
-                0 => f64::NAN,
-                c => (sum_sq[k] / c as f64 - mean[k] * mean[k]).max(0.0).sqrt(),
-            })
-            .collect();
+        let mean = bins.iter().map(|b| b.mean()).collect();
+        let std = bins.iter().map(|b| b.population_std()).collect();
+        let count = bins.iter().map(|b| b.count()).collect();
         Ok(AlignedStats {
             bin_s,
             mean,

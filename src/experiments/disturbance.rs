@@ -148,7 +148,7 @@ impl PushResponse {
                 "disturbance: no undisturbed steps to compare with (run longer)".into(),
             ));
         }
-        let undisturbed_f_e = calm.iter().sum::<f64>() / calm.len() as f64;
+        let undisturbed_f_e = crate::stats::MeanStd::of(calm.iter().copied()).mean();
         let times = step.times();
         let off = |k: usize| {
             step.count[k] > 0 && (step.mean[k] - p.f_r - undisturbed_f_e).abs() > p.tolerance_m

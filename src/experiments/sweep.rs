@@ -430,13 +430,12 @@ impl Stat {
                 n,
             };
         }
-        let mean = values.iter().sum::<f64>() / n as f64;
-        let std = if n > 1 {
-            (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
-        } else {
-            0.0
-        };
-        Stat { mean, std, n }
+        let s = crate::stats::MeanStd::of(values.iter().copied());
+        Stat {
+            mean: s.mean(),
+            std: s.sample_std(),
+            n,
+        }
     }
 
     fn markdown(&self) -> String {

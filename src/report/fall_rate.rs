@@ -25,7 +25,7 @@ impl LogisticFit {
     /// `n` evenly spaced impulses over [lo, hi] and the fitted probabilities there (for
     /// [`crate::report::figures::FallCurve`]).
     pub fn curve(&self, lo: f64, hi: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
-        let x = crate::control::learner::linspace(lo, hi, n);
+        let x = crate::stats::linspace(lo, hi, n);
         let p = x.iter().map(|&v| self.probability(v)).collect();
         (x, p)
     }
@@ -97,9 +97,8 @@ fn check_samples(samples: &[PushResult]) -> Result<(), ReportError> {
 /// push, or a standardised slope beyond 100), or all impulses equal.
 pub fn fit_logistic(samples: &[PushResult]) -> Result<Option<LogisticFit>, ReportError> {
     check_samples(samples)?;
-    let n = samples.len() as f64;
-    let mean = samples.iter().map(|s| s.0).sum::<f64>() / n;
-    let std = (samples.iter().map(|s| (s.0 - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let stats = crate::stats::MeanStd::of(samples.iter().map(|s| s.0));
+    let (mean, std) = (stats.mean(), stats.population_std());
     let falls = samples.iter().filter(|s| s.1).count();
     if std == 0.0 || falls == 0 || falls == samples.len() {
         return Ok(None);

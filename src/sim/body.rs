@@ -21,8 +21,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::error::{SimError, in_range, non_negative, positive};
-use crate::control::kinematics::LegGeometry;
-use crate::control::{JOINTS_PER_LEG, LegJoint};
+use crate::robot::kinematics::LegGeometry;
+use crate::robot::{JOINTS_PER_LEG, LegJoint};
 
 /// A limb segment hanging from its proximal joint along -z.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

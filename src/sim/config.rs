@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::body::BodyConfig;
 use super::error::{SimError, in_range, non_negative, positive};
-use crate::control::NUM_JOINTS;
+use crate::robot::NUM_JOINTS;
 
 /// Everything that defines a simulation run besides the control inputs: the body, the physics
 /// step, solver settings, ground friction, control tick, push delivery and fall detection.
@@ -29,7 +29,7 @@ pub struct SimConfig {
     pub push_steps: usize,
     /// Trunk tilt from vertical (rad) beyond which the robot has fallen.
     pub fall_tilt: f64,
-    /// Joint angles of the initial standing pose (rad), [`crate::control::LegJoint::index`] order.
+    /// Joint angles of the initial standing pose (rad), [`crate::robot::LegJoint::index`] order.
     pub initial_joints: [f64; NUM_JOINTS],
     /// Gap between the soles and the ground at the start (m).
     pub initial_clearance: f64,
@@ -56,7 +56,7 @@ impl Default for SimConfig {
 /// Joint angles of a symmetric stance with knees bent by `knee` (rad): hips and ankles each
 /// take half the bend so the trunk and soles stay level.
 pub fn standing_pose(knee: f64) -> [f64; NUM_JOINTS] {
-    use crate::control::{LegJoint, Side};
+    use crate::robot::{LegJoint, Side};
     let mut q = [0.0; NUM_JOINTS];
     for side in Side::BOTH {
         q[LegJoint::HipPitch.index(side)] = -knee / 2.0;

@@ -18,7 +18,7 @@ pub enum SimError {
     /// A joint target is NaN or infinite; nothing was applied.
     #[error("joint target {index} is not finite: {value}")]
     BadTarget {
-        /// Joint index (see [`crate::control::LegJoint::index`]).
+        /// Joint index (see [`crate::robot::LegJoint::index`]).
         index: usize,
         /// The rejected value.
         value: f64,

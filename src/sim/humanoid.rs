@@ -17,7 +17,7 @@ use super::error::SimError;
 use super::fall::{BodyPart, Fall, FallCause};
 use super::sensors::{foot_contact, imu_of};
 use super::truth::{GroundTruth, Skeleton, pose_of};
-use crate::control::{JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+use crate::robot::{JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
 
 /// Index of the free angular axis of a revolute joint in rapier's spatial layout.
 const REVOLUTE_AXIS: usize = 3;

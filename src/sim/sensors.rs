@@ -2,7 +2,7 @@
 
 use rapier3d_f64::prelude::*;
 
-use crate::control::{FootContact, Imu};
+use crate::robot::{FootContact, Imu};
 
 /// The IMU of a torso at `pose` turning at `angvel_world` (rad/s, world frame).
 pub(crate) fn imu_of(pose: &Pose, angvel_world: [f64; 3]) -> Imu {
