@@ -75,7 +75,10 @@ fn batch_equals_loop<A: FunctionApproximator + Persist>(make: impl Fn() -> A) {
     assert_eq!(bits(&predicted), bits(&looped));
     let q_t = q.t().to_owned();
     let fortran: ArrayView2<f64> = q_t.t();
-    assert_eq!(bits(&by_batch.predict_batch(fortran).unwrap()), bits(&looped));
+    assert_eq!(
+        bits(&by_batch.predict_batch(fortran).unwrap()),
+        bits(&looped)
+    );
 
     // A boxed trait object gets the methods too.
     let boxed: Box<dyn FunctionApproximator> = Box::new(by_loop);
@@ -109,10 +112,18 @@ fn bad_batches_rejected<A: FunctionApproximator + Persist>(make: impl Fn() -> A)
         match (kind, &r) {
             ("dim", Err(ApproxError::DimensionMismatch { .. })) => {}
             ("nan", Err(ApproxError::NonFinite { index, .. })) => assert!(*index > 0),
-            _ => panic!("update_batch of shapes {:?}, {:?} gave {r:?}", bx.dim(), by.dim()),
+            _ => panic!(
+                "update_batch of shapes {:?}, {:?} gave {r:?}",
+                bx.dim(),
+                by.dim()
+            ),
         }
         // All rows are validated first: the nine good rows before the bad one were not used.
-        assert_eq!(m.to_json().unwrap(), before, "a rejected batch changed the model");
+        assert_eq!(
+            m.to_json().unwrap(),
+            before,
+            "a rejected batch changed the model"
+        );
     }
     assert!(matches!(
         m.predict_batch(x3.view()),

@@ -151,7 +151,10 @@ fn learning_differently_after_a_load_is_caught() {
 
 #[test]
 fn a_rejected_update_that_changes_the_model_is_caught() {
-    let err = rejected_by(Broken::<BAD_UPDATE_CHANGES_MODEL>::new, "bad_input_rejected");
+    let err = rejected_by(
+        Broken::<BAD_UPDATE_CHANGES_MODEL>::new,
+        "bad_input_rejected",
+    );
     assert!(err.reason.contains("changed the model"), "{err}");
 }
 

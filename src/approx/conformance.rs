@@ -54,7 +54,11 @@ fn fail(check: &'static str, reason: impl Into<String>) -> ConformanceError {
 }
 
 /// Runs `f`, turning a panic into an error of `check`.
-fn no_panic<T>(check: &'static str, what: &str, f: impl FnOnce() -> T) -> Result<T, ConformanceError> {
+fn no_panic<T>(
+    check: &'static str,
+    what: &str,
+    f: impl FnOnce() -> T,
+) -> Result<T, ConformanceError> {
     catch_unwind(AssertUnwindSafe(f)).map_err(|_| fail(check, format!("{what} panicked")))
 }
 
@@ -94,7 +98,7 @@ where
     };
     train(CHECK, &mut m, &stream(1, samples, ctx.d, ctx.n_out))?;
     let e = nmse(&m).map_err(|e| fail(CHECK, format!("prediction failed: {e}")))?;
-    if !(e < max_nmse) {
+    if e.is_nan() || e >= max_nmse {
         return Err(fail(
             CHECK,
             format!("nMSE {e} after {samples} samples, want < {max_nmse}"),
@@ -229,15 +233,24 @@ fn dimensions<A: FunctionApproximator>(a: &A, b: &A) -> Result<(usize, usize), C
     const CHECK: &str = "dimensions";
     let (d, n_out) = (a.input_dim(), a.output_dim());
     if d == 0 || n_out == 0 {
-        return Err(fail(CHECK, format!("input_dim {d}, output_dim {n_out}: both must be >= 1")));
+        return Err(fail(
+            CHECK,
+            format!("input_dim {d}, output_dim {n_out}: both must be >= 1"),
+        ));
     }
     if (b.input_dim(), b.output_dim()) != (d, n_out) {
-        return Err(fail(CHECK, "two models from make() differ in their dimensions"));
+        return Err(fail(
+            CHECK,
+            "two models from make() differ in their dimensions",
+        ));
     }
     Ok((d, n_out))
 }
 
-fn predict_deterministic<A: FunctionApproximator>(ctx: &Ctx, mut m: A) -> Result<(), ConformanceError> {
+fn predict_deterministic<A: FunctionApproximator>(
+    ctx: &Ctx,
+    mut m: A,
+) -> Result<(), ConformanceError> {
     const CHECK: &str = "predict_deterministic";
     train(CHECK, &mut m, &ctx.stream(6, 200))?;
     if fingerprint(CHECK, &m)? != fingerprint(CHECK, &m)? {
@@ -251,13 +264,22 @@ fn untrained_predictions_finite<A: FunctionApproximator>(
     m: &A,
 ) -> Result<(), ConformanceError> {
     const CHECK: &str = "untrained_predictions_finite";
-    if fingerprint(CHECK, m)?.iter().any(|b| !f64::from_bits(*b).is_finite()) {
-        return Err(fail(CHECK, "an untrained model predicts a non-finite value"));
+    if fingerprint(CHECK, m)?
+        .iter()
+        .any(|b| !f64::from_bits(*b).is_finite())
+    {
+        return Err(fail(
+            CHECK,
+            "an untrained model predicts a non-finite value",
+        ));
     }
     Ok(())
 }
 
-fn bad_input_rejected<A: FunctionApproximator + Persist>(ctx: &Ctx, mut m: A) -> Result<(), ConformanceError> {
+fn bad_input_rejected<A: FunctionApproximator + Persist>(
+    ctx: &Ctx,
+    mut m: A,
+) -> Result<(), ConformanceError> {
     const CHECK: &str = "bad_input_rejected";
     let (d, n_out) = (ctx.d, ctx.n_out);
     train(CHECK, &mut m, &ctx.stream(4, 300))?;
@@ -291,11 +313,21 @@ fn bad_input_rejected<A: FunctionApproximator + Persist>(ctx: &Ctx, mut m: A) ->
             _ => false,
         };
         if !typed {
-            let want = if *length_error { "DimensionMismatch" } else { "NonFinite" };
-            return Err(fail(CHECK, format!("update({x:?}, {y:?}) gave {r:?}, want {want}")));
+            let want = if *length_error {
+                "DimensionMismatch"
+            } else {
+                "NonFinite"
+            };
+            return Err(fail(
+                CHECK,
+                format!("update({x:?}, {y:?}) gave {r:?}, want {want}"),
+            ));
         }
         if snapshot(CHECK, &m)? != before {
-            return Err(fail(CHECK, format!("rejected update({x:?}, {y:?}) changed the model")));
+            return Err(fail(
+                CHECK,
+                format!("rejected update({x:?}, {y:?}) changed the model"),
+            ));
         }
     }
     let mut out = vec![0.0; n_out];
@@ -309,9 +341,17 @@ fn bad_input_rejected<A: FunctionApproximator + Persist>(ctx: &Ctx, mut m: A) ->
     ];
     for (x, len) in &bad_queries {
         out.resize(*len, 0.0);
-        let r = no_panic(CHECK, &format!("predict({x:?}) into {len} outputs"), || m.predict(x, &mut out))?;
-        if !matches!(r, Err(ApproxError::DimensionMismatch { .. } | ApproxError::NonFinite { .. })) {
-            return Err(fail(CHECK, format!("predict({x:?}) into {len} outputs gave {r:?}")));
+        let r = no_panic(CHECK, &format!("predict({x:?}) into {len} outputs"), || {
+            m.predict(x, &mut out)
+        })?;
+        if !matches!(
+            r,
+            Err(ApproxError::DimensionMismatch { .. } | ApproxError::NonFinite { .. })
+        ) {
+            return Err(fail(
+                CHECK,
+                format!("predict({x:?}) into {len} outputs gave {r:?}"),
+            ));
         }
     }
     if snapshot(CHECK, &m)? != before {
@@ -330,18 +370,25 @@ fn save_load_exact<A: FunctionApproximator + Persist + Clone>(
     let loaded = no_panic(CHECK, "from_json", || A::from_json(&original.0))?
         .map_err(|e| fail(CHECK, format!("from_json of a saved model failed: {e}")))?;
     if snapshot(CHECK, &loaded)? != original {
-        return Err(fail(CHECK, "the model loaded from JSON differs from the saved one"));
+        return Err(fail(
+            CHECK,
+            "the model loaded from JSON differs from the saved one",
+        ));
     }
     if snapshot(CHECK, &m.clone())? != original {
         return Err(fail(CHECK, "a clone differs from the original"));
     }
     let tmp = tempdir(CHECK)?;
     let path = tmp.path().join("model.json");
-    no_panic(CHECK, "save", || m.save(&path))?.map_err(|e| fail(CHECK, format!("save failed: {e}")))?;
+    no_panic(CHECK, "save", || m.save(&path))?
+        .map_err(|e| fail(CHECK, format!("save failed: {e}")))?;
     let from_file = no_panic(CHECK, "load", || A::load(&path))?
         .map_err(|e| fail(CHECK, format!("load of a saved file failed: {e}")))?;
     if snapshot(CHECK, &from_file)? != original {
-        return Err(fail(CHECK, "the model loaded from a file differs from the saved one"));
+        return Err(fail(
+            CHECK,
+            "the model loaded from a file differs from the saved one",
+        ));
     }
     Ok((m, loaded))
 }
@@ -359,7 +406,10 @@ fn learning_after_round_trip<A: FunctionApproximator + Persist + Clone>(
     train(CHECK, &mut cloned, &data[500..])?;
     let want = snapshot(CHECK, &m)?;
     if snapshot(CHECK, &loaded)? != want {
-        return Err(fail(CHECK, "a loaded copy learns differently from the original"));
+        return Err(fail(
+            CHECK,
+            "a loaded copy learns differently from the original",
+        ));
     }
     if snapshot(CHECK, &cloned)? != want {
         return Err(fail(CHECK, "a clone learns differently from the original"));
@@ -389,24 +439,40 @@ fn corrupt_saved_model_rejected<A: FunctionApproximator + Persist>(
     const CHECK: &str = "corrupt_saved_model_rejected";
     train(CHECK, &mut m, &ctx.stream(5, 300))?;
     let (json, _) = snapshot(CHECK, &m)?;
-    let from_json = |text: &str| no_panic(CHECK, "from_json of a corrupt model", || A::from_json(text));
+    let from_json =
+        |text: &str| no_panic(CHECK, "from_json of a corrupt model", || A::from_json(text));
     // Truncated text, in memory and on disk, is a `Corrupt` error.
     let tmp = tempdir(CHECK)?;
     let path = tmp.path().join("truncated.json");
-    for cut in [0, 1, json.len() / 4, json.len() / 2, json.len().saturating_sub(1)] {
-        let Some(text) = json.get(..cut) else { continue };
+    for cut in [
+        0,
+        1,
+        json.len() / 4,
+        json.len() / 2,
+        json.len().saturating_sub(1),
+    ] {
+        let Some(text) = json.get(..cut) else {
+            continue;
+        };
         match from_json(text)? {
             Err(ApproxError::Corrupt(_)) => {}
             r => {
                 return Err(fail(
                     CHECK,
-                    format!("JSON truncated to {cut} of {} bytes gave {:?}", json.len(), r.err()),
+                    format!(
+                        "JSON truncated to {cut} of {} bytes gave {:?}",
+                        json.len(),
+                        r.err()
+                    ),
                 ));
             }
         }
         std::fs::write(&path, text).map_err(|e| fail(CHECK, format!("cannot write: {e}")))?;
         if no_panic(CHECK, "load of a truncated file", || A::load(&path))?.is_ok() {
-            return Err(fail(CHECK, format!("a file truncated to {cut} bytes loaded")));
+            return Err(fail(
+                CHECK,
+                format!("a file truncated to {cut} bytes loaded"),
+            ));
         }
     }
     for foreign in ["{\"hello\": 1}", "[1, 2, 3]", "null"] {
@@ -414,14 +480,18 @@ fn corrupt_saved_model_rejected<A: FunctionApproximator + Persist>(
             return Err(fail(CHECK, format!("foreign JSON {foreign} loaded")));
         }
     }
-    if no_panic(CHECK, "load of a missing file", || A::load(tmp.path().join("missing.json")))?.is_ok() {
+    if no_panic(CHECK, "load of a missing file", || {
+        A::load(tmp.path().join("missing.json"))
+    })?
+    .is_ok()
+    {
         return Err(fail(CHECK, "a missing file loaded"));
     }
 
     // Tampering with any numeric array must never panic: either an error, or a model that
     // still answers with finite numbers.
-    let value: serde_json::Value =
-        serde_json::from_str(&json).map_err(|e| fail(CHECK, format!("saved JSON unparsable: {e}")))?;
+    let value: serde_json::Value = serde_json::from_str(&json)
+        .map_err(|e| fail(CHECK, format!("saved JSON unparsable: {e}")))?;
     let mut paths = Vec::new();
     numeric_arrays(&value, &mut Vec::new(), &mut paths);
     for path in paths.iter().take(40) {
@@ -434,9 +504,14 @@ fn corrupt_saved_model_rejected<A: FunctionApproximator + Persist>(
                 let pts = probe_points(ctx.d);
                 let mut y = vec![0.0; ctx.n_out];
                 for x in &pts {
-                    let r = no_panic(CHECK, &format!("predict on {what}"), || loaded.predict(x, &mut y))?;
+                    let r = no_panic(CHECK, &format!("predict on {what}"), || {
+                        loaded.predict(x, &mut y)
+                    })?;
                     if r.is_ok() && y.iter().any(|v| !v.is_finite()) {
-                        return Err(fail(CHECK, format!("{what} loaded and predicts non-finite values")));
+                        return Err(fail(
+                            CHECK,
+                            format!("{what} loaded and predicts non-finite values"),
+                        ));
                     }
                 }
             }
@@ -445,7 +520,10 @@ fn corrupt_saved_model_rejected<A: FunctionApproximator + Persist>(
     Ok(())
 }
 
-fn failed_save_harmless<A: FunctionApproximator + Persist>(ctx: &Ctx, mut m: A) -> Result<(), ConformanceError> {
+fn failed_save_harmless<A: FunctionApproximator + Persist>(
+    ctx: &Ctx,
+    mut m: A,
+) -> Result<(), ConformanceError> {
     const CHECK: &str = "failed_save_harmless";
     let tmp = tempdir(CHECK)?;
     let dir = tmp.path();
@@ -460,26 +538,35 @@ fn failed_save_harmless<A: FunctionApproximator + Persist>(ctx: &Ctx, mut m: A) 
     // A save that fails over an existing file leaves that file intact (here the temporary
     // file's name is taken by a directory, so writing it fails).
     let path = dir.join("model.json");
-    no_panic(CHECK, "save", || m.save(&path))?.map_err(|e| fail(CHECK, format!("save failed: {e}")))?;
+    no_panic(CHECK, "save", || m.save(&path))?
+        .map_err(|e| fail(CHECK, format!("save failed: {e}")))?;
     let old = read(&path)?;
     train(CHECK, &mut m, &ctx.stream(7, 50))?;
     let blockers = [dir.join("model.json.tmp")];
     for b in &blockers {
-        std::fs::create_dir(b).map_err(|e| fail(CHECK, format!("cannot create a directory: {e}")))?;
+        std::fs::create_dir(b)
+            .map_err(|e| fail(CHECK, format!("cannot create a directory: {e}")))?;
     }
     let r = no_panic(CHECK, "save", || m.save(&path))?;
     if r.is_err() && read(&path)? != old {
-        return Err(fail(CHECK, "a failed save damaged the file it was replacing"));
+        return Err(fail(
+            CHECK,
+            "a failed save damaged the file it was replacing",
+        ));
     }
     // Whether or not the save succeeded, the file holds a whole model.
     if no_panic(CHECK, "load", || A::load(&path))?.is_err() {
-        return Err(fail(CHECK, "after a save over an existing file, the file does not load"));
+        return Err(fail(
+            CHECK,
+            "after a save over an existing file, the file does not load",
+        ));
     }
     Ok(())
 }
 
 fn read(path: &Path) -> Result<Vec<u8>, ConformanceError> {
-    std::fs::read(path).map_err(|e| fail("failed_save_harmless", format!("cannot read {path:?}: {e}")))
+    std::fs::read(path)
+        .map_err(|e| fail("failed_save_harmless", format!("cannot read {path:?}: {e}")))
 }
 
 fn tempdir(check: &'static str) -> Result<tempfile::TempDir, ConformanceError> {
@@ -523,7 +610,9 @@ fn apply(v: &mut serde_json::Value, path: &[String], tamper: Tamper) {
     let mut cur = Some(v);
     for key in path {
         cur = match cur {
-            Some(serde_json::Value::Array(items)) => key.parse::<usize>().ok().and_then(|i| items.get_mut(i)),
+            Some(serde_json::Value::Array(items)) => {
+                key.parse::<usize>().ok().and_then(|i| items.get_mut(i))
+            }
             Some(serde_json::Value::Object(map)) => map.get_mut(key),
             _ => None,
         };

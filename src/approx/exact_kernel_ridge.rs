@@ -81,7 +81,9 @@ impl ExactKernelRidge {
         let llt = gram.llt(faer::Side::Lower).map_err(|e| {
             ApproxError::config(
                 "regularisation",
-                format!("the regularised Gram matrix is not positive definite ({e:?}); increase it"),
+                format!(
+                    "the regularised Gram matrix is not positive definite ({e:?}); increase it"
+                ),
             )
         })?;
         let mut rhs = Mat::from_fn(n, n_out, |i, k| y[[i, k]]);
