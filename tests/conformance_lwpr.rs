@@ -1,6 +1,6 @@
-//! LWPR passes the shared approximator conformance suite.
-mod common;
+//! LWPR passes the public approximator conformance suite.
 
+use steplearn::approx::conformance::{check_approximator, check_learns};
 use steplearn::approx::{Lwpr, LwprConfig};
 
 /// The reference library's defaults (init_D = 25 I, w_gen = 0.1), no tuning for the suite.
@@ -10,5 +10,8 @@ fn make(n_out: usize) -> Lwpr {
 
 #[test]
 fn lwpr_passes_the_conformance_suite() {
-    common::conformance::check_all(make);
+    for n_out in [1, 2] {
+        check_approximator(|| make(n_out)).unwrap();
+        check_learns(|| make(n_out), 5000, 0.05).unwrap();
+    }
 }

@@ -1,6 +1,6 @@
-//! `Rbf` passes the shared approximator conformance suite, with either update rule.
-mod common;
+//! `Rbf` passes the public approximator conformance suite, with either update rule.
 
+use steplearn::approx::conformance::{check_approximator, check_learns};
 use steplearn::approx::{InputBox, Rbf, RbfConfig, RbfUpdate};
 
 fn make(update: RbfUpdate, n_out: usize) -> Rbf {
@@ -12,20 +12,22 @@ fn make(update: RbfUpdate, n_out: usize) -> Rbf {
     Rbf::new(config).unwrap()
 }
 
+fn passes(update: RbfUpdate) {
+    for n_out in [1, 2] {
+        check_approximator(|| make(update, n_out)).unwrap();
+        check_learns(|| make(update, n_out), 5000, 0.05).unwrap();
+    }
+}
+
 #[test]
 fn rbf_with_least_mean_squares_passes_the_conformance_suite() {
-    common::conformance::check_all(|n_out| make(RbfUpdate::Nlms { learning_rate: 0.3 }, n_out));
+    passes(RbfUpdate::Nlms { learning_rate: 0.3 });
 }
 
 #[test]
 fn rbf_with_recursive_least_squares_passes_the_conformance_suite() {
-    common::conformance::check_all(|n_out| {
-        make(
-            RbfUpdate::Rls {
-                forgetting: 1.0,
-                prior_variance: 100.0,
-            },
-            n_out,
-        )
+    passes(RbfUpdate::Rls {
+        forgetting: 1.0,
+        prior_variance: 100.0,
     });
 }

@@ -1,9 +1,165 @@
-//! The conformance suite's own problem generators behave.
-mod common;
-use common::conformance::{stream, target};
+//! The conformance suite's own generators behave, and the suite fails approximators that break
+//! the contract, naming the check that caught them.
+
+use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicU64, Ordering};
+use steplearn::approx::conformance::{
+    CHECKS, ConformanceError, check_approximator, probe_points, stream, target,
+};
+use steplearn::approx::{ApproxError, FunctionApproximator, Grid, GridConfig, InputBox, Persist};
 
 #[test]
 fn stream_is_seeded() {
-    assert_eq!(stream(1, 10, 2), stream(1, 10, 2));
+    assert_eq!(stream(1, 10, 2, 2), stream(1, 10, 2, 2));
+    assert_ne!(stream(1, 10, 2, 2), stream(2, 10, 2, 2));
     assert_eq!(target(&[0.0, 0.0], 1), vec![0.0]);
+    assert_eq!(probe_points(2).len(), 121);
+    assert_eq!(probe_points(1).len(), 121);
+    assert!(probe_points(3).iter().all(|x| x.len() == 3));
+    assert_eq!(probe_points(20).len(), 128);
+}
+
+fn grid() -> Grid {
+    Grid::new(GridConfig::new(
+        InputBox::cube(2, -1.0, 1.0).unwrap(),
+        vec![5, 5],
+        1,
+    ))
+    .unwrap()
+}
+
+#[test]
+fn a_correct_approximator_passes() {
+    check_approximator(grid).unwrap();
+}
+
+/// How a [`Broken`] grid breaks the contract.
+const NAN_ACCEPTED: u8 = 0;
+const NONDETERMINISTIC: u8 = 1;
+const LOAD_IGNORES_FILE: u8 = 2;
+const LEARNS_DIFFERENTLY_AFTER_LOAD: u8 = 3;
+const BAD_UPDATE_CHANGES_MODEL: u8 = 4;
+const PANICS_ON_SHORT_INPUT: u8 = 5;
+
+/// A grid with one deliberate defect, selected by `FAULT`.
+#[derive(Clone, Serialize, Deserialize)]
+struct Broken<const FAULT: u8> {
+    inner: Grid,
+    /// Updates since construction or load (not saved).
+    #[serde(skip)]
+    since_load: u64,
+}
+
+static CALLS: AtomicU64 = AtomicU64::new(0);
+
+impl<const FAULT: u8> Broken<FAULT> {
+    fn new() -> Self {
+        Broken {
+            inner: grid(),
+            since_load: 1,
+        }
+    }
+}
+
+impl<const FAULT: u8> FunctionApproximator for Broken<FAULT> {
+    fn input_dim(&self) -> usize {
+        self.inner.input_dim()
+    }
+    fn output_dim(&self) -> usize {
+        self.inner.output_dim()
+    }
+    fn predict(&self, x: &[f64], y: &mut [f64]) -> Result<(), ApproxError> {
+        if FAULT == PANICS_ON_SHORT_INPUT {
+            let _ = x[1];
+        }
+        self.inner.predict(x, y)?;
+        if FAULT == NONDETERMINISTIC {
+            y[0] += 1e-12 * (CALLS.fetch_add(1, Ordering::Relaxed) % 7) as f64;
+        }
+        Ok(())
+    }
+    fn update(&mut self, x: &[f64], y: &[f64]) -> Result<(), ApproxError> {
+        if FAULT == NAN_ACCEPTED && x.iter().chain(y).any(|v| v.is_nan()) {
+            return Ok(());
+        }
+        if FAULT == BAD_UPDATE_CHANGES_MODEL && y.len() != self.output_dim() {
+            self.inner.update(x, &[0.5])?;
+            return Err(ApproxError::DimensionMismatch {
+                what: "target y",
+                expected: 1,
+                got: y.len(),
+            });
+        }
+        self.since_load = self.since_load.wrapping_add(1);
+        if FAULT == LEARNS_DIFFERENTLY_AFTER_LOAD && self.since_load == 0 {
+            return self.inner.update(x, &[y[0] + 1.0]);
+        }
+        self.inner.update(x, y)
+    }
+}
+
+impl<const FAULT: u8> Persist for Broken<FAULT> {
+    fn check_invariants(&self) -> Result<(), ApproxError> {
+        self.inner.check_invariants()
+    }
+    fn from_json(json: &str) -> Result<Self, ApproxError> {
+        if FAULT == LOAD_IGNORES_FILE {
+            return Ok(Self::new());
+        }
+        let mut model: Self =
+            serde_json::from_str(json).map_err(|e| ApproxError::Corrupt(e.to_string()))?;
+        model.check_invariants()?;
+        model.since_load = u64::MAX;
+        Ok(model)
+    }
+}
+
+fn rejected_by<A: FunctionApproximator + Persist + Clone>(
+    make: impl Fn() -> A,
+    check: &str,
+) -> ConformanceError {
+    assert!(CHECKS.contains(&check));
+    let err = check_approximator(make).expect_err("a broken approximator passed the suite");
+    assert_eq!(err.check, check, "caught by the wrong check: {err}");
+    assert!(err.to_string().contains(check));
+    err
+}
+
+#[test]
+fn silently_accepting_nan_is_caught() {
+    let err = rejected_by(Broken::<NAN_ACCEPTED>::new, "bad_input_rejected");
+    assert!(err.reason.contains("NonFinite"), "{err}");
+}
+
+#[test]
+fn nondeterministic_predictions_are_caught() {
+    rejected_by(Broken::<NONDETERMINISTIC>::new, "predict_deterministic");
+}
+
+#[test]
+fn a_load_that_ignores_the_file_is_caught() {
+    rejected_by(Broken::<LOAD_IGNORES_FILE>::new, "save_load_exact");
+}
+
+#[test]
+fn learning_differently_after_a_load_is_caught() {
+    rejected_by(
+        Broken::<LEARNS_DIFFERENTLY_AFTER_LOAD>::new,
+        "learning_after_round_trip",
+    );
+}
+
+#[test]
+fn a_rejected_update_that_changes_the_model_is_caught() {
+    let err = rejected_by(
+        Broken::<BAD_UPDATE_CHANGES_MODEL>::new,
+        "bad_input_rejected",
+    );
+    assert!(err.reason.contains("changed the model"), "{err}");
+}
+
+#[test]
+fn a_panic_is_an_error_not_a_panic() {
+    let err = rejected_by(Broken::<PANICS_ON_SHORT_INPUT>::new, "bad_input_rejected");
+    assert!(err.reason.contains("panicked"), "{err}");
 }

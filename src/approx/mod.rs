@@ -6,7 +6,10 @@
 //! invariant check on load, so a corrupt file is an error, never a broken model.
 
 mod any;
+pub mod batch;
+pub mod conformance;
 mod error;
+mod exact_kernel_ridge;
 mod grid;
 mod input_box;
 mod kernel_ridge;
@@ -18,7 +21,9 @@ mod rbf;
 mod square_matrix;
 
 pub use any::{AnyApproximator, ApproxKind};
+pub use batch::BatchApproximator;
 pub use error::{ApproxError, check_output, check_vector};
+pub use exact_kernel_ridge::ExactKernelRidge;
 pub use grid::{Grid, GridConfig};
 pub use input_box::InputBox;
 pub use kernel_ridge::{KernelRidge, KernelRidgeConfig};
