@@ -37,11 +37,15 @@ proptest! {
     fn without_budget_pressure_it_equals_batch_kernel_ridge(
         seed in 0u64..1000,
         reg in 0.001..0.5f64,
-        ls0 in 0.2..0.6f64,
-        ls1 in 0.2..0.6f64,
+        ls0 in 0.2..1.0f64,
+        ls1 in 0.2..1.0f64,
     ) {
         // Every sample becomes an atom (budget > samples, tiny novelty threshold), so the
         // online model must match f(x) = k(x, X) (K + reg I)^-1 y computed in one go.
+        // Length scales cover the whole 0.2-1.0 range; 15 points, because with 25 some point
+        // is predicted by the others to within the novelty threshold 1e-6 at long length
+        // scales (seed 689, scales 0.51 and 0.73), is not added, and the comparison with the
+        // batch solution over all points no longer applies.
         let ls = [ls0, ls1];
         let mut m = KernelRidge::new(KernelRidgeConfig {
             budget: 60,
