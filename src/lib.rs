@@ -33,6 +33,7 @@
 #![warn(missing_docs)]
 
 pub mod approx;
+pub mod config;
 pub mod control;
 pub mod experiments;
 mod names;

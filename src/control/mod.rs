@@ -14,3 +14,11 @@ pub mod motion;
 pub mod walker;
 
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+
+impl Default for walker::WalkerConfig {
+    /// A Capture Step walker with the default controller, estimator and generator (what a
+    /// config file's `[settings.walker]` starts from; each experiment sets its own mode).
+    fn default() -> Self {
+        walker::WalkerConfig::new(walker::WalkerMode::CaptureStep)
+    }
+}

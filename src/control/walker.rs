@@ -47,6 +47,7 @@ pub enum WalkerMode {
 
 /// Everything that configures a walker.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct WalkerConfig {
     /// How steps are chosen.
     pub mode: WalkerMode,
