@@ -93,7 +93,9 @@ pub fn unit_direction(field: &str, d: &[f64; 3]) -> Result<(), ConfigError> {
 
 /// Checks that a count is at least `min`.
 pub fn at_least(field: &str, n: usize, min: usize) -> Result<(), ConfigError> {
-    ensure(n >= min, field, || format!("must be at least {min}, got {n}"))
+    ensure(n >= min, field, || {
+        format!("must be at least {min}, got {n}")
+    })
 }
 
 /// Deserializes a partial `T` over `base`: keys given override `base`'s, tables merge at every

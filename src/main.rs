@@ -272,9 +272,7 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(n) = pushes {
                 protocols.stability.pushes = n;
             }
-            protocols
-                .validate()
-                .map_err(|e| format!("--pushes: {e}"))?;
+            protocols.validate().map_err(|e| format!("--pushes: {e}"))?;
             let failed = sweep_with_progress(&runs, &out, &Settings::default(), &protocols)?;
             println!("{} runs in {}", runs.len(), out.display());
             if failed > 0 {

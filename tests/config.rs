@@ -38,7 +38,11 @@ fn check(text: &str) -> (bool, String, String) {
 fn unknown_sections_and_keys_are_errors_that_name_them_and_list_the_allowed() {
     for (text, key, allowed) in [
         ("[settings.robot]\ndt = 0.5\n", "`robot`", "`sim`"),
-        ("[settings]\nunknown_key = 3\n", "`unknown_key`", "`push_window_s`"),
+        (
+            "[settings]\nunknown_key = 3\n",
+            "`unknown_key`",
+            "`push_window_s`",
+        ),
         ("[settings.sim]\nd_t = 0.001\n", "`d_t`", "`steps_per_tick`"),
         (
             "[settings.sim.body.thigh]\nmass = 2.0\nmas = 1\n",
@@ -50,12 +54,23 @@ fn unknown_sections_and_keys_are_errors_that_name_them_and_list_the_allowed() {
             "`swing_step_scal`",
             "`swing_step_scale`",
         ),
-        ("[protocols.stabilty]\npushes = 3\n", "`stabilty`", "`stability`"),
-        ("[protocols.robustness.map]\nres = 3\n", "`res`", "`resolution`"),
+        (
+            "[protocols.stabilty]\npushes = 3\n",
+            "`stabilty`",
+            "`stability`",
+        ),
+        (
+            "[protocols.robustness.map]\nres = 3\n",
+            "`res`",
+            "`resolution`",
+        ),
     ] {
         let (ok, _, err) = check(text);
         assert!(!ok, "{text:?} accepted");
-        assert!(err.contains(&format!("unknown field {key}")), "{text:?}: {err}");
+        assert!(
+            err.contains(&format!("unknown field {key}")),
+            "{text:?}: {err}"
+        );
         assert!(err.contains("expected one of"), "{text:?}: {err}");
         assert!(err.contains(allowed), "{text:?}: {err}");
         assert!(!err.contains("panicked"), "{err}");
@@ -70,7 +85,10 @@ fn unknown_sections_and_keys_are_errors_that_name_them_and_list_the_allowed() {
 #[test]
 fn out_of_range_protocol_values_are_errors_naming_the_field() {
     for (text, field) in [
-        ("[protocols.stability]\npushes = 0\n", "protocols.stability.pushes"),
+        (
+            "[protocols.stability]\npushes = 0\n",
+            "protocols.stability.pushes",
+        ),
         (
             "[protocols.stability]\ndirection = [0.0, 0.0, 0.0]\n",
             "protocols.stability.direction",
@@ -240,7 +258,11 @@ fn the_shipped_configs_pass_the_check() {
 #[test]
 fn json_configs_are_as_strict() {
     let dir = tempfile::tempdir().unwrap();
-    let bad = write(dir.path(), "c.json", r#"{"settings": {"robot": {"dt": 0.5}}}"#);
+    let bad = write(
+        dir.path(),
+        "c.json",
+        r#"{"settings": {"robot": {"dt": 0.5}}}"#,
+    );
     let o = steplearn(&["config", "--check", bad.to_str().unwrap()]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("unknown field `robot`"));

@@ -34,7 +34,8 @@ impl ConfigFile {
     /// Parses TOML text (not yet validated: see [`ConfigFile::parse_toml`]). A parse error's
     /// `field` is the path of the table or key where it happened (empty at the top).
     pub fn from_toml(text: &str) -> Result<Self, ConfigError> {
-        let de = toml::Deserializer::parse(text).map_err(|e| ConfigError::new("", e.to_string()))?;
+        let de =
+            toml::Deserializer::parse(text).map_err(|e| ConfigError::new("", e.to_string()))?;
         serde_path_to_error::deserialize(de).map_err(path_error)
     }
 

@@ -10,12 +10,12 @@ use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::summary::write_csv;
 use crate::rules::LearningRule;
-use crate::config::{self, ConfigError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

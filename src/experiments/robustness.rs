@@ -16,6 +16,7 @@ use super::schedule::{Push, ReferenceSchedule};
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{StepRecord, run_trial};
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::learner::{InputGrid, MapSpec, OffsetMap};
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
@@ -24,7 +25,6 @@ use crate::report::summary::{ExperimentResult, NoLearning, write_csv};
 use crate::rules::LearningRule;
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
-use crate::config::{self, ConfigError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

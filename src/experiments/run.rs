@@ -10,12 +10,12 @@ use super::stability::{self, ControllerPushes, StabilityProtocol};
 use super::sweep::RunSpec;
 use super::tracking::{self, TrackingProtocol};
 use crate::approx::{AnyApproximator, ApproxKind};
+use crate::config::ConfigError;
 use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError, Prior};
 use crate::report::summary::{
     ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
 };
 use crate::rules::{LearningRule, RuleConfig};
-use crate::config::ConfigError;
 use std::path::Path;
 
 /// Protocols of every experiment (defaults: the paper's).

@@ -3,11 +3,11 @@
 use super::schedule::{Push, PushPlan, ReferenceSchedule};
 use super::trial::TrialSetup;
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::control::walker::{WalkerConfig, WalkerMode};
 use crate::rules::LearningRule;
 use crate::sim::SimConfig;
-use crate::config::{self, ConfigError};
 use serde::{Deserialize, Serialize};
 
 /// Everything an experiment needs besides its own protocol.

@@ -10,12 +10,12 @@ use super::schedule::ReferenceSchedule;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::TrialLog;
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
 use crate::report::summary::write_csv;
 use crate::rules::LearningRule;
-use crate::config::{self, ConfigError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
