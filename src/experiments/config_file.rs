@@ -136,7 +136,7 @@ mod tests {
     #[test]
     fn unknown_keys_are_named_with_their_path() {
         let e = ConfigFile::from_toml("[settings.sim]\nbogus = 1\n").unwrap_err();
-        assert_eq!(e.field, "settings.sim");
+        assert_eq!(e.field, "settings.sim.bogus");
         assert!(e.reason.contains("unknown field `bogus`"), "{e}");
         assert!(e.reason.contains("expected one of"), "{e}");
     }
