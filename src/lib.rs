@@ -41,6 +41,7 @@
 
 pub mod approx;
 pub mod atomic_file;
+pub mod config;
 pub mod control;
 #[cfg(feature = "experiments")]
 pub mod experiments;

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use steplearn::approx::ApproxKind;
 use steplearn::experiments::ExperimentKind;
+use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::reproduce::{self, Claims};
 use steplearn::experiments::run::{Protocols, run_spec};
 use steplearn::experiments::settings::Settings;
@@ -90,6 +91,14 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Prints the complete default configuration (every section and key) as TOML, a
+    /// starting point for `--config`; with --check, validates a config file instead.
+    Config {
+        /// Check FILE (TOML, or JSON if it ends in .json): prints `ok`, or what is wrong and
+        /// exits with an error.
+        #[arg(long, value_name = "FILE")]
+        check: Option<PathBuf>,
+    },
     /// Builds ablation.md and ablation.csv from a sweep's directory.
     Merge {
         /// The sweep's output directory.
@@ -133,29 +142,6 @@ fn parse_range(s: &str) -> Result<(f64, f64), String> {
     Ok((a, b))
 }
 
-/// The optional configuration file.
-#[derive(Default, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
-struct FileConfig {
-    settings: Settings,
-    protocols: Protocols,
-}
-
-fn load_config(path: &Path) -> Result<FileConfig, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let config: FileConfig = if path.extension().is_some_and(|e| e == "json") {
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?
-    } else {
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?
-    };
-    config
-        .settings
-        .validate()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(config)
-}
-
 fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
@@ -175,8 +161,8 @@ fn run(cli: Cli) -> Result<(), String> {
             config,
         } => {
             let mut config = match config {
-                Some(path) => load_config(&path)?,
-                None => FileConfig::default(),
+                Some(path) => ConfigFile::load(&path)?,
+                None => ConfigFile::default(),
             };
             if quick {
                 config.settings.scale = 0.1;
@@ -240,8 +226,8 @@ fn run(cli: Cli) -> Result<(), String> {
             out,
         } => {
             let mut config = match config {
-                Some(path) => load_config(&path)?,
-                None => FileConfig::default(),
+                Some(path) => ConfigFile::load(&path)?,
+                None => ConfigFile::default(),
             };
             apply_push_options(
                 &mut config.protocols,
@@ -284,13 +270,23 @@ fn run(cli: Cli) -> Result<(), String> {
             };
             let mut protocols = Protocols::default();
             if let Some(n) = pushes {
-                protocols.stability.pushes = n.max(1);
+                protocols.stability.pushes = n;
             }
+            protocols.validate().map_err(|e| format!("--pushes: {e}"))?;
             let failed = sweep_with_progress(&runs, &out, &Settings::default(), &protocols)?;
             println!("{} runs in {}", runs.len(), out.display());
             if failed > 0 {
                 return Err(format!("{failed} runs failed"));
             }
+            Ok(())
+        }
+        Command::Config { check: None } => {
+            print!("{}", ConfigFile::default_toml());
+            Ok(())
+        }
+        Command::Config { check: Some(path) } => {
+            ConfigFile::load(&path)?;
+            println!("ok");
             Ok(())
         }
         Command::Merge { dir } => {

@@ -113,7 +113,7 @@ fn invalid(param: &'static str, reason: impl Into<String>) -> CaptureStepError {
 ///
 /// Defaults are derived for the 2 m, 13.5 kg humanoid (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct CaptureStepConfig {
     /// LIPM constant `C = sqrt(g/h)` (1/s); not `C^2`.
     pub c: f64,

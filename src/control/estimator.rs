@@ -52,7 +52,7 @@ pub enum EstimatorError {
 
 /// Parameters of the state estimator. Validated by [`StateEstimator::new`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct EstimatorConfig {
     /// The CoM as a fixed point of the torso frame (m).
     pub com_offset: [f64; 3],

@@ -61,6 +61,7 @@ pub const LEARNER_INPUTS: usize = 3;
 
 /// One query point of the learner.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct LearnerInput {
     /// Trunk deviation angle theta_E (rad).
     pub theta_e: f64,
@@ -326,7 +327,7 @@ pub struct TouchDownReport {
 
 /// An axis-aligned box over (theta_E, theta_E_dot, F_R) sampled on an even grid.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct InputGrid {
     /// Lower corner.
     pub lo: LearnerInput,
@@ -403,7 +404,7 @@ pub struct OffsetMap {
 
 /// Where and how finely to sample an [`OffsetMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct MapSpec {
     /// theta_E range (rad).
     pub theta_e: (f64, f64),

@@ -140,7 +140,7 @@ pub struct StepCommand {
 
 /// Settings of the step motion generator.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct MotionConfig {
     /// Extension of both legs in the halt pose.
     pub halt_extension: f64,

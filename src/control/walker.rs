@@ -47,6 +47,7 @@ pub enum WalkerMode {
 
 /// Everything that configures a walker.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct WalkerConfig {
     /// How steps are chosen.
     pub mode: WalkerMode,
@@ -81,6 +82,14 @@ impl WalkerConfig {
             motion: MotionConfig::default(),
             offset_in_gait: true,
         }
+    }
+}
+
+impl Default for WalkerConfig {
+    /// A Capture Step walker with the default controller, estimator and generator (what a
+    /// config file's `[settings.walker]` starts from; each experiment sets its own mode).
+    fn default() -> Self {
+        WalkerConfig::new(WalkerMode::CaptureStep)
     }
 }
 

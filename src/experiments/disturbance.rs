@@ -10,6 +10,7 @@ use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
 use crate::report::figures::{LinePlot, Series, line_plot};
@@ -58,41 +59,28 @@ impl Default for DisturbanceProtocol {
 }
 
 impl DisturbanceProtocol {
-    /// Checks ranges and a horizon shorter than the shortest gap.
-    pub fn validate(&self) -> Result<(), ExperimentError> {
-        let bad = |m: String| Err(ExperimentError::Invalid(format!("disturbance: {m}")));
-        for (name, v) in [
-            ("bin_s", self.bin_s),
-            ("horizon_s", self.horizon_s),
-            ("tolerance_m", self.tolerance_m),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{name} must be positive, got {v}"));
-            }
-        }
-        if !(self.f_r.is_finite() && self.impulse.is_finite() && self.impulse >= 0.0) {
-            return bad(format!(
-                "need a finite F_R and impulse >= 0, got {} and {}",
-                self.f_r, self.impulse
-            ));
-        }
-        let (g0, g1) = self.gap_s;
-        if !(g0.is_finite() && g1.is_finite() && self.horizon_s < g0 && g0 <= g1) {
-            return bad(format!(
-                "gap [{g0}, {g1}] s must be ordered and longer than the horizon {} s",
-                self.horizon_s
-            ));
-        }
-        if self.bin_s > self.horizon_s {
-            return bad(format!("bin {} s exceeds the horizon", self.bin_s));
-        }
-        if !super::schedule::is_unit_direction(&self.direction) {
-            return bad(format!(
-                "direction {:?} is not a unit vector",
-                self.direction
-            ));
-        }
-        Ok(())
+    /// Checks ranges, at least one push, a unit direction and a horizon shorter than the
+    /// shortest gap; errors name the field (relative to the protocol's section).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        config::ensure(self.f_r.is_finite(), "f_r", || {
+            format!("must be finite, got {}", self.f_r)
+        })?;
+        config::non_negative("impulse", self.impulse)?;
+        config::at_least("pushes", self.pushes, 1)?;
+        config::positive_range("gap_s", self.gap_s)?;
+        config::positive("bin_s", self.bin_s)?;
+        config::positive("horizon_s", self.horizon_s)?;
+        config::positive("tolerance_m", self.tolerance_m)?;
+        config::ensure(self.horizon_s < self.gap_s.0, "gap_s", || {
+            format!(
+                "the shortest gap {} s must exceed the horizon {} s",
+                self.gap_s.0, self.horizon_s
+            )
+        })?;
+        config::ensure(self.bin_s <= self.horizon_s, "bin_s", || {
+            format!("{} s exceeds the horizon {} s", self.bin_s, self.horizon_s)
+        })?;
+        config::unit_direction("direction", &self.direction)
     }
 }
 
@@ -222,8 +210,10 @@ where
     A: FunctionApproximator + Clone,
     R: LearningRule,
 {
-    settings.validate().map_err(ExperimentError::Invalid)?;
-    protocol.validate()?;
+    settings.validate()?;
+    protocol
+        .validate()
+        .map_err(|e| e.within("protocols.disturbance"))?;
     let plan = PushPlan {
         count: settings.scaled(protocol.pushes, 2),
         impulse: (protocol.impulse, protocol.impulse),

@@ -1,6 +1,7 @@
 //! The error type of the experiments.
 
 use super::trial::TrialError;
+use crate::config::ConfigError;
 use crate::control::learner::LearnerError;
 use crate::report::ReportError;
 use thiserror::Error;
@@ -17,6 +18,9 @@ pub enum ExperimentError {
     /// Analysing or writing the results failed.
     #[error(transparent)]
     Report(#[from] ReportError),
+    /// A settings or protocol value is out of range (names the field).
+    #[error("invalid config: {0}")]
+    Config(#[from] ConfigError),
     /// The experiment's settings are invalid.
     #[error("invalid experiment settings: {0}")]
     Invalid(String),

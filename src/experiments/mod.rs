@@ -3,6 +3,7 @@
 
 pub mod aligned;
 pub mod compare;
+pub mod config_file;
 pub mod disturbance;
 mod error;
 pub mod fall_causes;

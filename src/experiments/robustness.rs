@@ -16,6 +16,7 @@ use super::schedule::{Push, ReferenceSchedule};
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{StepRecord, run_trial};
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::learner::{InputGrid, MapSpec, OffsetMap};
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
@@ -59,7 +60,9 @@ pub struct RobustnessProtocol {
     pub direction: [f64; 3],
     /// The input grid of the learning metric.
     pub metric_grid: InputGrid,
-    /// The dF maps drawn after every push.
+    /// The dF maps drawn after every push (a partial `map` keeps this protocol's defaults,
+    /// 31 x 31, for the keys it leaves out).
+    #[serde(deserialize_with = "map_patch")]
     pub map: MapSpec,
     /// Whether the learner holds its dF = 0 prior ([`crate::control::learner::Prior`]) from
     /// the start. Default false: D's learner is not initialised, so it neither has the analytic
@@ -87,29 +90,28 @@ impl Default for RobustnessProtocol {
     }
 }
 
+fn map_patch<'de, D: serde::Deserializer<'de>>(d: D) -> Result<MapSpec, D::Error> {
+    crate::config::patch(&RobustnessProtocol::default().map, d)
+}
+
 impl RobustnessProtocol {
-    /// Checks the numbers, the grid and the map.
-    pub fn validate(&self) -> Result<(), ExperimentError> {
-        let bad = |m: String| Err(ExperimentError::Invalid(format!("robustness: {m}")));
-        if !(self.impulse.is_finite() && self.impulse >= 0.0) {
-            return bad(format!("impulse must be >= 0, got {}", self.impulse));
-        }
-        let (s0, s1) = self.settle_s;
-        if !(s0.is_finite() && s1.is_finite() && 0.0 < s0 && s0 <= s1) {
-            return bad(format!(
-                "settle [{s0}, {s1}] s must be positive and ordered"
-            ));
-        }
-        if !super::schedule::is_unit_direction(&self.direction) {
-            return bad(format!(
-                "direction {:?} is not a unit vector",
-                self.direction
-            ));
-        }
+    /// Checks the numbers, the grid and the map; errors name the field (relative to the
+    /// protocol's section).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        config::non_negative("impulse", self.impulse)?;
+        config::at_least("pushes", self.pushes, 1)?;
+        config::positive_range("settle_s", self.settle_s)?;
+        config::unit_direction("direction", &self.direction)?;
         self.metric_grid
             .validate()
-            .map_err(|e| ExperimentError::Invalid(format!("robustness: {e}")))?;
-        Ok(())
+            .map_err(|e| ConfigError::new("metric_grid", e.to_string()))?;
+        config::ordered("map.theta_e", self.map.theta_e)?;
+        config::ordered("map.theta_e_dot", self.map.theta_e_dot)?;
+        config::ensure(self.map.f_r.is_finite(), "map.f_r", || {
+            format!("must be finite, got {}", self.map.f_r)
+        })?;
+        config::at_least("map.resolution", self.map.resolution.0, 1)?;
+        config::at_least("map.resolution", self.map.resolution.1, 1)
     }
 }
 
@@ -210,8 +212,10 @@ where
     A: FunctionApproximator + Clone,
     R: LearningRule,
 {
-    settings.validate().map_err(ExperimentError::Invalid)?;
-    protocol.validate()?;
+    settings.validate()?;
+    protocol
+        .validate()
+        .map_err(|e| e.within("protocols.robustness"))?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let (s0, s1) = protocol.settle_s;
     let push_times: Vec<f64> = (0..settings.scaled(protocol.pushes, 1))

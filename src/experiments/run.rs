@@ -10,6 +10,7 @@ use super::stability::{self, ControllerPushes, StabilityProtocol};
 use super::sweep::RunSpec;
 use super::tracking::{self, TrackingProtocol};
 use crate::approx::{AnyApproximator, ApproxKind};
+use crate::config::ConfigError;
 use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError, Prior};
 use crate::report::summary::{
     ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
@@ -19,7 +20,7 @@ use std::path::Path;
 
 /// Protocols of every experiment (defaults: the paper's).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct Protocols {
     /// Experiment A.
     pub tracking: TrackingProtocol,
@@ -29,6 +30,20 @@ pub struct Protocols {
     pub stability: StabilityProtocol,
     /// Experiment D.
     pub robustness: RobustnessProtocol,
+}
+
+impl Protocols {
+    /// Checks every protocol; errors name the field from the top of the config file
+    /// (`protocols.stability.pushes`).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        fn within(name: &'static str) -> impl Fn(ConfigError) -> ConfigError {
+            move |e| e.within(&format!("protocols.{name}"))
+        }
+        self.tracking.validate().map_err(within("tracking"))?;
+        self.disturbance.validate().map_err(within("disturbance"))?;
+        self.stability.validate().map_err(within("stability"))?;
+        self.robustness.validate().map_err(within("robustness"))
+    }
 }
 
 /// Runs `spec` with `settings`, writes its figures and CSV into `dir` and returns its summary

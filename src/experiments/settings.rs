@@ -3,6 +3,7 @@
 use super::schedule::{Push, PushPlan, ReferenceSchedule};
 use super::trial::TrialSetup;
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::control::walker::{WalkerConfig, WalkerMode};
 use crate::rules::LearningRule;
@@ -11,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 /// Everything an experiment needs besides its own protocol.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct Settings {
     /// The robot and physics.
     pub sim: SimConfig,
@@ -48,24 +49,35 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// Checks the experiment-level numbers (the parts check themselves when built).
-    pub fn validate(&self) -> Result<(), String> {
-        if !(self.scale.is_finite() && self.scale > 0.0 && self.scale <= 1.0) {
-            return Err(format!("scale must be in (0, 1], got {}", self.scale));
-        }
-        if !(self.push_window_s.is_finite() && self.push_window_s > 0.0) {
-            return Err(format!(
-                "push_window_s must be positive, got {}",
-                self.push_window_s
-            ));
-        }
-        if !(self.recovery_s.is_finite() && self.recovery_s >= 0.0) {
-            return Err(format!("recovery_s must be >= 0, got {}", self.recovery_s));
-        }
-        if !(self.resettle_s.is_finite() && self.resettle_s >= 0.0) {
-            return Err(format!("resettle_s must be >= 0, got {}", self.resettle_s));
-        }
-        Ok(())
+    /// Checks every value: the experiment-level numbers and the sim, walker and learner
+    /// configs. Errors name the field from the top of the config file (`settings.scale`).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        self.validate_inner().map_err(|e| e.within("settings"))
+    }
+
+    fn validate_inner(&self) -> Result<(), ConfigError> {
+        config::ensure(
+            self.scale.is_finite() && self.scale > 0.0 && self.scale <= 1.0,
+            "scale",
+            || format!("must be in (0, 1], got {}", self.scale),
+        )?;
+        config::positive("push_window_s", self.push_window_s)?;
+        config::non_negative("recovery_s", self.recovery_s)?;
+        config::non_negative("resettle_s", self.resettle_s)?;
+        self.sim
+            .validate()
+            .map_err(|e| ConfigError::new("sim", e.to_string()))?;
+        self.walker
+            .capture_step
+            .validate()
+            .map_err(|e| ConfigError::new("walker.capture_step", e.to_string()))?;
+        self.walker
+            .estimator
+            .validate()
+            .map_err(|e| ConfigError::new("walker.estimator", e.to_string()))?;
+        self.learner
+            .validate()
+            .map_err(|e| ConfigError::new("learner", e.to_string()))
     }
 
     /// `n` scaled by [`Settings::scale`], at least `min`.

@@ -10,6 +10,7 @@ use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{PushRecord, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
@@ -22,7 +23,7 @@ use std::path::Path;
 
 /// The protocol (paper: 400 pushes uniform in [0, 20] Ns, walking in place).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct StabilityProtocol {
     /// Pushes per controller (before [`Settings::scale`]).
     pub pushes: usize,
@@ -42,6 +43,17 @@ impl Default for StabilityProtocol {
             gap_s: (3.0, 4.0),
             direction: [1.0, 0.0, 0.0],
         }
+    }
+}
+
+impl StabilityProtocol {
+    /// Checks at least one push, a non-negative ordered impulse range, a positive ordered gap
+    /// and a unit direction; errors name the field (relative to the protocol's section).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        config::at_least("pushes", self.pushes, 1)?;
+        config::non_negative_range("impulse", self.impulse)?;
+        config::positive_range("gap_s", self.gap_s)?;
+        config::unit_direction("direction", &self.direction)
     }
 }
 
@@ -112,7 +124,10 @@ where
     A: FunctionApproximator + Clone,
     R: LearningRule,
 {
-    settings.validate().map_err(ExperimentError::Invalid)?;
+    settings.validate()?;
+    protocol
+        .validate()
+        .map_err(|e| e.within("protocols.stability"))?;
     let plan = PushPlan {
         count: settings.scaled(protocol.pushes, 1),
         impulse: protocol.impulse,

@@ -10,6 +10,7 @@ use super::schedule::ReferenceSchedule;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::TrialLog;
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
@@ -47,36 +48,23 @@ impl Default for TrackingProtocol {
 }
 
 impl TrackingProtocol {
-    /// Checks ranges, positive times and a horizon within the shortest hold.
-    pub fn validate(&self) -> Result<(), ExperimentError> {
-        let bad = |m: String| Err(ExperimentError::Invalid(format!("tracking: {m}")));
-        let (lo, hi) = self.reference;
-        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
-            return bad(format!("reference range [{lo}, {hi}] is not ordered"));
-        }
-        let (h0, h1) = self.hold_s;
-        if !(h0.is_finite() && h1.is_finite() && 0.0 < h0 && h0 <= h1) {
-            return bad(format!("hold [{h0}, {h1}] s must be positive and ordered"));
-        }
-        for (name, v) in [
-            ("duration_s", self.duration_s),
-            ("bin_s", self.bin_s),
-            ("horizon_s", self.horizon_s),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{name} must be positive, got {v}"));
-            }
-        }
-        if self.horizon_s > h0 {
-            return bad(format!(
-                "horizon {} s exceeds the shortest hold {h0} s",
-                self.horizon_s
-            ));
-        }
-        if self.bin_s > self.horizon_s {
-            return bad(format!("bin {} s exceeds the horizon", self.bin_s));
-        }
-        Ok(())
+    /// Checks ranges, positive times and a horizon within the shortest hold; errors name the
+    /// field (relative to the protocol's section).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        config::ordered("reference", self.reference)?;
+        config::positive_range("hold_s", self.hold_s)?;
+        config::positive("duration_s", self.duration_s)?;
+        config::positive("bin_s", self.bin_s)?;
+        config::positive("horizon_s", self.horizon_s)?;
+        config::ensure(self.horizon_s <= self.hold_s.0, "horizon_s", || {
+            format!(
+                "{} s exceeds the shortest hold {} s",
+                self.horizon_s, self.hold_s.0
+            )
+        })?;
+        config::ensure(self.bin_s <= self.horizon_s, "bin_s", || {
+            format!("{} s exceeds the horizon {} s", self.bin_s, self.horizon_s)
+        })
     }
 }
 
@@ -104,8 +92,10 @@ where
     A: FunctionApproximator + Clone,
     R: LearningRule,
 {
-    settings.validate().map_err(ExperimentError::Invalid)?;
-    protocol.validate()?;
+    settings.validate()?;
+    protocol
+        .validate()
+        .map_err(|e| e.within("protocols.tracking"))?;
     // At least enough time for a few changes, whatever the scale.
     let duration = (protocol.duration_s * settings.scale).max(4.0 * protocol.hold_s.1);
     let reference = ReferenceSchedule::random(seed, duration, protocol.reference, protocol.hold_s)?;

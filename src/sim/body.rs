@@ -25,7 +25,11 @@ use crate::robot::kinematics::LegGeometry;
 use crate::robot::{JOINTS_PER_LEG, LegJoint};
 
 /// A limb segment hanging from its proximal joint along -z.
+///
+/// Every field is required when a segment is given whole; inside a [`BodyConfig`] a partial
+/// `thigh` or `shank` keeps that segment's defaults for the fields it leaves out.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Segment {
     /// Proximal to distal joint (m).
     pub length: f64,
@@ -41,6 +45,7 @@ pub struct Segment {
 
 /// The rigid torso: trunk, pelvis, head and arms in one body (it carries the IMU).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Torso {
     /// Mass (kg).
     pub mass: f64,
@@ -64,6 +69,7 @@ pub struct Torso {
 
 /// The box foot.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Foot {
     /// Mass (kg), including the ankle gimbal link.
     pub mass: f64,
@@ -77,8 +83,10 @@ pub struct Foot {
     pub sole_offset_x: f64,
 }
 
-/// Limits and position servo of one joint.
+/// Limits and position servo of one joint (inside a [`BodyConfig`], a partial entry of
+/// `joints` keeps that joint's defaults for the fields it leaves out).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct JointSpec {
     /// Lower and upper angle limit (rad).
     pub limits: [f64; 2],
@@ -93,15 +101,17 @@ pub struct JointSpec {
 /// Every size, mass, joint limit and servo gain of the humanoid. See the module docs for the
 /// anthropometric sources of [`BodyConfig::default`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct BodyConfig {
     /// The torso (trunk, pelvis, head, arms).
     pub torso: Torso,
     /// Lateral distance of each hip centre from the torso's mid-plane (m).
     pub hip_half_width: f64,
     /// The thigh (hip centre to knee).
+    #[serde(deserialize_with = "thigh_patch")]
     pub thigh: Segment,
     /// The shank (knee to ankle centre).
+    #[serde(deserialize_with = "shank_patch")]
     pub shank: Segment,
     /// The foot.
     pub foot: Foot,
@@ -109,7 +119,36 @@ pub struct BodyConfig {
     pub gimbal_mass: f64,
     /// Joints of one leg in [`LegJoint::ALL`] order (both legs alike; limits are for the left
     /// leg, the right leg mirrors roll and yaw limits).
+    #[serde(deserialize_with = "joints_patch")]
     pub joints: [JointSpec; JOINTS_PER_LEG],
+}
+
+fn thigh_patch<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Segment, D::Error> {
+    crate::config::patch(&BodyConfig::default().thigh, d)
+}
+
+fn shank_patch<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Segment, D::Error> {
+    crate::config::patch(&BodyConfig::default().shank, d)
+}
+
+fn joints_patch<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<[JointSpec; JOINTS_PER_LEG], D::Error> {
+    crate::config::patch(&BodyConfig::default().joints, d)
+}
+
+impl Default for Torso {
+    /// The torso of [`BodyConfig::default`].
+    fn default() -> Self {
+        BodyConfig::default().torso
+    }
+}
+
+impl Default for Foot {
+    /// The foot of [`BodyConfig::default`].
+    fn default() -> Self {
+        BodyConfig::default().foot
+    }
 }
 
 const H: f64 = 2.0;

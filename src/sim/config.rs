@@ -9,7 +9,7 @@ use crate::robot::NUM_JOINTS;
 /// Everything that defines a simulation run besides the control inputs: the body, the physics
 /// step, solver settings, ground friction, control tick, push delivery and fall detection.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct SimConfig {
     /// The robot.
     pub body: BodyConfig,

@@ -1,0 +1,161 @@
+//! Checked configuration: the one error type every config check returns (naming the field and
+//! the reason), and the serde helper that lets a partial section override a default that is
+//! not the field type's own `Default` (the thigh and the shank share a type but not their
+//! defaults).
+
+use serde::de::{DeserializeOwned, Deserializer, Error as _};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// A configuration value that is out of range, named by its path in the config file.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("{field}: {reason}")]
+pub struct ConfigError {
+    /// Dotted path of the offending key, e.g. `protocols.stability.pushes`.
+    pub field: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+impl ConfigError {
+    /// An error of `field` because of `reason`.
+    pub fn new(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        ConfigError {
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+
+    /// The same error with `prefix.` put before its field (the section that holds it).
+    pub fn within(mut self, prefix: &str) -> Self {
+        self.field = if self.field.is_empty() {
+            prefix.to_string()
+        } else {
+            format!("{prefix}.{}", self.field)
+        };
+        self
+    }
+}
+
+/// `Err(ConfigError)` for `field` with `reason` unless `ok`.
+pub fn ensure(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(), ConfigError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ConfigError::new(field, reason()))
+    }
+}
+
+/// Checks that `v` is finite and > 0.
+pub fn positive(field: &str, v: f64) -> Result<(), ConfigError> {
+    ensure(v.is_finite() && v > 0.0, field, || {
+        format!("must be finite and > 0, got {v}")
+    })
+}
+
+/// Checks that `v` is finite and >= 0.
+pub fn non_negative(field: &str, v: f64) -> Result<(), ConfigError> {
+    ensure(v.is_finite() && v >= 0.0, field, || {
+        format!("must be finite and >= 0, got {v}")
+    })
+}
+
+/// Checks that `(lo, hi)` is finite with `lo <= hi`.
+pub fn ordered(field: &str, (lo, hi): (f64, f64)) -> Result<(), ConfigError> {
+    ensure(lo.is_finite() && hi.is_finite() && lo <= hi, field, || {
+        format!("must be finite with lo <= hi, got [{lo}, {hi}]")
+    })
+}
+
+/// Checks that `(lo, hi)` is finite with `0 <= lo <= hi`.
+pub fn non_negative_range(field: &str, r: (f64, f64)) -> Result<(), ConfigError> {
+    ordered(field, r)?;
+    ensure(r.0 >= 0.0, field, || {
+        format!("must not be negative, got [{}, {}]", r.0, r.1)
+    })
+}
+
+/// Checks that `(lo, hi)` is finite with `0 < lo <= hi`.
+pub fn positive_range(field: &str, r: (f64, f64)) -> Result<(), ConfigError> {
+    ordered(field, r)?;
+    ensure(r.0 > 0.0, field, || {
+        format!("must be positive, got [{}, {}]", r.0, r.1)
+    })
+}
+
+/// Checks that `d` is a finite unit vector (a zero or non-finite direction is an error).
+pub fn unit_direction(field: &str, d: &[f64; 3]) -> Result<(), ConfigError> {
+    let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+    ensure(norm.is_finite() && (norm - 1.0).abs() < 1e-6, field, || {
+        format!("must be a finite unit vector, got {d:?} (length {norm})")
+    })
+}
+
+/// Checks that a count is at least `min`.
+pub fn at_least(field: &str, n: usize, min: usize) -> Result<(), ConfigError> {
+    ensure(n >= min, field, || {
+        format!("must be at least {min}, got {n}")
+    })
+}
+
+/// Deserializes a partial `T` over `base`: keys given override `base`'s, tables merge at every
+/// depth (arrays of tables of the same length merge element by element), anything else
+/// replaces. Unknown keys stay errors when `T` denies them.
+pub fn patch<'de, D, T>(base: &T, deserializer: D) -> Result<T, D::Error>
+where
+    D: Deserializer<'de>,
+    T: Serialize + DeserializeOwned,
+{
+    let over = serde_json::Value::deserialize(deserializer)?;
+    let mut merged = serde_json::to_value(base).map_err(D::Error::custom)?;
+    merge(&mut merged, over);
+    serde_json::from_value(merged).map_err(D::Error::custom)
+}
+
+fn merge(base: &mut serde_json::Value, over: serde_json::Value) {
+    use serde_json::Value;
+    match (base, over) {
+        (Value::Object(b), Value::Object(o)) => {
+            for (k, v) in o {
+                match b.get_mut(&k) {
+                    Some(slot) => merge(slot, v),
+                    None => {
+                        b.insert(k, v);
+                    }
+                }
+            }
+        }
+        (Value::Array(b), Value::Array(o))
+            if b.len() == o.len() && o.iter().all(Value::is_object) =>
+        {
+            for (slot, v) in b.iter_mut().zip(o) {
+                merge(slot, v);
+            }
+        }
+        (slot, v) => *slot = v,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_name_the_field_with_its_section() {
+        let e = ConfigError::new("pushes", "must be at least 1, got 0").within("stability");
+        assert_eq!(e.field, "stability.pushes");
+        assert_eq!(e.to_string(), "stability.pushes: must be at least 1, got 0");
+    }
+
+    #[test]
+    fn checks_reject_out_of_range_values() {
+        assert!(unit_direction("d", &[0.0, 0.0, 0.0]).is_err());
+        assert!(unit_direction("d", &[f64::NAN, 0.0, 0.0]).is_err());
+        assert!(unit_direction("d", &[0.0, 1.0, 0.0]).is_ok());
+        assert!(non_negative_range("r", (2.0, 1.0)).is_err());
+        assert!(non_negative_range("r", (-1.0, 1.0)).is_err());
+        assert!(positive_range("r", (0.0, 1.0)).is_err());
+        assert!(positive("x", 0.0).is_err());
+        assert!(at_least("n", 0, 1).is_err());
+    }
+}

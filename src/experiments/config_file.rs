@@ -1,0 +1,143 @@
+//! The configuration file of the `steplearn` command (`--config FILE`, TOML or JSON):
+//! `[settings]` ([`Settings`]) and `[protocols.<experiment>]` ([`Protocols`]).
+//!
+//! Strict and checked: every section and key must be known (an unknown one is an error that
+//! names it, where it is, and what is allowed); a partial section keeps the defaults for the keys
+//! it leaves out, at every level of nesting; values out of range are errors naming the field and
+//! the reason ([`ConfigError`]), never silently adjusted. [`ConfigFile::default_toml`] is the
+//! complete default file (what `steplearn config` prints).
+
+use super::run::Protocols;
+use super::settings::Settings;
+use crate::config::ConfigError;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A whole config file. Every field defaults, so an empty file is the paper's setup.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ConfigFile {
+    /// Settings shared by every experiment.
+    pub settings: Settings,
+    /// Each experiment's protocol.
+    pub protocols: Protocols,
+}
+
+/// Keys that are unset by default and so absent from [`ConfigFile::default_toml`]'s tables;
+/// listed there as comments: (table header, line).
+const OPTIONAL_KEYS: &[(&str, &str)] = &[(
+    "[settings.learner]",
+    "# max_offset = 0.1  # optional: clamp of the learned offset (m); unset by default (no clamp)",
+)];
+
+impl ConfigFile {
+    /// Parses TOML text (not yet validated: see [`ConfigFile::parse_toml`]). A parse error's
+    /// `field` is the path of the table or key where it happened (empty at the top).
+    pub fn from_toml(text: &str) -> Result<Self, ConfigError> {
+        let de =
+            toml::Deserializer::parse(text).map_err(|e| ConfigError::new("", e.to_string()))?;
+        serde_path_to_error::deserialize(de).map_err(path_error)
+    }
+
+    /// Parses JSON text (not yet validated).
+    pub fn from_json(text: &str) -> Result<Self, ConfigError> {
+        let mut de = serde_json::Deserializer::from_str(text);
+        let config: Self = serde_path_to_error::deserialize(&mut de).map_err(path_error)?;
+        de.end().map_err(|e| ConfigError::new("", e.to_string()))?;
+        Ok(config)
+    }
+
+    /// Parses and validates TOML text.
+    pub fn parse_toml(text: &str) -> Result<Self, ConfigError> {
+        let config = Self::from_toml(text)?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Reads, parses (JSON if the name ends in `.json`, TOML otherwise) and validates a file.
+    /// The message names the file and the offending key or field.
+    pub fn load(path: &Path) -> Result<Self, String> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let config = if path.extension().is_some_and(|e| e == "json") {
+            Self::from_json(&text)
+        } else {
+            Self::from_toml(&text)
+        };
+        let config = config.map_err(|e| format!("{}: {}", path.display(), describe(&e)))?;
+        config
+            .validate()
+            .map_err(|e| format!("{}: invalid value: {e}", path.display()))?;
+        Ok(config)
+    }
+
+    /// Checks every value of the settings and the protocols.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        self.settings.validate()?;
+        self.protocols.validate()
+    }
+
+    /// This configuration as TOML (every key that has a value).
+    pub fn to_toml(&self) -> Result<String, ConfigError> {
+        toml::to_string_pretty(self).map_err(|e| ConfigError::new("", e.to_string()))
+    }
+
+    /// The complete default configuration as TOML: every section and key with its default
+    /// value, optional keys that are unset by default as comments. Parsing it gives
+    /// [`ConfigFile::default`].
+    pub fn default_toml() -> String {
+        let body = Self::default()
+            .to_toml()
+            .expect("the default configuration serializes");
+        let mut out = String::from(
+            "# steplearn's complete default configuration (`steplearn config`).\n\
+             # Use with `--config FILE`; any key or section may be left out (it keeps its\n\
+             # default), unknown keys are errors. Check a file with `steplearn config --check FILE`.\n\n",
+        );
+        for line in body.lines() {
+            out.push_str(line);
+            out.push('\n');
+            for (header, extra) in OPTIONAL_KEYS {
+                if line == *header {
+                    out.push_str(extra);
+                    out.push('\n');
+                }
+            }
+        }
+        out
+    }
+}
+
+fn path_error<E: std::fmt::Display>(e: serde_path_to_error::Error<E>) -> ConfigError {
+    let path = e.path().to_string();
+    let field = if path == "." { String::new() } else { path };
+    ConfigError::new(field, e.inner().to_string())
+}
+
+/// A parse error as one message: "at `settings.sim`: unknown field `x`, expected ...".
+fn describe(e: &ConfigError) -> String {
+    if e.field.is_empty() {
+        e.reason.clone()
+    } else {
+        format!("at `{}`: {}", e.field, e.reason)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_toml_parses_back_to_the_defaults() {
+        let parsed = ConfigFile::parse_toml(&ConfigFile::default_toml()).unwrap();
+        assert_eq!(parsed, ConfigFile::default());
+    }
+
+    #[test]
+    fn unknown_keys_are_named_with_their_path() {
+        let e = ConfigFile::from_toml("[settings.sim]\nbogus = 1\n").unwrap_err();
+        assert_eq!(e.field, "settings.sim.bogus");
+        assert!(e.reason.contains("unknown field `bogus`"), "{e}");
+        assert!(e.reason.contains("expected one of"), "{e}");
+    }
+}

@@ -1,0 +1,290 @@
+//! Strict, checked config files and `steplearn config`: unknown keys and sections are errors
+//! naming the key, partial sections keep the defaults at every level, out-of-range protocol
+//! values are errors naming the field, and the printed defaults round-trip.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::run::Protocols;
+use steplearn::experiments::settings::Settings;
+use steplearn::sim::BodyConfig;
+
+fn steplearn(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_steplearn"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// `config --check` on `text`: (success, stdout, stderr).
+fn check(text: &str) -> (bool, String, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "c.toml", text);
+    let o = steplearn(&["config", "--check", path.to_str().unwrap()]);
+    (
+        o.status.success(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn unknown_sections_and_keys_are_errors_that_name_them_and_list_the_allowed() {
+    for (text, key, allowed) in [
+        ("[settings.robot]\ndt = 0.5\n", "`robot`", "`sim`"),
+        (
+            "[settings]\nunknown_key = 3\n",
+            "`unknown_key`",
+            "`push_window_s`",
+        ),
+        ("[settings.sim]\nd_t = 0.001\n", "`d_t`", "`steps_per_tick`"),
+        (
+            "[settings.sim.body.thigh]\nmass = 2.0\nmas = 1\n",
+            "`mas`",
+            "`gyration_fraction`",
+        ),
+        (
+            "[settings.walker.motion]\nswing_step_scal = 0.9\n",
+            "`swing_step_scal`",
+            "`swing_step_scale`",
+        ),
+        (
+            "[protocols.stabilty]\npushes = 3\n",
+            "`stabilty`",
+            "`stability`",
+        ),
+        (
+            "[protocols.robustness.map]\nres = 3\n",
+            "`res`",
+            "`resolution`",
+        ),
+    ] {
+        let (ok, _, err) = check(text);
+        assert!(!ok, "{text:?} accepted");
+        assert!(
+            err.contains(&format!("unknown field {key}")),
+            "{text:?}: {err}"
+        );
+        assert!(err.contains("expected one of"), "{text:?}: {err}");
+        assert!(err.contains(allowed), "{text:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    // With its path in the file.
+    let (_, _, err) = check("[settings.robot]\ndt = 0.5\n");
+    assert!(err.contains("settings.robot"), "{err}");
+    let e = ConfigFile::from_toml("[settings]\nunknown_key = 3\n").unwrap_err();
+    assert_eq!(e.field, "settings.unknown_key");
+}
+
+#[test]
+fn out_of_range_protocol_values_are_errors_naming_the_field() {
+    for (text, field) in [
+        (
+            "[protocols.stability]\npushes = 0\n",
+            "protocols.stability.pushes",
+        ),
+        (
+            "[protocols.stability]\ndirection = [0.0, 0.0, 0.0]\n",
+            "protocols.stability.direction",
+        ),
+        (
+            "[protocols.stability]\ndirection = [nan, 0.0, 0.0]\n",
+            "protocols.stability.direction",
+        ),
+        (
+            "[protocols.stability]\nimpulse = [10.0, 5.0]\n",
+            "protocols.stability.impulse",
+        ),
+        (
+            "[protocols.stability]\nimpulse = [-1.0, 5.0]\n",
+            "protocols.stability.impulse",
+        ),
+        (
+            "[protocols.stability]\ngap_s = [4.0, 3.0]\n",
+            "protocols.stability.gap_s",
+        ),
+        (
+            "[protocols.disturbance]\npushes = 0\n",
+            "protocols.disturbance.pushes",
+        ),
+        (
+            "[protocols.disturbance]\nimpulse = -8.0\n",
+            "protocols.disturbance.impulse",
+        ),
+        (
+            "[protocols.robustness]\npushes = 0\n",
+            "protocols.robustness.pushes",
+        ),
+        (
+            "[protocols.robustness]\nsettle_s = [0.0, 4.0]\n",
+            "protocols.robustness.settle_s",
+        ),
+        (
+            "[protocols.tracking]\nduration_s = 0.0\n",
+            "protocols.tracking.duration_s",
+        ),
+        (
+            "[protocols.tracking]\nhold_s = [8.0, 4.0]\n",
+            "protocols.tracking.hold_s",
+        ),
+        ("[settings]\nscale = 0.0\n", "settings.scale"),
+        ("[settings.sim]\ndt = 0.5\n", "settings.sim"),
+    ] {
+        let (ok, _, err) = check(text);
+        assert!(!ok, "{text:?} accepted");
+        assert!(err.contains(field), "{text:?}: expected {field} in {err}");
+        let parsed = ConfigFile::from_toml(text).unwrap();
+        let e = parsed.validate().unwrap_err();
+        assert!(e.field.starts_with(field), "{text:?}: {e:?}");
+        assert!(!e.reason.is_empty());
+    }
+}
+
+#[test]
+fn an_out_of_range_protocol_stops_the_experiment_before_it_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = write(dir.path(), "c.toml", "[protocols.stability]\npushes = 0\n");
+    let out = dir.path().join("out");
+    let o = steplearn(&[
+        "experiment",
+        "stability",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("protocols.stability.pushes"), "{err}");
+    assert!(!out.join("summary.json").exists());
+    // The sweep's --pushes 0 is an error too, not silently one push.
+    let o = steplearn(&["sweep", "--pushes", "0", "--out", out.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("pushes"));
+}
+
+#[test]
+fn partial_nested_sections_keep_the_other_defaults() {
+    let config = ConfigFile::parse_toml("[settings.sim.body.torso]\nmass = 11.5\n").unwrap();
+    let default = BodyConfig::default();
+    assert_eq!(config.settings.sim.body.torso.mass, 11.5);
+    assert_eq!(config.settings.sim.body.torso.length, default.torso.length);
+    let mut expected = Settings::default();
+    expected.sim.body.torso.mass = 11.5;
+    assert_eq!(config.settings, expected);
+    assert_eq!(config.protocols, Protocols::default());
+
+    // Thigh and shank share a type but not their defaults: each keeps its own.
+    let config = ConfigFile::parse_toml("[settings.sim.body.shank]\nmass = 0.7\n").unwrap();
+    let shank = config.settings.sim.body.shank;
+    assert_eq!(shank.mass, 0.7);
+    assert_eq!(shank.length, default.shank.length);
+    assert_eq!(shank.radius, default.shank.radius);
+    assert_eq!(config.settings.sim.body.thigh, default.thigh);
+
+    // The robustness map keeps the protocol's 31 x 31, not the type's default.
+    let config = ConfigFile::parse_toml("[protocols.robustness.map]\nf_r = 0.1\n").unwrap();
+    assert_eq!(config.protocols.robustness.map.f_r, 0.1);
+    assert_eq!(config.protocols.robustness.map.resolution, (31, 31));
+
+    // The CLI accepts it.
+    let (ok, out, err) = check("[settings.sim.body.torso]\nmass = 11.5\n");
+    assert!(ok, "{err}");
+    assert_eq!(out.trim(), "ok");
+}
+
+#[test]
+fn a_walker_section_without_mode_takes_the_defaults() {
+    let config =
+        ConfigFile::parse_toml("[settings.walker.motion]\nswing_step_scale = 0.9\n").unwrap();
+    assert_eq!(config.settings.walker.motion.swing_step_scale, 0.9);
+    let config = ConfigFile::parse_toml("[settings.walker]\noffset_in_gait = false\n").unwrap();
+    let mut expected = Settings::default().walker;
+    expected.offset_in_gait = false;
+    assert_eq!(config.settings.walker, expected);
+    let (ok, out, err) = check("[settings.walker]\noffset_in_gait = false\n");
+    assert!(ok, "{err}");
+    assert_eq!(out.trim(), "ok");
+}
+
+#[test]
+fn printed_defaults_round_trip_through_check_and_parse_to_the_defaults() {
+    let o = steplearn(&["config"]);
+    assert!(o.status.success());
+    let text = String::from_utf8(o.stdout).unwrap();
+    for section in [
+        "[settings]",
+        "[settings.sim]",
+        "[settings.sim.body.torso]",
+        "[[settings.sim.body.joints]]",
+        "[settings.walker.capture_step]",
+        "[settings.walker.estimator]",
+        "[settings.walker.motion]",
+        "[settings.learner.prior]",
+        "[protocols.tracking]",
+        "[protocols.disturbance]",
+        "[protocols.stability]",
+        "[protocols.robustness.map]",
+    ] {
+        assert!(text.lines().any(|l| l == section), "{section} missing");
+    }
+    let parsed = ConfigFile::parse_toml(&text).unwrap();
+    assert_eq!(parsed.settings, Settings::default());
+    assert_eq!(parsed.protocols, Protocols::default());
+    assert_eq!(parsed, ConfigFile::default());
+    let (ok, out, err) = check(&text);
+    assert!(ok, "{err}");
+    assert_eq!(out.trim(), "ok");
+    // An empty file is the defaults as well.
+    assert_eq!(ConfigFile::parse_toml("").unwrap(), ConfigFile::default());
+}
+
+#[test]
+fn the_shipped_configs_pass_the_check() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/mismatch.toml");
+    let o = steplearn(&["config", "--check", path]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "ok");
+    let config = ConfigFile::load(Path::new(path)).unwrap();
+    assert_eq!(config.settings.walker.motion.swing_step_scale, 0.85);
+}
+
+#[test]
+fn json_configs_are_as_strict() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = write(
+        dir.path(),
+        "c.json",
+        r#"{"settings": {"robot": {"dt": 0.5}}}"#,
+    );
+    let o = steplearn(&["config", "--check", bad.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown field `robot`"));
+    let good = write(
+        dir.path(),
+        "d.json",
+        r#"{"settings": {"sim": {"body": {"torso": {"mass": 11.5}}}}}"#,
+    );
+    let config = ConfigFile::load(&good).unwrap();
+    assert_eq!(config.settings.sim.body.torso.mass, 11.5);
+    assert_eq!(
+        config.settings.sim.body.torso.length,
+        BodyConfig::default().torso.length
+    );
+}
+
+#[test]
+fn malformed_files_and_missing_files_are_errors() {
+    let (ok, _, err) = check("[settings\nx = 1\n");
+    assert!(!ok);
+    assert!(err.contains("unclosed table"), "{err}");
+    let o = steplearn(&["config", "--check", "/nonexistent-steplearn.toml"]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read"));
+}
