@@ -1,7 +1,7 @@
 //! The whole simulator-independent chain in the loop on the ideal LIPM plant: plant ->
 //! synthetic sensors (leg inverse kinematics, IMU, foot loads) -> state estimator -> Capture
-//! Step controller -> plant. Figures: `cargo test --test capture_step_with_estimator --
-//! --nocapture`.
+//! Step controller -> plant. Figures: `cargo test --test all
+//! capture_step_with_estimator:: -- --nocapture`.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};

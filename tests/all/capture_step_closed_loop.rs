@@ -1,7 +1,7 @@
 //! The Capture Step controller closing the loop on the ideal LIPM plant.
 //!
-//! Figures (run with `--nocapture` to print them): `cargo test --test capture_step_closed_loop
-//! -- --nocapture`.
+//! Figures (run with `--nocapture` to print them): `cargo test --test all
+//! capture_step_closed_loop:: -- --nocapture`.
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
