@@ -88,7 +88,6 @@ proptest! {
     #![proptest_config(ProptestConfig {
         cases: 12,
         rng_seed: proptest::test_runner::RngSeed::Fixed(14),
-        failure_persistence: None,
         ..ProptestConfig::default()
     })]
 
@@ -106,11 +105,15 @@ proptest! {
         // The error is relative to the target's spread, so a target whose linear part nearly
         // cancels the sine (spread well below its amplitude) inflates it: e.g. y = -0.79 x +
         // 0.445 sin(2x) plateaus at 0.098 relative (absolute RMS about 0.015) even after 100k
-        // samples with the library defaults. Such near-constant targets are excluded, as
-        // near-zero slopes are for the linear property.
-        prop_assume!(spread(&t) > 0.3);
+        // samples with the library defaults. Every target is kept: one with a spread of at
+        // least 0.3 must be learned to 10% of it, any other to an absolute RMS error of 0.03.
         let (model, rel) = learn(&t, seed, 5000 * d);
-        prop_assert!(rel < 0.1, "relative RMS error {rel} for {t:?}");
+        let spread = spread(&t);
+        if spread >= 0.3 {
+            prop_assert!(rel < 0.1, "relative RMS error {rel} for {t:?}");
+        } else {
+            prop_assert!(rel * spread < 0.03, "absolute RMS error {} for {t:?}", rel * spread);
+        }
         // Receptive fields are bounded by the input volume: with the initial metric 25 I and
         // w_gen 0.1 a new field is only created farther than sqrt(2 ln 10 / 25) = 0.43 from
         // every centre, so the centres pack balls of radius 0.21 into [-1.21, 1.21]^d. The

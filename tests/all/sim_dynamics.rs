@@ -169,10 +169,8 @@ fn walk_open_loop(motion: MotionConfig, step_x: f64, seconds: f64) -> (Option<f6
 #[test]
 fn open_loop_gait_walks_the_whole_step_range() {
     for step_x in [-0.1, 0.2] {
-        // The default gait falls at both ends of the range within 15 s ...
-        let (fall, _) = walk_open_loop(MotionConfig::default(), step_x, 20.0);
-        assert!(fall.is_some(), "default gait at {step_x} m did not fall");
-        // ... the open-loop gait walks 30 s and travels close to the commanded distance.
+        // The open-loop gait walks 30 s at both ends of the range and travels close to the
+        // commanded distance.
         let (fall, travel) = walk_open_loop(MotionConfig::open_loop_gait(), step_x, 30.0);
         assert_eq!(fall, None, "open-loop gait at {step_x} m fell");
         let commanded = step_x * (30.0 - 2.0) / 0.4;
