@@ -253,6 +253,26 @@ fn the_shipped_configs_pass_the_check() {
     assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "ok");
     let config = ConfigFile::load(Path::new(path)).unwrap();
     assert_eq!(config.settings.walker.motion.swing_step_scale, 0.85);
+
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/compliant_hip.toml");
+    let o = steplearn(&["config", "--check", path]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let config = ConfigFile::load(Path::new(path)).unwrap();
+    // only the hip pitch stiffness differs from the default robot
+    let default = steplearn::sim::SimConfig::default();
+    let mut joints = default.body.joints;
+    joints[2].stiffness = 400.0;
+    assert_eq!(config.settings.sim.body.joints, joints);
+    assert_eq!(
+        steplearn::sim::SimConfig {
+            body: steplearn::sim::BodyConfig {
+                joints: default.body.joints,
+                ..config.settings.sim.body.clone()
+            },
+            ..config.settings.sim.clone()
+        },
+        default
+    );
 }
 
 #[test]

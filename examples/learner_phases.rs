@@ -1,0 +1,208 @@
+//! Where does the learned walker win or lose against the model in experiment C? Runs the model
+//! and the learned walker (LWPR + pendulum-cart) on the same forward pushes, walking in place,
+//! with two switches that isolate the learner's phases:
+//!
+//! - `--learn-steps N`: learn from the first N touch-downs only, then keep the learned offsets
+//!   frozen (with `--settle 60`, a learner trained on undisturbed stepping, never on pushes);
+//! - `--gate-rate R`: apply dF only where |theta_E_dot| <= R rad/s (the model alone decides in
+//!   the fast transients after a push; learning is unchanged).
+//!
+//! Prints each controller's falls and impulse at 50% falls, and the mean analytic step, dF
+//! and realised step of the five steps after pushes of 10-18 Ns.
+//!
+//! `cargo run --release --example learner_phases -- --seed 0 --pushes 200 --settle 60 --learn-steps 120`
+
+use clap::Parser;
+use std::path::PathBuf;
+use steplearn::approx::ApproxKind;
+use steplearn::control::learner::{
+    FootstepLearner, InputGrid, LearnerError, LearnerInput, TouchDownReport,
+};
+use steplearn::control::walker::{FootstepPolicy, Tick, WalkerMode};
+use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::schedule::PushPlan;
+use steplearn::experiments::trial::{Observer, PushRecord, StepRecord, run_trial};
+use steplearn::report::fall_rate::impulse_at_50pct_fall;
+use steplearn::rules::{PendulumCart, StepOutcome};
+
+#[derive(Parser)]
+struct Args {
+    /// Seed of the push sequence.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Pushes per controller (impulse uniform in [0, 20] Ns).
+    #[arg(long, default_value_t = 200)]
+    pushes: usize,
+    /// Undisturbed stepping before the first push (s).
+    #[arg(long, default_value_t = 3.0)]
+    settle: f64,
+    /// Learn from the first N touch-downs only (default: always).
+    #[arg(long)]
+    learn_steps: Option<usize>,
+    /// Apply dF only where |theta_E_dot| <= this (rad/s; default: everywhere).
+    #[arg(long)]
+    gate_rate: Option<f64>,
+    /// Settings file (`steplearn config` format) for the robot, walker and learner.
+    #[arg(long)]
+    config: Option<PathBuf>,
+}
+
+/// The learner with the two switches.
+struct Phased<P> {
+    inner: P,
+    gate_rate: f64,
+    learn_steps: usize,
+    seen: usize,
+}
+
+impl<P: FootstepPolicy> FootstepPolicy for Phased<P> {
+    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
+        let df = self.inner.offset(input)?;
+        Ok(if input.theta_e_dot.abs() <= self.gate_rate {
+            df
+        } else {
+            0.0
+        })
+    }
+    fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
+        self.inner.set_reach(lo, hi)
+    }
+    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
+        self.seen += 1;
+        if self.seen > self.learn_steps {
+            self.inner.discard_step();
+            return Ok(TouchDownReport {
+                gradient: 0.0,
+                samples: 0,
+                response: 0.0,
+                gain: 0.0,
+                scale: 0.0,
+            });
+        }
+        self.inner.touch_down(outcome)
+    }
+    fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
+        if self.seen >= self.learn_steps {
+            self.inner.discard_step();
+            return Ok(None);
+        }
+        self.inner.fall(outcome)
+    }
+    fn discard_step(&mut self) {
+        self.inner.discard_step()
+    }
+}
+
+/// Steps (time, analytic step, dF, realised step) and pushes of one run.
+#[derive(Default)]
+struct Recorder {
+    last: (f64, f64),
+    steps: Vec<(f64, f64, f64, f64)>,
+    pushes: Vec<PushRecord>,
+}
+
+impl Observer for Recorder {
+    fn on_tick(&mut self, _time: f64, tick: &Tick) {
+        if let Some(d) = tick.decision {
+            self.last = (d.analytic_step_x, tick.learned_offset);
+        }
+    }
+    fn on_step(&mut self, step: &StepRecord) {
+        self.steps
+            .push((step.time, self.last.0, self.last.1, step.f_hat));
+    }
+    fn on_push(&mut self, push: &PushRecord) {
+        self.pushes.push(*push);
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args = Args::parse();
+    if args.pushes == 0 || !(args.settle.is_finite() && args.settle >= 0.0) {
+        return Err("--pushes must be >= 1 and --settle >= 0".into());
+    }
+    if args.gate_rate.is_some_and(|r| r.is_nan() || r < 0.0) {
+        return Err("--gate-rate must be >= 0".into());
+    }
+    let settings = match &args.config {
+        Some(path) => ConfigFile::load(path)?.settings,
+        None => Default::default(),
+    };
+    let plan = PushPlan {
+        count: args.pushes,
+        impulse: (0.0, 20.0),
+        settle: args.settle,
+        gap: (3.0, 4.0),
+    };
+    let setup = settings.push_trial(
+        WalkerMode::CaptureStep,
+        0.0,
+        &plan,
+        args.seed,
+        [1.0, 0.0, 0.0],
+    );
+    let bounds = InputGrid::default().input_box()?;
+    let learned = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
+        let approx = ApproxKind::Lwpr.build(&bounds)?;
+        let learner = FootstepLearner::new(approx, PendulumCart::default(), settings.learner)?;
+        let mut policy = Phased {
+            inner: learner,
+            gate_rate: args.gate_rate.unwrap_or(f64::INFINITY),
+            learn_steps: args.learn_steps.unwrap_or(usize::MAX),
+            seen: 0,
+        };
+        let mut rec = Recorder::default();
+        run_trial(&setup, Some(&mut policy), &mut [&mut rec])?;
+        Ok(rec)
+    };
+    let model = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
+        let mut rec = Recorder::default();
+        run_trial(&setup, None, &mut [&mut rec])?;
+        Ok(rec)
+    };
+    let (model, learned) = rayon::join(model, learned);
+    let (model, learned) = (
+        model.map_err(|e| e.to_string())?,
+        learned.map_err(|e| e.to_string())?,
+    );
+    for (name, r) in [("model", &model), ("learned", &learned)] {
+        let samples: Vec<(f64, bool)> = r.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
+        let i50 = impulse_at_50pct_fall(&samples)?.impulse_ns;
+        let falls = r.pushes.iter().filter(|p| p.fell).count();
+        println!(
+            "{name}: seed {} falls {falls} / {} impulse at 50% falls {i50:.2} Ns",
+            args.seed,
+            r.pushes.len()
+        );
+        let mut sums = [[0.0; 3]; 5];
+        let mut counts = [0usize; 5];
+        for p in r
+            .pushes
+            .iter()
+            .filter(|p| p.impulse > 10.0 && p.impulse < 18.0)
+        {
+            let after = r
+                .steps
+                .iter()
+                .filter(|s| s.0 > p.time && s.0 < p.time + 2.5)
+                .take(5);
+            for (k, s) in after.enumerate() {
+                sums[k][0] += s.1;
+                sums[k][1] += s.2;
+                sums[k][2] += s.3;
+                counts[k] += 1;
+            }
+        }
+        for k in 0..5 {
+            let c = counts[k].max(1) as f64;
+            println!(
+                "  step {k} after a 10-18 Ns push (n {:3}): analytic {:+.3} dF {:+.3} realised {:+.3} m",
+                counts[k],
+                sums[k][0] / c,
+                sums[k][1] / c,
+                sums[k][2] / c
+            );
+        }
+    }
+    Ok(())
+}
