@@ -8,6 +8,7 @@ use std::process::ExitCode;
 use steplearn::approx::ApproxKind;
 use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::experiment::PushOptions;
 use steplearn::experiments::reproduce::{self, Claims};
 use steplearn::experiments::run::{Protocols, run_spec};
 use steplearn::experiments::settings::Settings;
@@ -353,37 +354,12 @@ fn apply_push_options(
     if pushes == Some(0) {
         return Err("--pushes must be at least 1".into());
     }
-    let single = |r: Option<(f64, f64)>| match r {
-        Some((a, b)) if a != b => Err(format!(
-            "{experiment} pushes with one impulse: give --impulse-range A,A (got {a},{b})"
-        )),
-        Some((a, _)) => Ok(Some(a)),
-        None => Ok(None),
+    let options = PushOptions {
+        pushes,
+        impulse_range,
+        direction,
     };
-    match experiment {
-        ExperimentKind::Tracking => {
-            if pushes.is_some() || impulse_range.is_some() {
-                return Err("the tracking experiment has no pushes".into());
-            }
-        }
-        ExperimentKind::Disturbance => {
-            let p = &mut protocols.disturbance;
-            p.pushes = pushes.unwrap_or(p.pushes);
-            p.impulse = single(impulse_range)?.unwrap_or(p.impulse);
-            p.direction = direction;
-        }
-        ExperimentKind::Stability => {
-            let p = &mut protocols.stability;
-            p.pushes = pushes.unwrap_or(p.pushes);
-            p.impulse = impulse_range.unwrap_or(p.impulse);
-            p.direction = direction;
-        }
-        ExperimentKind::Robustness => {
-            let p = &mut protocols.robustness;
-            p.pushes = pushes.unwrap_or(p.pushes);
-            p.impulse = single(impulse_range)?.unwrap_or(p.impulse);
-            p.direction = direction;
-        }
-    }
-    Ok(())
+    experiment
+        .experiment()
+        .apply_push_options(protocols, &options)
 }

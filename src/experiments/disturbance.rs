@@ -15,6 +15,7 @@ use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::summary::write_csv;
+use crate::report::summary::{ExperimentResult, ModelLearned};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -326,5 +327,48 @@ impl DisturbanceResult {
             )?;
         }
         Ok(())
+    }
+}
+
+/// Experiment B as a registered [`super::experiment::Experiment`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Disturbance;
+
+impl super::experiment::Experiment for Disturbance {
+    fn kind(&self) -> super::ExperimentKind {
+        super::ExperimentKind::Disturbance
+    }
+
+    fn apply_push_options(
+        &self,
+        protocols: &mut super::run::Protocols,
+        options: &super::experiment::PushOptions,
+    ) -> Result<(), String> {
+        let single = options.single_impulse(self.kind())?;
+        let p = &mut protocols.disturbance;
+        p.pushes = options.pushes.unwrap_or(p.pushes);
+        p.impulse = single.unwrap_or(p.impulse);
+        p.direction = options.direction;
+        Ok(())
+    }
+
+    fn run(
+        &self,
+        ctx: &super::experiment::RunContext<'_>,
+        dir: &Path,
+    ) -> Result<ExperimentResult, ExperimentError> {
+        let p = &ctx.protocols.disturbance;
+        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
+        r.write(dir, p.f_r)?;
+        Ok(ExperimentResult::Disturbance {
+            return_time_s: ModelLearned {
+                model: r.model.return_time_s,
+                learned: r.learned.return_time_s,
+            },
+            max_tda_rad: ModelLearned {
+                model: r.model.max_tda_rad,
+                learned: r.learned.max_tda_rad,
+            },
+        })
     }
 }

@@ -6,6 +6,7 @@ pub mod compare;
 pub mod config_file;
 pub mod disturbance;
 mod error;
+pub mod experiment;
 pub mod fall_causes;
 mod kind;
 pub mod reproduce;

@@ -392,3 +392,46 @@ impl RobustnessResult {
         Ok(())
     }
 }
+
+/// Experiment D as a registered [`super::experiment::Experiment`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Robustness;
+
+impl super::experiment::Experiment for Robustness {
+    fn kind(&self) -> super::ExperimentKind {
+        super::ExperimentKind::Robustness
+    }
+
+    fn apply_push_options(
+        &self,
+        protocols: &mut super::run::Protocols,
+        options: &super::experiment::PushOptions,
+    ) -> Result<(), String> {
+        let single = options.single_impulse(self.kind())?;
+        let p = &mut protocols.robustness;
+        p.pushes = options.pushes.unwrap_or(p.pushes);
+        p.impulse = single.unwrap_or(p.impulse);
+        p.direction = options.direction;
+        Ok(())
+    }
+
+    fn run(
+        &self,
+        ctx: &super::experiment::RunContext<'_>,
+        dir: &Path,
+    ) -> Result<ExperimentResult, ExperimentError> {
+        // Not initialised: without the dF = 0 prior unless the protocol asks for it.
+        let p = &ctx.protocols.robustness;
+        let config = if p.learner_prior {
+            ctx.settings.learner
+        } else {
+            crate::control::learner::LearnerConfig {
+                prior: crate::control::learner::Prior::none(),
+                ..ctx.settings.learner
+            }
+        };
+        let r = run(ctx.settings, p, ctx.seed, &|| (ctx.learner)(config))?;
+        r.write(dir)?;
+        Ok(r.summary_result())
+    }
+}

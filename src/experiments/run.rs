@@ -1,21 +1,19 @@
 //! Runs one experiment for one (approximator, rule, seed) given by name: what the command line
 //! and the sweep call.
 
-use super::ExperimentKind;
-use super::disturbance::{self, DisturbanceProtocol};
+use super::disturbance::DisturbanceProtocol;
 use super::error::ExperimentError;
-use super::robustness::{self, RobustnessProtocol};
+use super::experiment::{RunContext, RunLearner};
+use super::robustness::RobustnessProtocol;
 use super::settings::Settings;
-use super::stability::{self, ControllerPushes, StabilityProtocol};
+use super::stability::StabilityProtocol;
 use super::sweep::RunSpec;
-use super::tracking::{self, TrackingProtocol};
-use crate::approx::{AnyApproximator, ApproxKind};
+use super::tracking::TrackingProtocol;
+use crate::approx::ApproxKind;
 use crate::config::ConfigError;
-use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError, Prior};
-use crate::report::summary::{
-    ControllerFalls, Controllers, ExperimentResult, ModelLearned, Summary,
-};
-use crate::rules::{LearningRule, RuleConfig};
+use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use crate::report::summary::Summary;
+use crate::rules::RuleConfig;
 use std::path::Path;
 
 /// Protocols of every experiment (defaults: the paper's).
@@ -64,74 +62,18 @@ pub fn run_spec(
     let prototype = approx
         .build(&bounds)
         .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
-    let build = |config: LearnerConfig| -> Result<
-        FootstepLearner<AnyApproximator, Box<dyn LearningRule>>,
-        LearnerError,
-    > {
+    let build = |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
         // The rule config was validated above, so building it cannot fail.
         let r = rule.build().expect("validated rule config");
         FootstepLearner::new(prototype.clone(), r, config)
     };
-    let make = || build(settings.learner);
-    let result = match spec.experiment {
-        ExperimentKind::Stability => {
-            let p = &protocols.stability;
-            let r = stability::run(settings, p, spec.seed, &make)?;
-            r.write(dir, p.impulse, p.direction)?;
-            let falls = |c: &ControllerPushes| ControllerFalls {
-                pushes: c.pushes.len() as u32,
-                falls: c.falls() as u32,
-                impulse_at_50pct_fall_ns: c.fall50.impulse_ns,
-            };
-            ExperimentResult::Stability {
-                controllers: Controllers {
-                    open_loop: falls(&r.open_loop),
-                    model: falls(&r.model),
-                    learned: falls(&r.learned),
-                },
-                fall_causes: r.fall_cause_counts(),
-            }
-        }
-        ExperimentKind::Tracking => {
-            let r = tracking::run(settings, &protocols.tracking, spec.seed, &make)?;
-            r.write(dir)?;
-            let (model, learned) = r.std_per_bin();
-            ExperimentResult::Tracking {
-                step_error_std_m: ModelLearned { model, learned },
-                bin_s: protocols.tracking.bin_s,
-            }
-        }
-        ExperimentKind::Disturbance => {
-            let p = &protocols.disturbance;
-            let r = disturbance::run(settings, p, spec.seed, &make)?;
-            r.write(dir, p.f_r)?;
-            ExperimentResult::Disturbance {
-                return_time_s: ModelLearned {
-                    model: r.model.return_time_s,
-                    learned: r.learned.return_time_s,
-                },
-                max_tda_rad: ModelLearned {
-                    model: r.model.max_tda_rad,
-                    learned: r.learned.max_tda_rad,
-                },
-            }
-        }
-        ExperimentKind::Robustness => {
-            // Not initialised: without the dF = 0 prior unless the protocol asks for it.
-            let p = &protocols.robustness;
-            let config = if p.learner_prior {
-                settings.learner
-            } else {
-                LearnerConfig {
-                    prior: Prior::none(),
-                    ..settings.learner
-                }
-            };
-            let r = robustness::run(settings, p, spec.seed, &|| build(config))?;
-            r.write(dir)?;
-            r.summary_result()
-        }
+    let ctx = RunContext {
+        settings,
+        protocols,
+        seed: spec.seed,
+        learner: &build,
     };
+    let result = spec.experiment.experiment().run(&ctx, dir)?;
     Ok(Summary {
         approx: spec.approx.clone(),
         rule: spec.rule,

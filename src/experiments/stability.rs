@@ -15,6 +15,7 @@ use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
+use crate::report::summary::{ControllerFalls, Controllers, ExperimentResult};
 use crate::report::summary::{FallCauseCounts, write_csv};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
@@ -261,6 +262,51 @@ pub fn direction_name(d: [f64; 3]) -> String {
         [0.0, 1.0, 0.0] => "left".into(),
         [0.0, -1.0, 0.0] => "right".into(),
         [x, y, z] => format!("({x}, {y}, {z})"),
+    }
+}
+
+/// Experiment C as a registered [`super::experiment::Experiment`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Stability;
+
+impl super::experiment::Experiment for Stability {
+    fn kind(&self) -> super::ExperimentKind {
+        super::ExperimentKind::Stability
+    }
+
+    fn apply_push_options(
+        &self,
+        protocols: &mut super::run::Protocols,
+        options: &super::experiment::PushOptions,
+    ) -> Result<(), String> {
+        let p = &mut protocols.stability;
+        p.pushes = options.pushes.unwrap_or(p.pushes);
+        p.impulse = options.impulse_range.unwrap_or(p.impulse);
+        p.direction = options.direction;
+        Ok(())
+    }
+
+    fn run(
+        &self,
+        ctx: &super::experiment::RunContext<'_>,
+        dir: &Path,
+    ) -> Result<ExperimentResult, ExperimentError> {
+        let p = &ctx.protocols.stability;
+        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
+        r.write(dir, p.impulse, p.direction)?;
+        let falls = |c: &ControllerPushes| ControllerFalls {
+            pushes: c.pushes.len() as u32,
+            falls: c.falls() as u32,
+            impulse_at_50pct_fall_ns: c.fall50.impulse_ns,
+        };
+        Ok(ExperimentResult::Stability {
+            controllers: Controllers {
+                open_loop: falls(&r.open_loop),
+                model: falls(&r.model),
+                learned: falls(&r.learned),
+            },
+            fall_causes: r.fall_cause_counts(),
+        })
     }
 }
 

@@ -15,6 +15,7 @@ use crate::control::walker::WalkerMode;
 use crate::report::ReportError;
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
 use crate::report::summary::write_csv;
+use crate::report::summary::{ExperimentResult, ModelLearned};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -247,5 +248,41 @@ impl TrackingResult {
             },
         )?;
         Ok(())
+    }
+}
+
+/// Experiment A as a registered [`super::experiment::Experiment`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Tracking;
+
+impl super::experiment::Experiment for Tracking {
+    fn kind(&self) -> super::ExperimentKind {
+        super::ExperimentKind::Tracking
+    }
+
+    fn apply_push_options(
+        &self,
+        _protocols: &mut super::run::Protocols,
+        options: &super::experiment::PushOptions,
+    ) -> Result<(), String> {
+        if options.pushes.is_some() || options.impulse_range.is_some() {
+            return Err("the tracking experiment has no pushes".into());
+        }
+        Ok(())
+    }
+
+    fn run(
+        &self,
+        ctx: &super::experiment::RunContext<'_>,
+        dir: &Path,
+    ) -> Result<ExperimentResult, ExperimentError> {
+        let p = &ctx.protocols.tracking;
+        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
+        r.write(dir)?;
+        let (model, learned) = r.std_per_bin();
+        Ok(ExperimentResult::Tracking {
+            step_error_std_m: ModelLearned { model, learned },
+            bin_s: p.bin_s,
+        })
     }
 }
