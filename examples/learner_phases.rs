@@ -98,6 +98,8 @@ impl<P: FootstepPolicy> FootstepPolicy for Phased<P> {
 struct Recorder {
     last: (f64, f64),
     steps: Vec<(f64, f64, f64, f64)>,
+    /// (time, theta_E, F_E) of every touch-down.
+    touch_downs: Vec<(f64, f64, f64)>,
     pushes: Vec<PushRecord>,
 }
 
@@ -110,6 +112,7 @@ impl Observer for Recorder {
     fn on_step(&mut self, step: &StepRecord) {
         self.steps
             .push((step.time, self.last.0, self.last.1, step.f_hat));
+        self.touch_downs.push((step.time, step.theta_e, step.f_e()));
     }
     fn on_push(&mut self, push: &PushRecord) {
         self.pushes.push(*push);
@@ -173,6 +176,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "{name}: seed {} falls {falls} / {} impulse at 50% falls {i50:.2} Ns",
             args.seed,
             r.pushes.len()
+        );
+        let calm: Vec<&(f64, f64, f64)> = r
+            .touch_downs
+            .iter()
+            .filter(|s| {
+                !r.pushes
+                    .iter()
+                    .any(|p| s.0 > p.time - 0.1 && s.0 < p.time + 2.5)
+            })
+            .collect();
+        let n = calm.len().max(1) as f64;
+        println!(
+            "  undisturbed touch-downs (none within 2.5 s after a push): {}, mean theta_E {:+.4} rad, mean F_E {:+.4} m",
+            calm.len(),
+            calm.iter().map(|s| s.1).sum::<f64>() / n,
+            calm.iter().map(|s| s.2).sum::<f64>() / n
         );
         let mut sums = [[0.0; 3]; 5];
         let mut counts = [0usize; 5];
