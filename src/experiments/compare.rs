@@ -6,7 +6,7 @@ use super::settings::LearnerFactory;
 use super::trial::{StepRecord, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::report::ReportError;
-use crate::report::summary::write_csv;
+use crate::report::write_csv;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -12,7 +12,7 @@ use super::run::Protocols;
 use super::settings::Settings;
 use crate::approx::AnyApproximator;
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
-use crate::report::summary::ExperimentResult;
+use crate::experiments::summary::ExperimentResult;
 use crate::rules::LearningRule;
 use std::path::Path;
 

@@ -15,6 +15,7 @@ pub mod run;
 pub mod schedule;
 pub mod settings;
 pub mod stability;
+pub mod summary;
 pub mod sweep;
 pub mod tracking;
 pub mod trial;

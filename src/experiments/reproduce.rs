@@ -9,8 +9,8 @@ use super::ExperimentKind;
 use super::error::ExperimentError;
 use super::sweep::{SUMMARY_FILE, SweepGrid};
 use crate::approx::ApproxKind;
+use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::figures::{LinePlot, Series, line_plot};
-use crate::report::summary::{ExperimentResult, Summary};
 use crate::report::{ReportError, write_atomic};
 use crate::rules::RuleKind;
 use serde::{Deserialize, Serialize};
@@ -319,7 +319,7 @@ pub fn read_summaries(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::summary::{ControllerFalls, Controllers, ModelLearned, NoLearning};
+    use crate::experiments::summary::{ControllerFalls, Controllers, ModelLearned, NoLearning};
 
     fn summary(seed: u64, result: ExperimentResult) -> Summary {
         Summary {

@@ -12,7 +12,7 @@ use super::tracking::TrackingProtocol;
 use crate::approx::ApproxKind;
 use crate::config::ConfigError;
 use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
-use crate::report::summary::Summary;
+use crate::experiments::summary::Summary;
 use crate::rules::RuleConfig;
 use std::path::Path;
 

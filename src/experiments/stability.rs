@@ -8,15 +8,16 @@ use super::fall_causes::{
 };
 use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
+use super::summary::FallCauseCounts;
 use super::trial::{PushRecord, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
+use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult};
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
-use crate::report::summary::{ControllerFalls, Controllers, ExperimentResult};
-use crate::report::summary::{FallCauseCounts, write_csv};
+use crate::report::write_csv;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

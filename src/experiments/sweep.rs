@@ -14,7 +14,8 @@
 //! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call [`merge`] when all are done.
 
 use crate::experiments::ExperimentKind;
-use crate::report::summary::{ExperimentResult, Summary, write_csv};
+use crate::experiments::summary::{ExperimentResult, Summary};
+use crate::report::write_csv;
 use crate::report::{ReportError, write_atomic};
 use crate::rules::RuleKind;
 use rayon::prelude::*;

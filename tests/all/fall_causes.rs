@@ -11,9 +11,9 @@ use steplearn::experiments::run::{Protocols, run_spec};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::StabilityProtocol;
+use steplearn::experiments::summary::ExperimentResult;
 use steplearn::experiments::sweep::RunSpec;
 use steplearn::experiments::trial::run_trial;
-use steplearn::report::summary::ExperimentResult;
 use steplearn::rules::RuleKind;
 
 fn temp_dir(name: &str) -> std::path::PathBuf {

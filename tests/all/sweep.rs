@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use steplearn::experiments::ExperimentKind;
+use steplearn::experiments::summary::{
+    ControllerFalls, Controllers, ExperimentResult, ModelLearned, NoLearning, Summary,
+};
 use steplearn::experiments::sweep::{
     RunError, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
-};
-use steplearn::report::summary::{
-    ControllerFalls, Controllers, ExperimentResult, ModelLearned, NoLearning, Summary,
 };
 use steplearn::rules::RuleKind;
 

@@ -7,9 +7,9 @@
 //!                  "model": {...}, "learned": {...}}}
 //! ```
 
-use super::{ReportError, write_atomic};
-use crate::experiments::ExperimentKind;
-use crate::experiments::fall_causes::FallCause;
+use super::ExperimentKind;
+use super::fall_causes::FallCause;
+use crate::report::{ReportError, write_atomic};
 use crate::rules::RuleKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -336,28 +336,6 @@ impl Summary {
     }
 }
 
-/// Writes a CSV table (header + rows of already formatted cells) to `path` atomically.
-pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<(), ReportError> {
-    let write = || -> Result<Vec<u8>, csv::Error> {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        w.write_record(header)?;
-        for row in rows {
-            if row.len() != header.len() {
-                return Err(csv::Error::from(std::io::Error::other(format!(
-                    "row has {} cells, header {}",
-                    row.len(),
-                    header.len()
-                ))));
-            }
-            w.write_record(row)?;
-        }
-        w.into_inner()
-            .map_err(|e| csv::Error::from(std::io::Error::other(e.to_string())))
-    };
-    let bytes = write().map_err(|e| ReportError::invalid(format!("csv: {e}")))?;
-    write_atomic(path, &bytes)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -522,17 +500,6 @@ mod tests {
             Summary::read(&broken),
             Err(ReportError::Parse { .. })
         ));
-        let csv_path = dir.join("t.csv");
-        write_csv(&csv_path, &["a", "b"], &[vec!["1".into(), "x,y".into()]]).unwrap();
-        assert_eq!(
-            std::fs::read_to_string(&csv_path).unwrap(),
-            "a,b\n1,\"x,y\"\n"
-        );
-        assert!(write_csv(&csv_path, &["a"], &[vec![]]).is_err());
-        assert_eq!(
-            std::fs::read_to_string(&csv_path).unwrap(),
-            "a,b\n1,\"x,y\"\n"
-        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
