@@ -14,9 +14,9 @@ use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord, run_trial};
-use steplearn::report::run_picture::{RunRecord, StepAnnotation};
 use steplearn::rules::PendulumCart;
 use steplearn::sim::GroundTruth;
+use steplearn::sim::picture::{RunRecord, StepAnnotation};
 
 #[derive(Parser)]
 struct Args {

@@ -3,7 +3,7 @@
 //! recorded for the run picture, and the search for the largest push survived.
 
 use steplearn::control::motion::{MotionConfig, MotionGenerator};
-use steplearn::report::run_picture::RunRecord;
+use steplearn::sim::picture::RunRecord;
 use steplearn::sim::{Humanoid, SimConfig};
 
 /// Open-loop behaviour of a run.

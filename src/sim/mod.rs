@@ -7,6 +7,7 @@ mod config;
 mod error;
 mod fall;
 mod humanoid;
+pub mod picture;
 mod sensors;
 mod truth;
 

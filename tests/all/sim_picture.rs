@@ -1,7 +1,7 @@
 //! The run picture of a short recorded run.
 
 use steplearn::control::motion::{MotionConfig, MotionGenerator};
-use steplearn::report::run_picture::{RunRecord, StepAnnotation};
+use steplearn::sim::picture::{RunRecord, StepAnnotation};
 use steplearn::sim::{Humanoid, SimConfig};
 
 #[test]

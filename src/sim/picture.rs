@@ -11,7 +11,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::sim::{GroundTruth, Skeleton};
+use super::{GroundTruth, Skeleton};
 
 /// One recorded instant.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
