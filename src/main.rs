@@ -9,6 +9,7 @@ use steplearn::approx::ApproxKind;
 use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::experiment::PushOptions;
+use steplearn::experiments::index_page::{command_line, write_index};
 use steplearn::experiments::reproduce::{self, Claims};
 use steplearn::experiments::run::{Protocols, run_spec};
 use steplearn::experiments::settings::Settings;
@@ -187,6 +188,15 @@ fn run(cli: Cli) -> Result<(), String> {
                 reproduce::read_summaries(&grid, &out).map_err(|e| e.to_string())?;
             let claims = Claims::from_summaries(&summaries, PendulumCart::default().p_theta);
             claims.write(&out).map_err(|e| e.to_string())?;
+            let config_toml = config.to_toml().map_err(|e| e.to_string())?;
+            write_index(
+                &out,
+                "steplearn reproduce: the paper's claims",
+                &["claims.md"],
+                &command_line(),
+                Some(&config_toml),
+            )
+            .map_err(|e| e.to_string())?;
             for c in claims.all() {
                 let k = c.seeds.iter().filter(|s| s.1).count();
                 println!(
@@ -250,6 +260,18 @@ fn run(cli: Cli) -> Result<(), String> {
             summary
                 .write(&out.join("summary.json"))
                 .map_err(|e| e.to_string())?;
+            let config_toml = config.to_toml().map_err(|e| e.to_string())?;
+            write_index(
+                &out,
+                &format!(
+                    "steplearn experiment {experiment} ({}, {rule}, seed {seed})",
+                    approx.name()
+                ),
+                &["summary.json"],
+                &command_line(),
+                Some(&config_toml),
+            )
+            .map_err(|e| e.to_string())?;
             println!("{}", summary.to_json().map_err(|e| e.to_string())?);
             Ok(())
         }
@@ -293,6 +315,14 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::Merge { dir } => {
             let merged = merge(&dir).map_err(|e| e.to_string())?;
             merged.write(&dir).map_err(|e| e.to_string())?;
+            write_index(
+                &dir,
+                "steplearn merge: the ablation table",
+                &["ablation.md"],
+                &command_line(),
+                None,
+            )
+            .map_err(|e| e.to_string())?;
             for p in &merged.problems {
                 eprintln!("skipped: {p:?}");
             }

@@ -8,6 +8,7 @@ pub mod disturbance;
 mod error;
 pub mod experiment;
 pub mod fall_causes;
+pub mod index_page;
 mod kind;
 pub mod reproduce;
 pub mod robustness;

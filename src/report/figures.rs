@@ -133,6 +133,28 @@ fn colour(i: usize) -> RGBColor {
     PALETTE[i % PALETTE.len()]
 }
 
+/// The colour of a series: one fixed colour per controller in every figure (model blue,
+/// learned red, open-loop green, learner only purple, the reference black), otherwise the
+/// palette's `i`-th.
+pub fn series_colour(name: &str, i: usize) -> RGBColor {
+    let name = name.to_ascii_lowercase();
+    if name.starts_with("reference") {
+        RGBColor(0, 0, 0)
+    } else if name.starts_with("model") {
+        PALETTE[0]
+    } else if name.starts_with("learned") {
+        PALETTE[1]
+    } else if name.starts_with("open-loop") || name.starts_with("open loop") {
+        PALETTE[2]
+    } else if name.starts_with("learner only") {
+        PALETTE[4]
+    } else if name.starts_with("no learning") {
+        PALETTE[5]
+    } else {
+        colour(i)
+    }
+}
+
 fn plot_err<E: std::fmt::Display>(e: E) -> ReportError {
     ReportError::Plot(e.to_string())
 }
@@ -235,7 +257,7 @@ type Chart<'a, 'b> = ChartContext<
 /// Draws bands then lines of `series` with legend entries, colours from `offset`.
 fn draw_series(chart: &mut Chart, series: &[Series], offset: usize) -> Result<(), ReportError> {
     for (i, s) in series.iter().enumerate() {
-        let c = colour(i + offset);
+        let c = series_colour(s.name, i + offset);
         if let Some(spread) = s.spread {
             let upper = (0..s.x.len()).map(|k| (s.x[k], s.y[k] + spread[k]));
             let lower = (0..s.x.len()).rev().map(|k| (s.x[k], s.y[k] - spread[k]));
@@ -248,7 +270,7 @@ fn draw_series(chart: &mut Chart, series: &[Series], offset: usize) -> Result<()
         }
     }
     for (i, s) in series.iter().enumerate() {
-        let c = colour(i + offset);
+        let c = series_colour(s.name, i + offset);
         chart
             .draw_series(LineSeries::new(
                 s.x.iter().copied().zip(s.y.iter().copied()),
@@ -419,7 +441,7 @@ pub fn fall_probability_plot(path: &Path, plot: &FallPlot) -> Result<(), ReportE
             .draw()
             .map_err(plot_err)?;
         for (i, c) in plot.curves.iter().enumerate() {
-            let col = colour(i);
+            let col = series_colour(c.name, i);
             chart
                 .draw_series(LineSeries::new(
                     c.impulse.iter().copied().zip(c.probability.iter().copied()),
@@ -610,6 +632,18 @@ pub fn heat_map_grid(path: &Path, grid: &HeatMapGrid) -> Result<(), ReportError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_controller_has_one_colour_in_every_figure() {
+        for i in 0..4 {
+            assert_eq!(series_colour("model", i), PALETTE[0]);
+            assert_eq!(series_colour("learned", i), PALETTE[1]);
+            assert_eq!(series_colour("open-loop", i), PALETTE[2]);
+            assert_eq!(series_colour("reference F_R", i), RGBColor(0, 0, 0));
+        }
+        assert_ne!(series_colour("model", 0), series_colour("learned", 0));
+        assert_eq!(series_colour("something else", 3), PALETTE[3]);
+    }
 
     /// A minimal XML well-formedness check: one root `<svg>`, every tag closed in order,
     /// attributes quoted, no stray `<`, `&` only in entities.

@@ -35,6 +35,13 @@ fn stability_run_writes_summary_and_figures() {
         assert!(summary["controllers"][c]["impulse_at_50pct_fall_ns"].is_number());
     }
     assert!(dir.join("fall_probability.svg").exists() && dir.join("pushes.csv").exists());
+    // index.html: the figure inlined, the summary, the command and the configuration
+    let page = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert_eq!(page.matches("<svg").count(), 1);
+    assert!(page.contains("Experiment C: fall probability against push impulse"));
+    assert!(page.contains("&quot;experiment&quot;: &quot;stability&quot;"));
+    assert!(page.contains("experiment stability --pushes 3 --seed 4"));
+    assert!(page.contains("[protocols.stability]"));
 
     // A failing run leaves what is there untouched.
     let before = std::fs::read(dir.join("summary.json")).unwrap();

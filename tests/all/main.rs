@@ -17,6 +17,7 @@ mod experiment_stability;
 mod experiments_short;
 mod fall_causes;
 mod grid_properties;
+mod index_page;
 mod kernel_ridge_properties;
 mod kinematics_round_trip;
 mod learner;
