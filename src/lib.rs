@@ -45,7 +45,8 @@ pub mod config;
 pub mod control;
 #[cfg(feature = "experiments")]
 pub mod experiments;
-mod names;
+pub mod names;
+pub use names::Named;
 #[cfg(feature = "experiments")]
 pub mod report;
 pub mod robot;

@@ -5,6 +5,7 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use steplearn::Named;
 use steplearn::approx::ApproxKind;
 use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::config_file::ConfigFile;
@@ -17,6 +18,7 @@ use steplearn::experiments::sweep::{
     RunOutcome, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
 };
 use steplearn::rules::{PendulumCart, RuleKind};
+use strum::VariantArray;
 
 #[derive(Parser)]
 #[command(
@@ -281,7 +283,7 @@ fn run(cli: Cli) -> Result<(), String> {
             pushes,
             out,
         } => {
-            let approx: Vec<&str> = ApproxKind::ALL.iter().map(|k| k.name()).collect();
+            let approx: Vec<&str> = ApproxKind::VARIANTS.iter().map(|k| k.name()).collect();
             let grid = SweepGrid {
                 experiments: vec![ExperimentKind::Stability, ExperimentKind::Robustness],
                 ..SweepGrid::full(&approx, seeds)

@@ -1,119 +1,78 @@
-//! One definition for the run-time choices chosen by name (approximator, rule, experiment):
-//! the enum with its serde and clap names, `ALL`, `name()`, `Display` and name lookup, so the
-//! command line, run ids and `summary.json` can never disagree about a spelling.
+//! Run-time choices made by name (approximator, rule, experiment). Each is an enum deriving
+//! strum's `Display`, `IntoStaticStr` and `VariantArray`, serde and (with the `cli` feature)
+//! `clap::ValueEnum`, all with kebab-case names, so the command line, run ids and
+//! `summary.json` can never disagree about a spelling. [`Named`] adds the lookups.
 
-/// Defines a `Copy` enum whose variants are named by string literals:
-///
-/// ```ignore
-/// named_choices! {
-///     /// Doc.
-///     pub enum Colour {
-///         /// Doc.
-///         Red => "red",
-///     }
-/// }
-/// ```
-///
-/// The enum derives serde and `clap::ValueEnum` with exactly these names and gets
-/// `ALL` (declaration order), `name()`, `from_name()`, `names()` (for error messages) and
-/// `Display`. Each type writes its own `FromStr` with its own error type.
-macro_rules! named_choices {
-    (
-        $(#[$meta:meta])*
-        pub enum $name:ident {
-            $( $(#[$vmeta:meta])* $variant:ident => $text:literal, )+
+/// Name lookups for an enum of named choices (blanket-implemented).
+pub trait Named: Copy + PartialEq + strum::VariantArray + Into<&'static str> + 'static {
+    /// The name used on the command line, in run ids and in `summary.json`.
+    fn name(self) -> &'static str {
+        self.into()
+    }
+
+    /// The choice called `name`, if any.
+    fn from_name(name: &str) -> Option<Self> {
+        Self::VARIANTS.iter().copied().find(|k| k.name() == name)
+    }
+
+    /// Every name, for messages: `"a, b or c"`.
+    fn names() -> String {
+        let all: Vec<&str> = Self::VARIANTS.iter().map(|k| k.name()).collect();
+        match all.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => all.join(""),
         }
-    ) => {
-        $(#[$meta])*
-        #[derive(
-            Debug,
-            Clone,
-            Copy,
-            PartialEq,
-            Eq,
-            Hash,
-            PartialOrd,
-            Ord,
-            serde::Serialize,
-            serde::Deserialize,
-        )]
-        #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-        pub enum $name {
-            $(
-                $(#[$vmeta])*
-                #[serde(rename = $text)]
-                #[cfg_attr(feature = "cli", value(name = $text))]
-                $variant,
-            )+
-        }
-
-        impl $name {
-            /// Every choice, in declaration (table) order.
-            pub const ALL: [$name; [$($text),+].len()] = [$($name::$variant),+];
-
-            /// The name used on the command line, in run ids and in `summary.json`.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $($name::$variant => $text,)+
-                }
-            }
-
-            /// The choice called `name`, if any.
-            pub fn from_name(name: &str) -> Option<Self> {
-                Self::ALL.into_iter().find(|k| k.name() == name)
-            }
-
-            /// Every name, for messages: `"a, b or c"`.
-            pub fn names() -> String {
-                let all: Vec<&str> = Self::ALL.iter().map(|k| k.name()).collect();
-                match all.split_last() {
-                    Some((last, rest)) if !rest.is_empty() => {
-                        format!("{} or {last}", rest.join(", "))
-                    }
-                    _ => all.join(""),
-                }
-            }
-        }
-
-        impl std::fmt::Display for $name {
-            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                f.write_str(self.name())
-            }
-        }
-    };
+    }
 }
 
-pub(crate) use named_choices;
+impl<T: Copy + PartialEq + strum::VariantArray + Into<&'static str> + 'static> Named for T {}
 
 #[cfg(test)]
 mod tests {
-    named_choices! {
-        /// A test choice.
-        pub enum Colour {
-            /// Red.
-            Red => "red",
-            /// Dark blue.
-            DarkBlue => "dark-blue",
-            /// Green.
-            Green => "green",
-        }
+    use super::Named;
+    use strum::VariantArray;
+
+    /// A test choice.
+    #[derive(
+        Debug,
+        Clone,
+        Copy,
+        PartialEq,
+        serde::Serialize,
+        serde::Deserialize,
+        strum::Display,
+        strum::IntoStaticStr,
+        strum::VariantArray,
+    )]
+    #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+    #[serde(rename_all = "kebab-case")]
+    #[strum(serialize_all = "kebab-case")]
+    enum Colour {
+        Red,
+        DarkBlue,
+        Green,
     }
 
     #[test]
-    #[cfg(feature = "cli")]
-    fn names_agree_across_serde_clap_display_and_lookup() {
-        use clap::ValueEnum;
-        assert_eq!(Colour::ALL, [Colour::Red, Colour::DarkBlue, Colour::Green]);
-        for c in Colour::ALL {
+    fn names_agree_across_serde_display_and_lookup() {
+        assert_eq!(
+            Colour::VARIANTS,
+            [Colour::Red, Colour::DarkBlue, Colour::Green]
+        );
+        for &c in Colour::VARIANTS {
             assert_eq!(Colour::from_name(c.name()), Some(c));
             assert_eq!(c.to_string(), c.name());
             assert_eq!(
                 serde_json::to_string(&c).unwrap(),
                 format!("\"{}\"", c.name())
             );
-            let p = c.to_possible_value().unwrap();
-            assert_eq!(p.get_name(), c.name());
+            #[cfg(feature = "cli")]
+            {
+                use clap::ValueEnum;
+                assert_eq!(c.to_possible_value().unwrap().get_name(), c.name());
+            }
         }
+        assert_eq!(Colour::DarkBlue.name(), "dark-blue");
         assert_eq!(Colour::from_name("blue"), None);
         assert_eq!(Colour::names(), "red, dark-blue or green");
         assert!(serde_json::from_str::<Colour>("\"DarkBlue\"").is_err());

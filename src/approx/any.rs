@@ -6,20 +6,37 @@ use super::{
     ApproxError, FunctionApproximator, Grid, GridConfig, InputBox, KernelRidge, KernelRidgeConfig,
     Lwpr, LwprConfig, Persist, Rbf, RbfConfig,
 };
+use crate::Named;
 use serde::{Deserialize, Serialize};
 
-crate::names::named_choices! {
-    /// The approximators of this crate, by their command-line names.
-    pub enum ApproxKind {
-        /// Locally weighted projection regression (the paper's choice).
-        Lwpr => "lwpr",
-        /// Normalised Gaussian radial basis function network.
-        Rbf => "rbf",
-        /// Multilinearly interpolated grid.
-        Grid => "grid",
-        /// Online sparse kernel ridge regression.
-        KernelRidge => "kernel-ridge",
-    }
+/// The approximators of this crate, by their command-line names.
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    serde::Serialize,
+    serde::Deserialize,
+    strum::Display,
+    strum::IntoStaticStr,
+    strum::VariantArray,
+)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum ApproxKind {
+    /// Locally weighted projection regression (the paper's choice).
+    Lwpr,
+    /// Normalised Gaussian radial basis function network.
+    Rbf,
+    /// Multilinearly interpolated grid.
+    Grid,
+    /// Online sparse kernel ridge regression.
+    KernelRidge,
 }
 
 impl ApproxKind {
@@ -141,10 +158,11 @@ impl Persist for AnyApproximator {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use strum::VariantArray;
 
     #[test]
     fn names_round_trip() {
-        for k in ApproxKind::ALL {
+        for &k in ApproxKind::VARIANTS {
             assert_eq!(k.name().parse::<ApproxKind>().unwrap(), k);
         }
         assert!("lwrp".parse::<ApproxKind>().is_err());
@@ -153,7 +171,7 @@ mod tests {
     #[test]
     fn every_kind_builds_learns_and_round_trips() {
         let bounds = InputBox::new(vec![-0.5, -3.0, -0.1], vec![0.5, 3.0, 0.2]).unwrap();
-        for k in ApproxKind::ALL {
+        for &k in ApproxKind::VARIANTS {
             let mut a = k.build(&bounds).unwrap();
             assert_eq!((a.kind(), a.input_dim(), a.output_dim()), (k, 3, 1));
             for i in 0..200 {

@@ -8,6 +8,7 @@
 use super::ExperimentKind;
 use super::error::ExperimentError;
 use super::sweep::{SUMMARY_FILE, SweepGrid};
+use crate::Named;
 use crate::approx::ApproxKind;
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::figures::{LinePlot, Series, line_plot};
@@ -15,11 +16,12 @@ use crate::report::{ReportError, write_atomic};
 use crate::rules::RuleKind;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use strum::VariantArray;
 
 /// The runs of a reproduction: every experiment, LWPR + pendulum-cart, seeds `0..seeds`.
 pub fn grid(seeds: u64) -> SweepGrid {
     SweepGrid {
-        experiments: ExperimentKind::ALL.to_vec(),
+        experiments: ExperimentKind::VARIANTS.to_vec(),
         approx: vec![ApproxKind::Lwpr.name().to_string()],
         rules: vec![RuleKind::PendulumCart],
         seeds: (0..seeds).collect(),

@@ -339,6 +339,7 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Named;
 
     fn falls(pushes: u32, falls: u32, x: f64) -> ControllerFalls {
         ControllerFalls {

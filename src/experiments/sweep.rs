@@ -24,6 +24,7 @@ use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use strum::VariantArray;
 use thiserror::Error;
 
 /// Name of the result file of a run (its presence marks the run as finished).
@@ -123,9 +124,9 @@ impl SweepGrid {
     /// `0..n_seeds`.
     pub fn full(approx: &[&str], n_seeds: u64) -> Self {
         SweepGrid {
-            experiments: ExperimentKind::ALL.to_vec(),
+            experiments: ExperimentKind::VARIANTS.to_vec(),
             approx: approx.iter().map(|s| s.to_string()).collect(),
-            rules: RuleKind::ALL.to_vec(),
+            rules: RuleKind::VARIANTS.to_vec(),
             seeds: (0..n_seeds).collect(),
         }
     }

@@ -1,23 +1,40 @@
 //! Choosing a rule by name and building it from a validated, serializable config.
 
 use super::{BalanceOnly, LearningRule, Linear, PendulumCart, RateDamped, TrackingOnly};
+use crate::Named;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-crate::names::named_choices! {
-    /// A rule's name, as used on the command line (`--rule`), in run ids and in `summary.json`.
-    pub enum RuleKind {
-        /// [`PendulumCart`], the paper's eq. (5).
-        PendulumCart => "pendulum-cart",
-        /// [`BalanceOnly`]: G = theta_E.
-        BalanceOnly => "balance-only",
-        /// [`TrackingOnly`]: the saturated F_E term alone.
-        TrackingOnly => "tracking-only",
-        /// [`Linear`]: eq. (5) without saturation.
-        Linear => "linear",
-        /// [`RateDamped`]: eq. (5) plus k theta_E_dot.
-        RateDamped => "rate-damped",
-    }
+/// A rule's name, as used on the command line (`--rule`), in run ids and in `summary.json`.
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    serde::Serialize,
+    serde::Deserialize,
+    strum::Display,
+    strum::IntoStaticStr,
+    strum::VariantArray,
+)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum RuleKind {
+    /// [`PendulumCart`], the paper's eq. (5).
+    PendulumCart,
+    /// [`BalanceOnly`]: G = theta_E.
+    BalanceOnly,
+    /// [`TrackingOnly`]: the saturated F_E term alone.
+    TrackingOnly,
+    /// [`Linear`]: eq. (5) without saturation.
+    Linear,
+    /// [`RateDamped`]: eq. (5) plus k theta_E_dot.
+    RateDamped,
 }
 
 impl std::str::FromStr for RuleKind {
@@ -30,7 +47,7 @@ impl std::str::FromStr for RuleKind {
 /// An invalid rule name or parameter.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RuleError {
-    /// The name is not one of [`RuleKind::ALL`].
+    /// The name is not one of [`RuleKind::VARIANTS`].
     #[error("unknown rule {0:?} (expected {names})", names = RuleKind::names())]
     UnknownRule(String),
     /// A parameter is out of range.
@@ -140,12 +157,13 @@ impl RuleConfig {
 mod tests {
     use super::*;
     use crate::rules::StepOutcome;
+    use strum::VariantArray;
 
     #[test]
     #[cfg(feature = "cli")]
     fn names_round_trip_through_str_serde_and_clap() {
         use clap::ValueEnum;
-        for kind in RuleKind::ALL {
+        for &kind in RuleKind::VARIANTS {
             assert_eq!(kind.name().parse::<RuleKind>(), Ok(kind));
             let json = serde_json::to_string(&kind).unwrap();
             assert_eq!(json, format!("\"{}\"", kind.name()));
@@ -172,7 +190,7 @@ mod tests {
         );
         let cfg: RuleConfig = serde_json::from_str(r#"{"rule":"balance-only"}"#).unwrap();
         assert_eq!(cfg.kind(), RuleKind::BalanceOnly);
-        for kind in RuleKind::ALL {
+        for &kind in RuleKind::VARIANTS {
             let cfg = RuleConfig::from(kind);
             let back: RuleConfig =
                 serde_json::from_str(&serde_json::to_string(&cfg).unwrap()).unwrap();
@@ -210,7 +228,7 @@ mod tests {
             f_e: 0.0,
             f_r: 0.2,
         };
-        for kind in RuleKind::ALL {
+        for &kind in RuleKind::VARIANTS {
             let rule = RuleConfig::from(kind).build().unwrap();
             let g = rule.gradient(&step);
             let expected = if kind == RuleKind::TrackingOnly {
