@@ -78,7 +78,7 @@
 //! footstep only places the swing foot. The sagittal ZMP range is then a model parameter, not
 //! a realised bound: on the simulated humanoid, stepping in place with `F_R = 0` for 20 s
 //! gave a mean measured step of -1.1 cm with `[-0.06, 0.09]` and +0.4 cm with `+-0.08`
-//! (`tests/walker_humanoid.rs` checks the chosen default).
+//! (`tests/all/walker_humanoid.rs` checks the chosen default).
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;

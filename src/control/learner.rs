@@ -41,7 +41,7 @@
 //! - **Prior** (`prior`): the paper's initialised learner starts at dF = 0 everywhere; training
 //!   that belief in at 1000 points makes the approximator hold it with confidence, so that
 //!   early steps do not move it all the way (the response of the experiments' LWPR to its first
-//!   step drops from 1.00 to 0.32, `tests/learner.rs`).
+//!   step drops from 1.00 to 0.32, `tests/all/learner.rs`).
 //!
 //! [`LearnerConfig::literal`] is eq. (6) as written, without the three.
 //!
