@@ -122,6 +122,7 @@ cleanup() {
     fi
 }
 trap cleanup EXIT
+trap 'exit 130' INT TERM
 
 # --- daemons ------------------------------------------------------------------------------
 if command -v mungekey >/dev/null; then
@@ -161,7 +162,9 @@ say "node $host idle ($ncpu CPUs, ${mem_mb} MB)"
 # --- the array job ------------------------------------------------------------------------
 slurm_out=$tmp/slurm-sweep
 local_out=$tmp/local-sweep
-jobid=$(sbatch --parsable --array="0-$((shards - 1))" --cpus-per-task=1 --time=00:30:00 \
+# --no-requeue: a task that cannot start fails (and is reported below) instead of waiting held.
+jobid=$(sbatch --parsable --no-requeue --array="0-$((shards - 1))" --cpus-per-task=1 \
+    --time=00:30:00 \
     --chdir="$repo" --output="$tmp/out/shard-%a.out" \
     --export="ALL,STEPLEARN_BIN=$bin,STEPLEARN_OUT=$slurm_out,STEPLEARN_SEEDS=$seeds,STEPLEARN_PUSHES=$pushes" \
     "$repo/scripts/sweep.sbatch")
@@ -171,6 +174,12 @@ deadline=$(($(date +%s) + 1200))
 while [[ -n $(squeue -h -j "$jobid" -o '%i' 2>/dev/null) ]]; do
     if (($(date +%s) > deadline)); then
         echo "array job $jobid still queued or running after 20 min; logs in $tmp"
+        exit 1
+    fi
+    # A drained node (e.g. a full disk under SlurmdSpoolDir) never runs the remaining tasks.
+    reason=$(sinfo -h -R -n "$host" -o '%E' 2>/dev/null || true)
+    if [[ -n $reason ]]; then
+        echo "node $host drained ($reason) while job $jobid ran; logs in $tmp"
         exit 1
     fi
     sleep 2
