@@ -222,6 +222,10 @@ for t in ablation.md ablation.csv; do
 done
 rows=$(($(wc -l <"$local_out/ablation.csv") - 1))
 say "$rows rows per table, total $(($(date +%s) - start)) s"
+if ((rows < 1)); then
+    echo "differs: the merged tables are empty (no finished run); results in $tmp"
+    exit 1
+fi
 if ((${#differs[@]})); then
     echo "differs: ${differs[*]} (Slurm $slurm_out vs local $local_out, diff above)"
     exit 1
