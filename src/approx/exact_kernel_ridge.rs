@@ -1,6 +1,7 @@
 //! Exact batch kernel ridge regression: a dense Cholesky solve with faer.
 
 use super::batch::check_matrix;
+use super::kernel_ridge::gaussian_kernel;
 use super::{ApproxError, KernelRidgeConfig, check_output, check_vector};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -52,7 +53,7 @@ impl ExactKernelRidge {
         y: ArrayView2<'_, f64>,
         config: &KernelRidgeConfig,
     ) -> Result<Self, ApproxError> {
-        validate(config)?;
+        config.validate_kernel()?;
         let (d, n_out) = (config.length_scales.len(), config.output_dim);
         let n = x.nrows();
         if n == 0 {
@@ -75,7 +76,7 @@ impl ExactKernelRidge {
         let x = x.to_owned();
         let lambda = config.regularisation;
         let gram = Mat::from_fn(n, n, |i, j| {
-            let k = kernel(&inv_length_scales, x.row(i).iter(), x.row(j).iter());
+            let k = gaussian_kernel(&inv_length_scales, x.row(i).iter(), x.row(j).iter());
             if i == j { k + lambda } else { k }
         });
         let llt = gram.llt(faer::Side::Lower).map_err(|e| {
@@ -128,7 +129,7 @@ impl ExactKernelRidge {
         check_output("output y", y, self.output_dim())?;
         y.fill(0.0);
         for (xj, aj) in self.x.rows().into_iter().zip(self.alpha.rows()) {
-            let k = kernel(&self.inv_length_scales, xj.iter(), x.iter());
+            let k = gaussian_kernel(&self.inv_length_scales, xj.iter(), x.iter());
             for (yk, a) in y.iter_mut().zip(aj) {
                 *yk += a * k;
             }
@@ -150,50 +151,4 @@ impl ExactKernelRidge {
         }
         Ok(out)
     }
-}
-
-/// The Gaussian kernel, computed as the online `KernelRidge` does.
-fn kernel<'a>(
-    inv_length_scales: &[f64],
-    a: impl Iterator<Item = &'a f64>,
-    b: impl Iterator<Item = &'a f64>,
-) -> f64 {
-    let mut s = 0.0;
-    for ((ai, bi), il) in a.zip(b).zip(inv_length_scales) {
-        let t = (ai - bi) * il;
-        s += t * t;
-    }
-    (-0.5 * s).exp()
-}
-
-/// The parameters the exact fit uses, checked as [`KernelRidge::new`](super::KernelRidge::new)
-/// checks them.
-fn validate(config: &KernelRidgeConfig) -> Result<(), ApproxError> {
-    if config.length_scales.is_empty() {
-        return Err(ApproxError::config(
-            "length_scales",
-            "needs one entry per input (at least one input)",
-        ));
-    }
-    if let Some((i, l)) = config
-        .length_scales
-        .iter()
-        .enumerate()
-        .find(|(_, l)| !(l.is_finite() && **l > 0.0 && (1.0 / *l).is_finite()))
-    {
-        return Err(ApproxError::config(
-            "length_scales",
-            format!("input {i}: must be finite and > 0, got {l}"),
-        ));
-    }
-    if config.output_dim == 0 {
-        return Err(ApproxError::config("output_dim", "must be >= 1"));
-    }
-    if !(config.regularisation.is_finite() && config.regularisation >= 1e-12) {
-        return Err(ApproxError::config(
-            "regularisation",
-            format!("must be finite and >= 1e-12, got {}", config.regularisation),
-        ));
-    }
-    Ok(())
 }

@@ -58,7 +58,9 @@ impl KernelRidgeConfig {
         }
     }
 
-    fn validate(&self) -> Result<(), ApproxError> {
+    /// Checks the kernel's parameters (length scales, outputs, regularisation): all that the
+    /// exact batch fit ([`super::ExactKernelRidge`]) uses.
+    pub(crate) fn validate_kernel(&self) -> Result<(), ApproxError> {
         if self.length_scales.is_empty() {
             return Err(ApproxError::config(
                 "length_scales",
@@ -85,6 +87,11 @@ impl KernelRidgeConfig {
                 format!("must be finite and >= 1e-12, got {}", self.regularisation),
             ));
         }
+        Ok(())
+    }
+
+    fn validate(&self) -> Result<(), ApproxError> {
+        self.validate_kernel()?;
         if !(1..=10_000).contains(&self.budget) {
             return Err(ApproxError::config(
                 "budget",
@@ -251,12 +258,7 @@ impl KernelRidge {
 
     #[inline]
     fn kernel(&self, a: &[f64], b: &[f64]) -> f64 {
-        let mut s = 0.0;
-        for ((ai, bi), il) in a.iter().zip(b).zip(&self.inv_length_scales) {
-            let t = (ai - bi) * il;
-            s += t * t;
-        }
-        (-0.5 * s).exp()
+        gaussian_kernel(&self.inv_length_scales, a.iter(), b.iter())
     }
 
     /// `alpha = Q mu`, one output at a time (column-wise matrix-vector products vectorise).
@@ -529,4 +531,20 @@ impl PartialEq for KernelRidge {
             && self.covariance == other.covariance
             && self.mean == other.mean
     }
+}
+
+/// The Gaussian kernel exp(-|(a - b) / l|^2 / 2) with `inv_length_scales` = 1 / l, shared by
+/// the online model and the exact batch fit so that both compute it identically.
+#[inline]
+pub(crate) fn gaussian_kernel<'a>(
+    inv_length_scales: &[f64],
+    a: impl Iterator<Item = &'a f64>,
+    b: impl Iterator<Item = &'a f64>,
+) -> f64 {
+    let mut s = 0.0;
+    for ((ai, bi), il) in a.zip(b).zip(inv_length_scales) {
+        let t = (ai - bi) * il;
+        s += t * t;
+    }
+    (-0.5 * s).exp()
 }

@@ -60,6 +60,22 @@ impl PushOptions {
             None => Ok(None),
         }
     }
+
+    /// Sets the push count, the one impulse and the direction of an experiment of `kind` that
+    /// pushes with one impulse, where the options give them.
+    pub fn apply_single(
+        &self,
+        kind: ExperimentKind,
+        pushes: &mut usize,
+        impulse: &mut f64,
+        direction: &mut [f64; 3],
+    ) -> Result<(), String> {
+        let single = self.single_impulse(kind)?;
+        *pushes = self.pushes.unwrap_or(*pushes);
+        *impulse = single.unwrap_or(*impulse);
+        *direction = self.direction;
+        Ok(())
+    }
 }
 
 /// One experiment of the paper (or a user's).

@@ -408,12 +408,8 @@ impl super::experiment::Experiment for Robustness {
         protocols: &mut super::run::Protocols,
         options: &super::experiment::PushOptions,
     ) -> Result<(), String> {
-        let single = options.single_impulse(self.kind())?;
         let p = &mut protocols.robustness;
-        p.pushes = options.pushes.unwrap_or(p.pushes);
-        p.impulse = single.unwrap_or(p.impulse);
-        p.direction = options.direction;
-        Ok(())
+        options.apply_single(self.kind(), &mut p.pushes, &mut p.impulse, &mut p.direction)
     }
 
     fn run(
