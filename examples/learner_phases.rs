@@ -13,6 +13,9 @@
 //! `cargo run --release --example learner_phases -- --seed 0 --pushes 200 --settle 60 --learn-steps 120`
 
 use clap::Parser;
+use rand::SeedableRng;
+use rand::rngs::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
 use std::path::PathBuf;
 use steplearn::approx::ApproxKind;
 use steplearn::control::learner::{
@@ -45,6 +48,48 @@ struct Args {
     /// Settings file (`steplearn config` format) for the robot, walker and learner.
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Instead of the learner, a random offset: dF drawn from N(0, SIGMA^2) (m) once per step
+    /// and held for the whole step (no learning). Tells whether any perturbation of the
+    /// model's gait of this size costs push recovery.
+    #[arg(long)]
+    noise_offset: Option<f64>,
+}
+
+/// A random offset, constant within a step, redrawn at every touch-down and fall.
+struct NoiseOffset {
+    rng: ChaCha8Rng,
+    normal: Normal<f64>,
+    current: f64,
+}
+
+impl NoiseOffset {
+    fn redraw(&mut self) {
+        self.current = self.normal.sample(&mut self.rng);
+    }
+}
+
+impl FootstepPolicy for NoiseOffset {
+    fn offset(&mut self, _input: LearnerInput) -> Result<f64, LearnerError> {
+        Ok(self.current)
+    }
+    fn set_reach(&mut self, _lo: f64, _hi: f64) -> Result<(), LearnerError> {
+        Ok(())
+    }
+    fn touch_down(&mut self, _outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
+        self.redraw();
+        Ok(TouchDownReport {
+            gradient: 0.0,
+            samples: 0,
+            response: 0.0,
+            gain: 0.0,
+            scale: 0.0,
+        })
+    }
+    fn fall(&mut self, _outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
+        self.redraw();
+        Ok(None)
+    }
+    fn discard_step(&mut self) {}
 }
 
 /// The learner with the two switches.
@@ -146,6 +191,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let bounds = InputGrid::default().input_box()?;
     let learned = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
+        if let Some(sigma) = args.noise_offset {
+            let mut policy = NoiseOffset {
+                rng: ChaCha8Rng::seed_from_u64(args.seed ^ 0x006e_6f69_7365),
+                normal: Normal::new(0.0, sigma)?,
+                current: 0.0,
+            };
+            let mut rec = Recorder::default();
+            run_trial(&setup, Some(&mut policy), &mut [&mut rec])?;
+            return Ok(rec);
+        }
         let approx = ApproxKind::Lwpr.build(&bounds)?;
         let learner = FootstepLearner::new(approx, PendulumCart::default(), settings.learner)?;
         let mut policy = Phased {
@@ -193,6 +248,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             calm.iter().map(|s| s.1).sum::<f64>() / n,
             calm.iter().map(|s| s.2).sum::<f64>() / n
         );
+        let calm_df: Vec<f64> = r
+            .steps
+            .iter()
+            .filter(|s| {
+                !r.pushes
+                    .iter()
+                    .any(|p| s.0 > p.time - 0.1 && s.0 < p.time + 2.5)
+            })
+            .map(|s| s.2)
+            .collect();
+        let rms = (calm_df.iter().map(|d| d * d).sum::<f64>() / calm_df.len().max(1) as f64).sqrt();
+        println!("  undisturbed dF at touch-down: rms {rms:.4} m");
         let mut sums = [[0.0; 3]; 5];
         let mut counts = [0usize; 5];
         for p in r

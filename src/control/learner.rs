@@ -178,6 +178,14 @@ pub struct LearnerConfig {
     /// The prior held from the start: dF = 0, trained into the approximator at
     /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`].
     pub prior: Prior,
+    /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
+    /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
+    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0 (eq. 6).
+    pub dead_zone: f64,
+    /// Leakage (sigma-modification): each target is pulled back towards the prior dF = 0 by
+    /// this share of the current prediction, `F + eta G - leakage F`, so offsets that G stops
+    /// asking for decay. In [0, 1); default 0 (eq. 6).
+    pub leakage: f64,
 }
 
 /// The learner's initial belief dF = 0, trained into the approximator before any step so
@@ -250,6 +258,8 @@ impl Default for LearnerConfig {
             learn_from_falls: false,
             fall_theta_limit: 0.3,
             prior: Prior::default(),
+            dead_zone: 0.0,
+            leakage: 0.0,
         }
     }
 }
@@ -294,6 +304,18 @@ impl LearnerConfig {
             return Err(LearnerError::config(
                 "fall_theta_limit",
                 format!("must be finite and > 0, got {}", self.fall_theta_limit),
+            ));
+        }
+        if !(self.dead_zone.is_finite() && self.dead_zone >= 0.0) {
+            return Err(LearnerError::config(
+                "dead_zone",
+                format!("must be finite and >= 0, got {}", self.dead_zone),
+            ));
+        }
+        if !(self.leakage >= 0.0 && self.leakage < 1.0) {
+            return Err(LearnerError::config(
+                "leakage",
+                format!("must be in [0, 1), got {}", self.leakage),
             ));
         }
         let (lo, hi) = (self.prior.lo.to_array(), self.prior.hi.to_array());
@@ -726,12 +748,14 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
                 value: g,
             });
         }
+        let raw_gradient = g;
+        let g = g.signum() * (g.abs() - self.config.dead_zone).max(0.0);
         let step_size = self.config.eta * g;
         self.before.clear();
         self.desired.clear();
         for (x, reach) in self.recorded.iter().zip(&self.reach) {
             let before = self.predict_array(x)?;
-            let mut change = step_size;
+            let mut change = step_size - self.config.leakage * before;
             if self.config.anti_windup {
                 // Conditional integration: never further past an end of the reach than the
                 // prediction already is (and never pulled into it: outside the reach every
@@ -800,7 +824,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
         }
         self.discard_step();
         Ok(TouchDownReport {
-            gradient: g,
+            gradient: raw_gradient,
             samples,
             response,
             gain: gain_of(applied_response),

@@ -289,6 +289,16 @@ impl MotionGenerator {
         &self.space
     }
 
+    /// How far the step primitives have faded in since the start (0 at the start, 1 after
+    /// [`MotionConfig::fade_in`]): the share of the commanded placement the legs realise.
+    pub fn fade(&self) -> f64 {
+        if self.config.fade_in > 0.0 {
+            smooth(self.time / self.config.fade_in)
+        } else {
+            1.0
+        }
+    }
+
     /// Step phase in [0, 1).
     pub fn phase(&self) -> f64 {
         self.phase
@@ -413,11 +423,7 @@ impl MotionGenerator {
     /// The placement angles and the full leg poses at the current phase.
     fn poses(&self) -> ([[f64; 3]; 2], [LegPose; 2]) {
         let c = &self.config;
-        let fade = if c.fade_in > 0.0 {
-            smooth(self.time / c.fade_in)
-        } else {
-            1.0
-        };
+        let fade = self.fade();
         let p = self.phase;
         let d = self.space.leg_length() * (1.0 - c.halt_extension);
         let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();

@@ -12,7 +12,7 @@ use super::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
-use crate::experiments::summary::{ExperimentResult, ModelLearned};
+use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls};
 use crate::report::ReportError;
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::write_csv;
@@ -356,6 +356,7 @@ impl super::experiment::Experiment for Disturbance {
         let p = &ctx.protocols.disturbance;
         let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
         r.write(dir, p.f_r)?;
+        let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
         Ok(ExperimentResult::Disturbance {
             return_time_s: ModelLearned {
                 model: r.model.return_time_s,
@@ -365,6 +366,16 @@ impl super::experiment::Experiment for Disturbance {
                 model: r.model.max_tda_rad,
                 learned: r.learned.max_tda_rad,
             },
+            falls: Some(PushFalls {
+                pushes: ModelLearned {
+                    model: count(r.model.pushes),
+                    learned: count(r.learned.pushes),
+                },
+                falls: ModelLearned {
+                    model: count(r.model.falls),
+                    learned: count(r.learned.falls),
+                },
+            }),
         })
     }
 }

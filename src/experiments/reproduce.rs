@@ -120,14 +120,29 @@ impl Claims {
                 ExperimentResult::Disturbance {
                     return_time_s,
                     max_tda_rad,
+                    falls,
                 } => {
                     let sooner = return_time_s.learned < return_time_s.model;
                     let near = max_tda_rad.learned <= 1.5 * p_theta;
+                    // Return times cover absorbed pushes only: a walker that falls more often
+                    // than the model does not return sooner.
+                    let no_more_falls = falls
+                        .as_ref()
+                        .is_none_or(|f| f.falls.learned <= f.falls.model);
+                    let fell = falls
+                        .as_ref()
+                        .map(|f| {
+                            format!(
+                                "; falls {} / {} learned vs {} / {} model",
+                                f.falls.learned, f.pushes.learned, f.falls.model, f.pushes.model
+                            )
+                        })
+                        .unwrap_or_default();
                     disturbance.push((
                         s.seed,
-                        sooner && near,
+                        sooner && near && no_more_falls,
                         format!(
-                            "return {:.2} s learned vs {:.2} s model; max TDA {:.3} vs {:.3} rad",
+                            "return {:.2} s learned vs {:.2} s model; max TDA {:.3} vs {:.3} rad{fell}",
                             return_time_s.learned,
                             return_time_s.model,
                             max_tda_rad.learned,
@@ -203,7 +218,7 @@ impl Claims {
                 every,
             ),
             disturbance: Claim::new(
-                "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta (every seed).",
+                "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta and no more falls (every seed).",
                 disturbance,
                 every,
             ),
@@ -404,6 +419,7 @@ mod tests {
                         model: 0.1,
                         learned: 0.16,
                     },
+                    falls: None,
                 },
             ),
             summary(
@@ -417,6 +433,7 @@ mod tests {
                         model: 0.1,
                         learned: 0.3,
                     },
+                    falls: None,
                 },
             ),
             summary(

@@ -64,6 +64,16 @@ pub struct FallCauseCounts {
     pub learned: BTreeMap<String, u32>,
 }
 
+/// Experiment B: pushes delivered and pushes that ended in a fall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PushFalls {
+    /// Pushes delivered, per controller.
+    pub pushes: ModelLearned<u32>,
+    /// Pushes followed by a fall, per controller.
+    pub falls: ModelLearned<u32>,
+}
+
 /// Experiment D: the same episodes walked without learning (dF = 0 throughout).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -94,6 +104,10 @@ pub enum ExperimentResult {
         return_time_s: ModelLearned<f64>,
         /// Largest |theta_E| (rad) after the push.
         max_tda_rad: ModelLearned<f64>,
+        /// Pushes delivered and pushes that ended in a fall, per controller (the return time
+        /// and TDA cover the absorbed pushes only); absent in older summaries.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        falls: Option<PushFalls>,
     },
     /// C: falls vs impulse for three controllers.
     Stability {
@@ -213,7 +227,15 @@ impl Summary {
             ExperimentResult::Disturbance {
                 return_time_s,
                 max_tda_rad,
+                falls,
             } => {
+                if let Some(f) = falls
+                    && (f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned)
+                {
+                    return Err(ReportError::invalid(format!(
+                        "falls: more falls than pushes ({f:?})"
+                    )));
+                }
                 finite_non_negative("return_time_s.model", return_time_s.model)?;
                 finite_non_negative("return_time_s.learned", return_time_s.learned)?;
                 finite_non_negative("max_tda_rad.model", max_tda_rad.model)?;
@@ -437,8 +459,18 @@ mod tests {
                         model: 0.1,
                         learned: 0.14,
                     },
+                    falls: Some(PushFalls {
+                        pushes: ModelLearned {
+                            model: 60,
+                            learned: 60,
+                        },
+                        falls: ModelLearned {
+                            model: 0,
+                            learned: 3,
+                        },
+                    }),
                 },
-                vec!["max_tda_rad", "return_time_s"],
+                vec!["falls", "max_tda_rad", "return_time_s"],
             ),
             (
                 robustness(),

@@ -219,6 +219,62 @@ fn recording_is_bounded_and_evenly_spread() {
 }
 
 #[test]
+fn dead_zone_shrinks_the_gradient_and_leakage_pulls_back_to_zero() {
+    let x = input(0.0, 0.0, 0.0);
+    // G = 0.3 with a dead zone of 0.1: the target moves by 0.2; a G inside the zone teaches
+    // nothing, and the report keeps the rule's raw G.
+    let cfg = LearnerConfig {
+        dead_zone: 0.1,
+        ..LearnerConfig::literal()
+    };
+    let mut learner = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.3, AtomicUsize::new(0)),
+        cfg,
+    )
+    .unwrap();
+    learner.query(x).unwrap();
+    let report = learner.touch_down(&StepOutcome::default()).unwrap();
+    assert_eq!(report.gradient, 0.3);
+    assert!((learner.predict(x).unwrap() - 0.2).abs() < 1e-12);
+    let mut inside = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(-0.05, AtomicUsize::new(0)),
+        cfg,
+    )
+    .unwrap();
+    inside.query(x).unwrap();
+    inside.touch_down(&StepOutcome::default()).unwrap();
+    assert_eq!(inside.predict(x).unwrap(), 0.0);
+    // Leakage 0.5 with G = 0: each touch-down halves the prediction (a table that moves all
+    // the way to its targets).
+    let mut leaky = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.4, AtomicUsize::new(0)),
+        LearnerConfig::literal(),
+    )
+    .unwrap();
+    leaky.query(x).unwrap();
+    leaky.touch_down(&StepOutcome::default()).unwrap();
+    let (approx, _) = leaky.into_parts();
+    let mut leaky = FootstepLearner::new(
+        approx,
+        Fixed(0.0, AtomicUsize::new(0)),
+        LearnerConfig {
+            leakage: 0.5,
+            prior: steplearn::control::learner::Prior::none(),
+            ..LearnerConfig::literal()
+        },
+    )
+    .unwrap();
+    for want in [0.2, 0.1] {
+        leaky.query(x).unwrap();
+        leaky.touch_down(&StepOutcome::default()).unwrap();
+        assert!((leaky.predict(x).unwrap() - want).abs() < 1e-12);
+    }
+}
+
+#[test]
 fn output_clamp_limits_the_query_not_the_model() {
     let cfg = LearnerConfig {
         max_offset: Some(0.05),
@@ -764,6 +820,22 @@ fn new_learner_settings_are_validated() {
         },
         LearnerConfig {
             fall_theta_limit: -1.0,
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            dead_zone: -0.01,
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            dead_zone: f64::INFINITY,
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            leakage: 1.0,
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            leakage: f64::NAN,
             ..LearnerConfig::default()
         },
         LearnerConfig {

@@ -79,6 +79,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 model: 0.1,
                 learned: 0.15,
             },
+            falls: None,
         },
     };
     Ok(Summary {
