@@ -2,7 +2,8 @@
 //! (Welford's algorithm, numerically stable in one pass) and evenly spaced grids.
 
 /// Running mean and variance of a stream of values (Welford).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct MeanStd {
     n: usize,
     mean: f64,
@@ -29,6 +30,16 @@ impl MeanStd {
         let delta = v - self.mean;
         self.mean += delta / self.n as f64;
         self.m2 += delta * (v - self.mean);
+    }
+
+    /// Whether the state could have come from [`MeanStd::push`] of finite values: mean and
+    /// sum of squares finite, the sum of squares not negative, both 0 without values (for
+    /// checking deserialized statistics).
+    pub fn is_consistent(&self) -> bool {
+        self.mean.is_finite()
+            && self.m2.is_finite()
+            && self.m2 >= 0.0
+            && (self.n > 0 || (self.mean == 0.0 && self.m2 == 0.0))
     }
 
     /// Number of values.

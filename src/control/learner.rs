@@ -186,6 +186,23 @@ pub struct LearnerConfig {
     /// this share of the current prediction, `F + eta G - leakage F`, so offsets that G stops
     /// asking for decay. In [0, 1); default 0 (eq. 6).
     pub leakage: f64,
+    /// If set, a touch-down teaches nothing (the step is discarded) when the step error
+    /// without the learner's part, |F_E - dF| with dF the offset of the step's last query,
+    /// exceeds this (m): a step the model itself missed by that much was disturbed (a push, a
+    /// reference change), and the rule's saturated tracking term only winds the offset up
+    /// there. Errors the learner's own offset causes still teach. Finite and > 0; default
+    /// none (eq. 6 learns from every step).
+    pub max_step_error: Option<f64>,
+    /// If set (k > 0), the learner acts only where it has learned: the offset is applied in
+    /// full where every input lies within k standard deviations of the mean of the inputs it
+    /// was trained at, fades linearly to 0 at 1.5 k and is 0 beyond (the model alone decides
+    /// in states the learner never learned from). Default none.
+    pub trust_region: Option<f64>,
+    /// Share of a step's recorded inputs that are trained at touch-down: the latest ones
+    /// (in (0, 1]; default 1, eq. 6: every input of the step). The swing foot lands where the
+    /// last commands put it (the generator filters the commanded placement over 0.05 s), so
+    /// offsets queried early in a step barely move the step that G measures.
+    pub train_share: f64,
 }
 
 /// The learner's initial belief dF = 0, trained into the approximator before any step so
@@ -260,6 +277,9 @@ impl Default for LearnerConfig {
             prior: Prior::default(),
             dead_zone: 0.0,
             leakage: 0.0,
+            max_step_error: None,
+            trust_region: None,
+            train_share: 1.0,
         }
     }
 }
@@ -290,7 +310,12 @@ impl LearnerConfig {
                 format!("must be >= 2, got {}", self.max_samples_per_step),
             ));
         }
-        for (name, v) in [("max_offset", self.max_offset), ("max_gain", self.max_gain)] {
+        for (name, v) in [
+            ("max_offset", self.max_offset),
+            ("max_gain", self.max_gain),
+            ("max_step_error", self.max_step_error),
+            ("trust_region", self.trust_region),
+        ] {
             if let Some(m) = v
                 && !(m.is_finite() && m > 0.0)
             {
@@ -310,6 +335,12 @@ impl LearnerConfig {
             return Err(LearnerError::config(
                 "dead_zone",
                 format!("must be finite and >= 0, got {}", self.dead_zone),
+            ));
+        }
+        if !(self.train_share > 0.0 && self.train_share <= 1.0) {
+            return Err(LearnerError::config(
+                "train_share",
+                format!("must be in (0, 1], got {}", self.train_share),
             ));
         }
         if !(self.leakage >= 0.0 && self.leakage < 1.0) {
@@ -379,7 +410,7 @@ impl Default for InputGrid {
     }
 }
 
-use crate::stats::linspace;
+use crate::stats::{MeanStd, linspace};
 
 fn check_range(param: &'static str, lo: f64, hi: f64, n: usize) -> Result<(), LearnerError> {
     if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
@@ -459,6 +490,10 @@ pub struct SavedLearner<A> {
     pub config: LearnerConfig,
     /// The trained approximator.
     pub approximator: A,
+    /// Per-axis mean and std of the inputs the learner was trained at (its trust region);
+    /// empty statistics in files from before it existed.
+    #[serde(default)]
+    pub trained: [MeanStd; LEARNER_INPUTS],
 }
 
 impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
@@ -467,6 +502,11 @@ impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
             .validate()
             .map_err(|e| ApproxError::Corrupt(e.to_string()))?;
         self.approximator.check_invariants()?;
+        if !self.trained.iter().all(MeanStd::is_consistent) {
+            return Err(ApproxError::Corrupt(
+                "trained-input statistics are not consistent".into(),
+            ));
+        }
         if self.approximator.input_dim() != LEARNER_INPUTS || self.approximator.output_dim() != 1 {
             return Err(ApproxError::Corrupt(format!(
                 "saved approximator maps {} inputs to {} outputs, the learner needs 3 to 1",
@@ -498,6 +538,10 @@ pub struct FootstepLearner<A: FunctionApproximator, R: LearningRule> {
     before: Vec<f64>,
     desired: Vec<f64>,
     targets: Vec<f64>,
+    /// Mean and std of the inputs the learner was trained at, per axis (the trust region).
+    trained: [MeanStd; LEARNER_INPUTS],
+    /// The offset the last query returned.
+    last_offset: f64,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
@@ -535,6 +579,8 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
             before: Vec::with_capacity(config.max_samples_per_step),
             desired: Vec::with_capacity(config.max_samples_per_step),
             targets: Vec::with_capacity(config.max_samples_per_step),
+            trained: [MeanStd::new(); LEARNER_INPUTS],
+            last_offset: 0.0,
         })
     }
 
@@ -596,12 +642,42 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
                 return Err(LearnerError::NonFinite { what, value: v });
             }
         }
-        let df = self.predict_array(&x)?;
+        let df = self.predict_array(&x)? * self.trust(&x);
         self.record(x);
-        Ok(match self.config.max_offset {
+        let df = match self.config.max_offset {
             Some(m) => df.clamp(-m, m),
             None => df,
-        })
+        };
+        self.last_offset = df;
+        Ok(df)
+    }
+
+    /// Index of the first recorded input trained at touch-down (`train_share`).
+    fn first_trained(&self) -> usize {
+        let n = self.recorded.len();
+        let keep = ((n as f64 * self.config.train_share).ceil() as usize).clamp(1, n.max(1));
+        n.saturating_sub(keep)
+    }
+
+    /// The share of the offset applied at `x` (1 without a trust region).
+    fn trust(&self, x: &[f64; LEARNER_INPUTS]) -> f64 {
+        let Some(k) = self.config.trust_region else {
+            return 1.0;
+        };
+        let (lo, hi) = (
+            self.config.prior.lo.to_array(),
+            self.config.prior.hi.to_array(),
+        );
+        let mut z: f64 = 0.0;
+        for a in 0..LEARNER_INPUTS {
+            let t = &self.trained[a];
+            if t.count() == 0 {
+                return 0.0;
+            }
+            let std = t.population_std().max(0.02 * (hi[a] - lo[a]));
+            z = z.max((x[a] - t.mean()).abs() / std);
+        }
+        ((1.5 * k - z) / (0.5 * k)).clamp(0.0, 1.0)
     }
 
     fn record(&mut self, x: [f64; LEARNER_INPUTS]) {
@@ -741,6 +817,20 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
                 return Err(LearnerError::NonFinite { what, value: v });
             }
         }
+        if self
+            .config
+            .max_step_error
+            .is_some_and(|m| (step.f_e - self.last_offset).abs() > m)
+        {
+            self.discard_step();
+            return Ok(TouchDownReport {
+                gradient: 0.0,
+                samples: 0,
+                response: 0.0,
+                gain: 0.0,
+                scale: 0.0,
+            });
+        }
         let g = self.rule.gradient(step);
         if !g.is_finite() {
             return Err(LearnerError::NonFinite {
@@ -753,7 +843,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
         let step_size = self.config.eta * g;
         self.before.clear();
         self.desired.clear();
-        for (x, reach) in self.recorded.iter().zip(&self.reach) {
+        let first = self.first_trained();
+        for (x, reach) in self.recorded[first..].iter().zip(&self.reach[first..]) {
             let before = self.predict_array(x)?;
             let mut change = step_size - self.config.leakage * before;
             if self.config.anti_windup {
@@ -776,7 +867,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             self.before.push(before);
             self.desired.push(target - before);
         }
-        let samples = self.recorded.len();
+        let samples = self.recorded.len() - first;
         let asked: f64 = self.desired.iter().map(|d| d * d).sum();
         let gain_of = |response: f64| {
             if g == 0.0 {
@@ -822,6 +913,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
                 _ => break,
             }
         }
+        if scale > 0.0 {
+            for x in &self.recorded[first..] {
+                for (t, v) in self.trained.iter_mut().zip(x) {
+                    t.push(*v);
+                }
+            }
+        }
         self.discard_step();
         Ok(TouchDownReport {
             gradient: raw_gradient,
@@ -841,7 +939,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
                 .zip(&self.desired)
                 .map(|(b, d)| b + scale * d),
         );
-        for (applied, (x, t)) in self.recorded.iter().zip(&self.targets).enumerate() {
+        let first = self.first_trained();
+        for (applied, (x, t)) in self.recorded[first..].iter().zip(&self.targets).enumerate() {
             self.approx
                 .update(x, &[*t])
                 .map_err(|source| LearnerError::Approx { applied, source })?;
@@ -856,7 +955,12 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             return Ok(0.0);
         }
         let mut moved = 0.0;
-        for ((x, b), d) in self.recorded.iter().zip(&self.before).zip(&self.desired) {
+        let first = self.first_trained();
+        for ((x, b), d) in self.recorded[first..]
+            .iter()
+            .zip(&self.before)
+            .zip(&self.desired)
+        {
             moved += (self.predict_array(x)? - b) * d;
         }
         Ok(moved / asked)
@@ -895,6 +999,7 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
         SavedLearner {
             config: self.config,
             approximator: self.approx.clone(),
+            trained: self.trained,
         }
         .save(path)
         .map_err(LearnerError::approx)
@@ -904,6 +1009,8 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
     /// corrupt file or a wrongly shaped approximator is an error.
     pub fn load(path: impl AsRef<Path>, rule: R) -> Result<Self, LearnerError> {
         let saved = SavedLearner::<A>::load(path).map_err(LearnerError::approx)?;
-        Self::assemble(saved.approximator, rule, saved.config)
+        let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
+        learner.trained = saved.trained;
+        Ok(learner)
     }
 }

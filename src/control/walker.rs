@@ -70,15 +70,15 @@ pub struct WalkerConfig {
     /// Without a learner dF = 0, so the model is the same either way.
     #[serde(default = "default_offset_in_gait")]
     pub offset_in_gait: bool,
-    /// Learn from steps that touch down while the generator is still fading its primitives
-    /// in after a start or a reset ([`MotionGenerator::fade`] < 1). Off by default: those
-    /// steps realise only part of any command, so they are a reach limit the offset cannot
-    /// act on (the same reason as the learner's anti-windup). Default on (every touch-down
-    /// teaches, as in the paper). Off, in experiment B (seeds 0-4) the learned walker fell
-    /// after 25 / 24 / 8 / 26 / 29 of 60 pushes instead of 43 / 15 / 33 / 22 / 10: the start-up
-    /// steps are not what makes it fall more than the model (9 / 2 / 7 / 5 / 4).
+    /// Use the learner while the generator is still fading its primitives in after a start or
+    /// a reset ([`MotionGenerator::fade`] < 1): apply its offset and learn from the steps that
+    /// touch down then. Those steps realise only part of any command, so they are a reach
+    /// limit the offset cannot act on (the reason for the learner's anti-windup); off, the
+    /// model alone starts the walker and the learner is engaged once the gait has faded in.
+    /// Default on (every touch-down teaches, as in the paper). Ignored in learner-only mode,
+    /// where the learned offset is the whole step.
     #[serde(default = "default_true")]
-    pub learn_while_fading_in: bool,
+    pub learner_during_fade_in: bool,
 }
 
 impl WalkerConfig {
@@ -90,7 +90,7 @@ impl WalkerConfig {
             estimator: EstimatorConfig::default(),
             motion: MotionConfig::default(),
             offset_in_gait: true,
-            learn_while_fading_in: true,
+            learner_during_fade_in: true,
         }
     }
 }
@@ -256,8 +256,11 @@ impl Walker {
             f_r,
         });
         let mut learning = None;
+        let engaged = self.config.learner_during_fade_in
+            || self.config.mode == WalkerMode::LearnerOnly
+            || self.generator.fade() >= 1.0;
         if let (Some(outcome), Some(p)) = (&step, policy.as_deref_mut()) {
-            if self.config.learn_while_fading_in || self.generator.fade() >= 1.0 {
+            if engaged {
                 learning = Some(p.touch_down(outcome)?);
             } else {
                 p.discard_step();
@@ -274,6 +277,9 @@ impl Walker {
                         estimate.theta_e_rate,
                         f_r,
                     ))?;
+                    if !engaged {
+                        learned_offset = 0.0;
+                    }
                 }
                 let support = self.generator.support();
                 let com = com_relative_to(&estimate, support);

@@ -275,6 +275,131 @@ fn dead_zone_shrinks_the_gradient_and_leakage_pulls_back_to_zero() {
 }
 
 #[test]
+fn max_step_error_skips_steps_the_model_missed_but_not_the_learners_own_errors() {
+    let cfg = LearnerConfig {
+        max_step_error: Some(0.05),
+        ..LearnerConfig::literal()
+    };
+    let x = input(0.0, 0.0, 0.0);
+    let step = |f_e: f64| StepOutcome {
+        f_e,
+        ..StepOutcome::default()
+    };
+    let mut learner = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.3, AtomicUsize::new(0)),
+        cfg,
+    )
+    .unwrap();
+    // dF was 0 and the step missed by 0.2 m: a disturbed step, nothing learned.
+    assert_eq!(learner.query(x).unwrap(), 0.0);
+    let report = learner.touch_down(&step(0.2)).unwrap();
+    assert_eq!((report.samples, report.scale), (0, 0.0));
+    assert_eq!(learner.predict(x).unwrap(), 0.0);
+    // Within the bound: learned.
+    learner.query(x).unwrap();
+    learner.touch_down(&step(0.04)).unwrap();
+    assert_eq!(learner.predict(x).unwrap(), 0.3);
+    // Now dF = 0.3 and the step misses by 0.32: without the learner's part only 0.02, so the
+    // learner's own error still teaches.
+    assert_eq!(learner.query(x).unwrap(), 0.3);
+    let report = learner.touch_down(&step(0.32)).unwrap();
+    assert_eq!(report.samples, 1);
+    assert_eq!(learner.predict(x).unwrap(), 0.6);
+}
+
+#[test]
+fn train_share_trains_only_the_latest_inputs_of_a_step() {
+    let cfg = LearnerConfig {
+        train_share: 0.5,
+        ..LearnerConfig::literal()
+    };
+    let mut learner = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.3, AtomicUsize::new(0)),
+        cfg,
+    )
+    .unwrap();
+    let xs = [-0.35, -0.15, 0.05, 0.25].map(|t| input(t, 0.0, 0.0));
+    for x in xs {
+        learner.query(x).unwrap();
+    }
+    let report = learner.touch_down(&StepOutcome::default()).unwrap();
+    assert_eq!(report.samples, 2);
+    let learned: Vec<f64> = xs.iter().map(|x| learner.predict(*x).unwrap()).collect();
+    assert_eq!(learned, vec![0.0, 0.0, 0.3, 0.3]);
+    for bad in [0.0, 1.5, f64::NAN] {
+        let cfg = LearnerConfig {
+            train_share: bad,
+            ..LearnerConfig::literal()
+        };
+        assert!(matches!(
+            FootstepLearner::new(table(), BalanceOnly, cfg),
+            Err(LearnerError::InvalidConfig { .. })
+        ));
+    }
+}
+
+#[test]
+fn trust_region_applies_the_offset_only_near_trained_inputs() {
+    let cfg = LearnerConfig {
+        trust_region: Some(2.0),
+        ..LearnerConfig::literal()
+    };
+    let mut learner = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.3, AtomicUsize::new(0)),
+        cfg,
+    )
+    .unwrap();
+    // Nothing trained yet: no offset, whatever the approximator says.
+    for k in 0..20 {
+        assert_eq!(
+            learner
+                .query(input(0.01 * (k % 5) as f64, 0.0, 0.1))
+                .unwrap(),
+            0.0
+        );
+    }
+    learner.touch_down(&StepOutcome::default()).unwrap();
+    // Trained at theta_E in [0, 0.04] (mean 0.02, std 0.0141), theta_E_dot 0 (std floored at
+    // 2% of the prior's 3 rad/s): all the points below share the trained bin, which predicts
+    // 0.3. Inside, the full prediction; 2.5 std away, half; 5 std away, none.
+    let std = 0.02f64.sqrt() / 10.0;
+    let inside = input(0.02, 0.0, 0.1);
+    let half = input(0.02 + 2.5 * std, 0.0, 0.1);
+    let far = input(0.02 + 5.0 * std, 0.0, 0.1);
+    let far_rate = input(0.02, 0.4, 0.1);
+    for x in [inside, half, far, far_rate] {
+        assert_eq!(learner.predict(x).unwrap(), 0.3);
+    }
+    assert_eq!(learner.query(inside).unwrap(), 0.3);
+    assert!((learner.query(half).unwrap() - 0.15).abs() < 1e-9);
+    assert_eq!(learner.query(far).unwrap(), 0.0);
+    assert_eq!(learner.query(far_rate).unwrap(), 0.0);
+    // The region survives a save / load round trip.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("learner.json");
+    learner.save(&path).unwrap();
+    let mut loaded: FootstepLearner<BinTable, _> =
+        FootstepLearner::load(&path, Fixed(0.3, AtomicUsize::new(0))).unwrap();
+    assert_eq!(loaded.query(inside).unwrap(), 0.3);
+    assert_eq!(loaded.query(far_rate).unwrap(), 0.0);
+    // Tampered statistics are a corrupt file, not a silently wrong region.
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    json["trained"][0]["m2"] = serde_json::json!(-1.0);
+    std::fs::write(&path, json.to_string()).unwrap();
+    let err = FootstepLearner::<BinTable, _>::load(&path, Fixed(0.3, AtomicUsize::new(0)))
+        .err()
+        .unwrap();
+    assert!(
+        err.to_string().contains("trained-input statistics"),
+        "{err}"
+    );
+}
+
+#[test]
 fn output_clamp_limits_the_query_not_the_model() {
     let cfg = LearnerConfig {
         max_offset: Some(0.05),
