@@ -111,3 +111,37 @@ fn a_fall_updates_the_learner_only_when_learning_from_falls() {
         }
     }
 }
+
+#[test]
+fn with_learner_during_fade_in_off_the_model_alone_starts_the_walker() {
+    for on in [true, false] {
+        let mut settings = Settings::default();
+        settings.walker.learner_during_fade_in = on;
+        let setup = settings.trial(
+            WalkerMode::CaptureStep,
+            ReferenceSchedule::constant(0.2),
+            Vec::new(),
+            [1.0, 0.0, 0.0],
+            3.0,
+        );
+        let mut l = learner(LearnerConfig::default());
+        let log = run_trial(&setup, Some(&mut l), &mut []).unwrap();
+        let fade_in = settings.walker.motion.fade_in;
+        let early: Vec<_> = log.steps.iter().filter(|s| s.time < fade_in).collect();
+        let late: Vec<_> = log.steps.iter().filter(|s| s.time > fade_in).collect();
+        assert!(
+            early.len() >= 2 && late.len() >= 2,
+            "{} steps",
+            log.steps.len()
+        );
+        // measured: the first steps from standing miss F_R = 0.2 m by ~0.2 m, so the default
+        // learner learns from them and offsets the next ones.
+        for s in &early {
+            assert_eq!(s.learning_gain.is_some(), on, "{s:?}");
+            if !on {
+                assert_eq!(s.learned_offset, 0.0, "{s:?}");
+            }
+        }
+        assert!(late.iter().all(|s| s.learning_gain.is_some()));
+    }
+}
