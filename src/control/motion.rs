@@ -299,6 +299,11 @@ impl MotionGenerator {
         }
     }
 
+    /// Time since the generator started (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
     /// Step phase in [0, 1).
     pub fn phase(&self) -> f64 {
         self.phase
