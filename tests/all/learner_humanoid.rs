@@ -22,11 +22,14 @@ fn learner(config: LearnerConfig) -> FootstepLearner<AnyApproximator, PendulumCa
 }
 
 /// Stepping in place for `seconds` with forward pushes of `impulses`, one every 3 s from 3 s.
-fn run(config: LearnerConfig, seconds: f64, impulses: &[f64]) -> TrialLog {
-    let settings = Settings {
+/// `paper_start`: the learner acts and learns from the first step (the paper's learner, and
+/// `learner_during_fade_in = true`), not only after the generator has faded in.
+fn run(config: LearnerConfig, seconds: f64, impulses: &[f64], paper_start: bool) -> TrialLog {
+    let mut settings = Settings {
         learner: config,
         ..Settings::default()
     };
+    settings.walker.learner_during_fade_in = paper_start;
     let pushes = impulses
         .iter()
         .enumerate()
@@ -50,10 +53,28 @@ fn run(config: LearnerConfig, seconds: f64, impulses: &[f64]) -> TrialLog {
 fn the_guarded_learner_keeps_its_gain_and_offset_bounded_through_pushes() {
     let config = LearnerConfig::default();
     let limit = config.max_gain.unwrap();
-    let log = run(config, 15.0, &[8.0, 12.0, 16.0, 10.0]);
+    let log = run(config, 15.0, &[8.0, 12.0, 16.0, 10.0], false);
     assert!(log.steps.len() > 25, "{} steps", log.steps.len());
+    let fade_in = Settings::default().walker.motion.fade_in;
     for s in &log.steps {
-        let gain = s.learning_gain.expect("every touch-down reports its gain");
+        // The last start or restart (after a fall) before this touch-down.
+        let start = log
+            .falls
+            .iter()
+            .map(|f| f.time)
+            .filter(|&t| t <= s.time)
+            .fold(0.0, f64::max);
+        if s.time - start < fade_in {
+            // The model alone starts the walker: nothing learned.
+            assert!(s.learning_gain.is_none(), "{s:?}");
+            continue;
+        }
+        if s.time - start < fade_in + 0.1 {
+            continue;
+        }
+        let gain = s
+            .learning_gain
+            .expect("every touch-down after the fade-in reports its gain");
         assert!(gain.abs() <= limit, "gain {gain} at {}", s.time);
         // The guard only ever scales the step down: the gain is at most eta times the
         // approximator's response to the full step (eta = 1).
@@ -78,7 +99,7 @@ fn the_guarded_learner_keeps_its_gain_and_offset_bounded_through_pushes() {
 
 #[test]
 fn the_literal_eq6_learner_exceeds_the_gain_limit_and_winds_up() {
-    let log = run(LearnerConfig::literal(), 6.0, &[]);
+    let log = run(LearnerConfig::literal(), 6.0, &[], true);
     let max_gain = log
         .steps
         .iter()
@@ -104,7 +125,7 @@ fn a_fall_updates_the_learner_only_when_learning_from_falls() {
             ..LearnerConfig::default()
         };
         // 25 Ns is far beyond what the walker can absorb.
-        let log = run(config, 5.0, &[25.0]);
+        let log = run(config, 5.0, &[25.0], false);
         assert!(!log.falls.is_empty(), "no fall");
         for f in &log.falls {
             assert_eq!(f.learning_gain.is_some(), on, "{f:?}");
