@@ -77,13 +77,7 @@ impl FootstepPolicy for NoiseOffset {
     }
     fn touch_down(&mut self, _outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
         self.redraw();
-        Ok(TouchDownReport {
-            gradient: 0.0,
-            samples: 0,
-            response: 0.0,
-            gain: 0.0,
-            scale: 0.0,
-        })
+        Ok(TouchDownReport::default())
     }
     fn fall(&mut self, _outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
         self.redraw();
@@ -116,13 +110,7 @@ impl<P: FootstepPolicy> FootstepPolicy for Phased<P> {
         self.seen += 1;
         if self.seen > self.learn_steps {
             self.inner.discard_step();
-            return Ok(TouchDownReport {
-                gradient: 0.0,
-                samples: 0,
-                response: 0.0,
-                gain: 0.0,
-                scale: 0.0,
-            });
+            return Ok(TouchDownReport::default());
         }
         self.inner.touch_down(outcome)
     }
@@ -232,15 +220,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             args.seed,
             r.pushes.len()
         );
-        let calm: Vec<&(f64, f64, f64)> = r
-            .touch_downs
-            .iter()
-            .filter(|s| {
-                !r.pushes
-                    .iter()
-                    .any(|p| s.0 > p.time - 0.1 && s.0 < p.time + 2.5)
-            })
-            .collect();
+        // Undisturbed: no push from 0.1 s after the touch-down to 2.5 s before it.
+        let calm_at = |t: f64| {
+            !r.pushes
+                .iter()
+                .any(|p| t > p.time - 0.1 && t < p.time + 2.5)
+        };
+        let calm: Vec<&(f64, f64, f64)> = r.touch_downs.iter().filter(|s| calm_at(s.0)).collect();
         let n = calm.len().max(1) as f64;
         println!(
             "  undisturbed touch-downs (none within 2.5 s after a push): {}, mean theta_E {:+.4} rad, mean F_E {:+.4} m",
@@ -251,11 +237,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let calm_df: Vec<f64> = r
             .steps
             .iter()
-            .filter(|s| {
-                !r.pushes
-                    .iter()
-                    .any(|p| s.0 > p.time - 0.1 && s.0 < p.time + 2.5)
-            })
+            .filter(|s| calm_at(s.0))
             .map(|s| s.2)
             .collect();
         let rms = (calm_df.iter().map(|d| d * d).sum::<f64>() / calm_df.len().max(1) as f64).sqrt();

@@ -368,8 +368,8 @@ impl LearnerConfig {
     }
 }
 
-/// What a touch-down did.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// What a touch-down did. The default (all zero) is a touch-down that taught nothing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct TouchDownReport {
     /// The rule's gradient G.
     pub gradient: f64,
@@ -831,13 +831,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             .is_some_and(|m| (step.f_e - self.last_offset).abs() > m)
         {
             self.discard_step();
-            return Ok(TouchDownReport {
-                gradient: 0.0,
-                samples: 0,
-                response: 0.0,
-                gain: 0.0,
-                scale: 0.0,
-            });
+            return Ok(TouchDownReport::default());
         }
         let g = self.rule.gradient(step);
         if !g.is_finite() {

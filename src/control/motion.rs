@@ -292,16 +292,17 @@ impl MotionGenerator {
     /// How far the step primitives have faded in since the start (0 at the start, 1 after
     /// [`MotionConfig::fade_in`]): the share of the commanded placement the legs realise.
     pub fn fade(&self) -> f64 {
+        self.fade_after(0.0)
+    }
+
+    /// The same fade (cosine over [`MotionConfig::fade_in`]) begun `delay` seconds after the
+    /// start: 0 until then, 1 from `delay + fade_in` on (1 throughout without a fade-in).
+    pub fn fade_after(&self, delay: f64) -> f64 {
         if self.config.fade_in > 0.0 {
-            smooth(self.time / self.config.fade_in)
+            smooth((self.time - delay) / self.config.fade_in)
         } else {
             1.0
         }
-    }
-
-    /// Time since the generator started (s).
-    pub fn time(&self) -> f64 {
-        self.time
     }
 
     /// Step phase in [0, 1).

@@ -258,18 +258,12 @@ impl Walker {
         let always =
             self.config.learner_during_fade_in || self.config.mode == WalkerMode::LearnerOnly;
         let engaged = always || self.generator.fade() >= 1.0;
-        // Bumpless engagement: the offset ramps in (cosine) over one fade-in time after the
-        // fade-in, so that switching the learner on does not jolt the gait.
+        // Bumpless engagement: the offset ramps in like the generator's fade, one fade-in time
+        // later, so that switching the learner on does not jolt the gait.
         let engagement = if always {
             1.0
         } else {
-            let f = self.config.motion.fade_in;
-            if f > 0.0 {
-                let w = ((self.generator.time() - f) / f).clamp(0.0, 1.0);
-                0.5 - 0.5 * (std::f64::consts::PI * w).cos()
-            } else {
-                1.0
-            }
+            self.generator.fade_after(self.config.motion.fade_in)
         };
         if let (Some(outcome), Some(p)) = (&step, policy.as_deref_mut()) {
             if engaged {
