@@ -3,10 +3,10 @@
 
 use super::error::ExperimentError;
 use super::settings::LearnerFactory;
-use super::trial::{StepRecord, TrialLog, TrialSetup, run_trial};
+use super::trial::{ControllerCell, StepCells, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::report::ReportError;
-use crate::report::write_csv;
+use crate::report::write_rows;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -21,14 +21,19 @@ pub struct ModelAndLearned {
 }
 
 impl ModelAndLearned {
-    /// Writes every step of both runs as CSV ([`StepRecord::CSV_HEADER`], the first column
-    /// `model` or `learned`).
+    /// Writes every step of both runs as CSV (a `controller` column, `model` or `learned`,
+    /// then [`StepCells`]).
     pub fn write_steps(&self, path: &Path) -> Result<(), ReportError> {
-        let rows: Vec<Vec<String>> = [("model", &self.model), ("learned", &self.learned)]
-            .into_iter()
-            .flat_map(|(name, log)| log.steps.iter().map(move |s| s.csv_row(name)))
-            .collect();
-        write_csv(path, &StepRecord::CSV_HEADER, &rows)
+        let rows: Vec<(ControllerCell, StepCells)> =
+            [("model", &self.model), ("learned", &self.learned)]
+                .into_iter()
+                .flat_map(|(controller, log)| {
+                    log.steps
+                        .iter()
+                        .map(move |s| (ControllerCell { controller }, s.cells()))
+                })
+                .collect();
+        write_rows(path, &rows)
     }
 }
 

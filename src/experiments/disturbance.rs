@@ -15,7 +15,7 @@ use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls};
 use crate::report::ReportError;
 use crate::report::figures::{LinePlot, Series, line_plot};
-use crate::report::write_csv;
+use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -248,32 +248,20 @@ impl DisturbanceResult {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         self.runs.write_steps(&dir.join("disturbance_steps.csv"))?;
         let mut rows = Vec::new();
-        for (name, r) in [("model", &self.model), ("learned", &self.learned)] {
+        for (controller, r) in [("model", &self.model), ("learned", &self.learned)] {
             for (k, t) in r.step.times().into_iter().enumerate() {
-                rows.push(vec![
-                    name.to_string(),
-                    format!("{t:.3}"),
-                    format!("{:.6}", r.step.mean[k]),
-                    format!("{:.6}", r.step.std[k]),
-                    format!("{:.6}", r.tda.mean[k]),
-                    format!("{:.6}", r.tda.std[k]),
-                    r.step.count[k].to_string(),
-                ]);
+                rows.push(AlignedRow {
+                    controller,
+                    time_since_push_s: Fixed(t),
+                    mean_step_m: Fixed(r.step.mean[k]),
+                    std_step_m: Fixed(r.step.std[k]),
+                    mean_tda_rad: Fixed(r.tda.mean[k]),
+                    std_tda_rad: Fixed(r.tda.std[k]),
+                    steps: r.step.count[k],
+                });
             }
         }
-        write_csv(
-            &dir.join("disturbance_aligned.csv"),
-            &[
-                "controller",
-                "time_since_push_s",
-                "mean_step_m",
-                "std_step_m",
-                "mean_tda_rad",
-                "std_tda_rad",
-                "steps",
-            ],
-            &rows,
-        )?;
+        write_rows(&dir.join("disturbance_aligned.csv"), &rows)?;
         for (file, title, y_label, pick, reference) in [
             (
                 "disturbance_step.svg",
@@ -378,4 +366,16 @@ impl super::experiment::Experiment for Disturbance {
             }),
         })
     }
+}
+
+/// A row of `disturbance_aligned.csv`: one controller's steps and TDA in one bin after a push.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct AlignedRow<'a> {
+    controller: &'a str,
+    time_since_push_s: Fixed<3>,
+    mean_step_m: Fixed<6>,
+    std_step_m: Fixed<6>,
+    mean_tda_rad: Fixed<6>,
+    std_tda_rad: Fixed<6>,
+    steps: usize,
 }

@@ -14,7 +14,7 @@
 use super::error::ExperimentError;
 use super::schedule::{Push, ReferenceSchedule};
 use super::settings::{LearnerFactory, Settings};
-use super::trial::{StepRecord, run_trial};
+use super::trial::{StepCells, StepRecord, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
 use crate::control::learner::{InputGrid, MapSpec, OffsetMap};
@@ -22,7 +22,7 @@ use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, NoLearning};
 use crate::report::ReportError;
 use crate::report::figures::{HeatMapGrid, HeatPanel, LinePlot, Series, heat_map_grid, line_plot};
-use crate::report::write_csv;
+use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
@@ -292,44 +292,34 @@ impl RobustnessResult {
     /// over theta_E x theta_E_dot after every push, the episode's touch-downs as crosses).
     pub fn write(&self, dir: &Path) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
-        let rows: Vec<Vec<String>> = self
+        let rows: Vec<PushRow> = self
             .episodes
             .iter()
             .enumerate()
             .map(|(i, e)| {
                 let base = self.no_learning.get(i);
-                vec![
-                    e.push.to_string(),
-                    format!("{:.4}", e.push_time),
-                    e.fell.to_string(),
-                    e.falls.to_string(),
-                    format!("{:.6}", e.learning_metric),
-                    base.map_or(String::new(), |b| b.fell.to_string()),
-                    base.map_or(String::new(), |b| b.falls.to_string()),
-                ]
+                PushRow {
+                    push: e.push,
+                    push_time_s: Fixed(e.push_time),
+                    fell: e.fell,
+                    falls: e.falls,
+                    learning_metric: Fixed(e.learning_metric),
+                    no_learning_fell: base.map(|b| b.fell),
+                    no_learning_falls: base.map(|b| b.falls),
+                }
             })
             .collect();
-        write_csv(
-            &dir.join("robustness_pushes.csv"),
-            &[
-                "push",
-                "push_time_s",
-                "fell",
-                "falls",
-                "learning_metric",
-                "no_learning_fell",
-                "no_learning_falls",
-            ],
-            &rows,
-        )?;
-        let mut header = vec!["push"];
-        header.extend_from_slice(&StepRecord::CSV_HEADER[1..]);
-        let rows: Vec<Vec<String>> = self
+        write_rows(&dir.join("robustness_pushes.csv"), &rows)?;
+        let rows: Vec<(PushCell, StepCells)> = self
             .episodes
             .iter()
-            .flat_map(|e| e.steps.iter().map(move |s| s.csv_row(&e.push.to_string())))
+            .flat_map(|e| {
+                e.steps
+                    .iter()
+                    .map(move |s| (PushCell { push: e.push }, s.cells()))
+            })
             .collect();
-        write_csv(&dir.join("robustness_steps.csv"), &header, &rows)?;
+        write_rows(&dir.join("robustness_steps.csv"), &rows)?;
         let x: Vec<f64> = (0..=self.episodes.len()).map(|i| i as f64).collect();
         let y: Vec<f64> = std::iter::once(self.initial_metric)
             .chain(self.episodes.iter().map(|e| e.learning_metric))
@@ -431,4 +421,23 @@ impl super::experiment::Experiment for Robustness {
         r.write(dir)?;
         Ok(r.summary_result())
     }
+}
+
+/// A row of `robustness_pushes.csv`: one push of the learning run, and the same push without
+/// learning (empty when there was no such run).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct PushRow {
+    push: usize,
+    push_time_s: Fixed<4>,
+    fell: bool,
+    falls: usize,
+    learning_metric: Fixed<6>,
+    no_learning_fell: Option<bool>,
+    no_learning_falls: Option<usize>,
+}
+
+/// The label column of `robustness_steps.csv`: the push whose episode the step belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct PushCell {
+    push: usize,
 }

@@ -17,7 +17,7 @@ use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
-use crate::report::write_csv;
+use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -197,22 +197,18 @@ impl StabilityResult {
     ) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         let mut rows = Vec::new();
-        for (name, c) in self.controllers() {
+        for (controller, c) in self.controllers() {
             for (p, cause) in c.pushes.iter().zip(c.cause_by_push()) {
-                rows.push(vec![
-                    name.to_string(),
-                    format!("{:.4}", p.time),
-                    format!("{:.4}", p.impulse),
-                    p.fell.to_string(),
-                    cause.map_or("", FallCause::name).to_string(),
-                ]);
+                rows.push(PushRow {
+                    controller,
+                    time_s: Fixed(p.time),
+                    impulse_ns: Fixed(p.impulse),
+                    fell: p.fell,
+                    fall_cause: cause.map_or("", FallCause::name),
+                });
             }
         }
-        write_csv(
-            &dir.join("pushes.csv"),
-            &["controller", "time_s", "impulse_ns", "fell", "fall_cause"],
-            &rows,
-        )?;
+        write_rows(&dir.join("pushes.csv"), &rows)?;
         let bins_per_controller = ((impulse.1 - impulse.0) / 2.0).ceil().max(1.0) as usize;
         let mut curves = Vec::new();
         for (name, c) in self.controllers() {
@@ -323,4 +319,14 @@ mod tests {
         assert_eq!(direction_name([0.0, -1.0, 0.0]), "right");
         assert_eq!(direction_name([0.6, 0.8, 0.0]), "(0.6, 0.8, 0)");
     }
+}
+
+/// A row of `pushes.csv`: one push a controller received, and what became of it.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct PushRow<'a> {
+    controller: &'a str,
+    time_s: Fixed<4>,
+    impulse_ns: Fixed<4>,
+    fell: bool,
+    fall_cause: &'a str,
 }

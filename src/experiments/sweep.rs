@@ -15,8 +15,8 @@
 
 use crate::experiments::ExperimentKind;
 use crate::experiments::summary::{ExperimentResult, Summary};
-use crate::report::write_csv;
 use crate::report::{ReportError, write_atomic};
+use crate::report::{Shortest, write_rows};
 use crate::rules::RuleKind;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -447,14 +447,55 @@ impl Stat {
             _ => format!("{:.2} ± {:.2}", self.mean, self.std),
         }
     }
+}
 
-    fn csv(v: f64) -> String {
-        if v.is_finite() {
-            format!("{v}")
-        } else {
-            String::new()
-        }
-    }
+/// A row of `ablation.csv` ([`Merged::csv_rows`]): the field names are the column names.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct AblationCsvRow<'a> {
+    /// Approximator.
+    pub approx: &'a str,
+    /// Rule.
+    pub rule: &'a str,
+    /// Seeds with a stability summary.
+    pub stability_seeds: usize,
+    /// I50 of the open-loop walker (Ns), mean over seeds.
+    pub i50_open_loop_ns_mean: Shortest,
+    /// Its sample std.
+    pub i50_open_loop_ns_std: Shortest,
+    /// I50 of the model (Ns), mean over seeds.
+    pub i50_model_ns_mean: Shortest,
+    /// Its sample std.
+    pub i50_model_ns_std: Shortest,
+    /// I50 of the learned walker (Ns), mean over seeds.
+    pub i50_learned_ns_mean: Shortest,
+    /// Its sample std.
+    pub i50_learned_ns_std: Shortest,
+    /// Falls of the learned walker in C, over seeds.
+    pub learned_falls: u64,
+    /// Pushes it received in C, over seeds.
+    pub learned_pushes: u64,
+    /// Seeds with a robustness summary.
+    pub robustness_seeds: usize,
+    /// Seeds on which D absorbed a push within its first three.
+    pub absorbed_within_3_pushes: usize,
+    /// Pushes until the first absorbed one in D, mean over seeds.
+    pub pushes_until_absorbed_mean: Shortest,
+    /// Its sample std.
+    pub pushes_until_absorbed_std: Shortest,
+    /// Falls in D, mean over seeds.
+    pub robustness_falls_mean: Shortest,
+    /// Its sample std.
+    pub robustness_falls_std: Shortest,
+    /// Pushes absorbed in D with learning, over seeds.
+    pub absorbed_learned: u64,
+    /// The same without learning.
+    pub absorbed_no_learning: u64,
+    /// Runs with a recorded run time.
+    pub runs_timed: usize,
+    /// Run time (s), mean over runs.
+    pub run_time_s_mean: Shortest,
+    /// Its sample std.
+    pub run_time_s_std: Shortest,
 }
 
 /// One row of the ablation table: an approximator x rule pair over its seeds.
@@ -500,31 +541,6 @@ pub struct Merged {
     pub problems: Vec<MergeProblem>,
 }
 
-const CSV_HEADER: [&str; 22] = [
-    "approx",
-    "rule",
-    "stability_seeds",
-    "i50_open_loop_ns_mean",
-    "i50_open_loop_ns_std",
-    "i50_model_ns_mean",
-    "i50_model_ns_std",
-    "i50_learned_ns_mean",
-    "i50_learned_ns_std",
-    "learned_falls",
-    "learned_pushes",
-    "robustness_seeds",
-    "absorbed_within_3_pushes",
-    "pushes_until_absorbed_mean",
-    "pushes_until_absorbed_std",
-    "robustness_falls_mean",
-    "robustness_falls_std",
-    "absorbed_learned",
-    "absorbed_no_learning",
-    "runs_timed",
-    "run_time_s_mean",
-    "run_time_s_std",
-];
-
 impl Merged {
     /// The ablation table in Markdown (mean ± std over seeds).
     pub fn to_markdown(&self) -> String {
@@ -564,34 +580,34 @@ impl Merged {
         s
     }
 
-    /// The ablation table as CSV cells (header in [`Merged::write`]); empty cells for missing.
-    pub fn csv_rows(&self) -> Vec<Vec<String>> {
+    /// The ablation table as CSV rows (the file [`Merged::write`] writes); empty cells for
+    /// statistics over no data.
+    pub fn csv_rows(&self) -> Vec<AblationCsvRow<'_>> {
         self.rows
             .iter()
-            .map(|r| {
-                let mut row = vec![
-                    r.approx.clone(),
-                    r.rule.clone(),
-                    r.i50_learned.n.to_string(),
-                ];
-                for st in [&r.i50_open_loop, &r.i50_model, &r.i50_learned] {
-                    row.push(Stat::csv(st.mean));
-                    row.push(Stat::csv(st.std));
-                }
-                row.push(r.learned_falls_pushes.0.to_string());
-                row.push(r.learned_falls_pushes.1.to_string());
-                row.push(r.robustness_seeds.to_string());
-                row.push(r.absorbed_within_3.to_string());
-                for st in [&r.pushes_until_absorbed, &r.robustness_falls] {
-                    row.push(Stat::csv(st.mean));
-                    row.push(Stat::csv(st.std));
-                }
-                row.push(r.absorbed_vs_no_learning.0.to_string());
-                row.push(r.absorbed_vs_no_learning.1.to_string());
-                row.push(r.run_time_s.n.to_string());
-                row.push(Stat::csv(r.run_time_s.mean));
-                row.push(Stat::csv(r.run_time_s.std));
-                row
+            .map(|r| AblationCsvRow {
+                approx: &r.approx,
+                rule: &r.rule,
+                stability_seeds: r.i50_learned.n,
+                i50_open_loop_ns_mean: Shortest(r.i50_open_loop.mean),
+                i50_open_loop_ns_std: Shortest(r.i50_open_loop.std),
+                i50_model_ns_mean: Shortest(r.i50_model.mean),
+                i50_model_ns_std: Shortest(r.i50_model.std),
+                i50_learned_ns_mean: Shortest(r.i50_learned.mean),
+                i50_learned_ns_std: Shortest(r.i50_learned.std),
+                learned_falls: r.learned_falls_pushes.0,
+                learned_pushes: r.learned_falls_pushes.1,
+                robustness_seeds: r.robustness_seeds,
+                absorbed_within_3_pushes: r.absorbed_within_3,
+                pushes_until_absorbed_mean: Shortest(r.pushes_until_absorbed.mean),
+                pushes_until_absorbed_std: Shortest(r.pushes_until_absorbed.std),
+                robustness_falls_mean: Shortest(r.robustness_falls.mean),
+                robustness_falls_std: Shortest(r.robustness_falls.std),
+                absorbed_learned: r.absorbed_vs_no_learning.0,
+                absorbed_no_learning: r.absorbed_vs_no_learning.1,
+                runs_timed: r.run_time_s.n,
+                run_time_s_mean: Shortest(r.run_time_s.mean),
+                run_time_s_std: Shortest(r.run_time_s.std),
             })
             .collect()
     }
@@ -599,7 +615,7 @@ impl Merged {
     /// Writes `ablation.md` and `ablation.csv` into `dir` (atomically).
     pub fn write(&self, dir: &Path) -> Result<(), SweepError> {
         write_atomic(&dir.join(TABLE_FILES[0]), self.to_markdown().as_bytes())?;
-        write_csv(&dir.join(TABLE_FILES[1]), &CSV_HEADER, &self.csv_rows())?;
+        write_rows(&dir.join(TABLE_FILES[1]), &self.csv_rows())?;
         Ok(())
     }
 }
@@ -786,6 +802,7 @@ mod tests {
         assert!((s.std - 2f64.sqrt()).abs() < 1e-15);
         assert_eq!(s.markdown(), "2.00 ± 1.41");
         assert_eq!(Stat::of(&[]).markdown(), "-");
-        assert_eq!(Stat::csv(f64::NAN), "");
+        assert_eq!(Shortest(f64::NAN).to_string(), "");
+        assert_eq!(Shortest(0.25).to_string(), "0.25");
     }
 }

@@ -15,7 +15,7 @@ use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, ModelLearned};
 use crate::report::ReportError;
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
-use crate::report::write_csv;
+use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -143,28 +143,18 @@ impl TrackingResult {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         self.runs.write_steps(&dir.join("tracking_steps.csv"))?;
         let mut rows = Vec::new();
-        for (name, st) in [("model", &self.model), ("learned", &self.learned)] {
+        for (controller, st) in [("model", &self.model), ("learned", &self.learned)] {
             for (k, t) in st.times().into_iter().enumerate() {
-                rows.push(vec![
-                    name.to_string(),
-                    format!("{t:.3}"),
-                    format!("{:.6}", st.mean[k]),
-                    format!("{:.6}", st.std[k]),
-                    st.count[k].to_string(),
-                ]);
+                rows.push(AlignedRow {
+                    controller,
+                    time_since_change_s: Fixed(t),
+                    mean_f_e_m: Fixed(st.mean[k]),
+                    std_f_e_m: Fixed(st.std[k]),
+                    steps: st.count[k],
+                });
             }
         }
-        write_csv(
-            &dir.join("tracking_aligned.csv"),
-            &[
-                "controller",
-                "time_since_change_s",
-                "mean_f_e_m",
-                "std_f_e_m",
-                "steps",
-            ],
-            &rows,
-        )?;
+        write_rows(&dir.join("tracking_aligned.csv"), &rows)?;
         // Figure: bins with at least two steps of the controller.
         let (mt, model_mean, model_std) = self.model.populated(2);
         let (lt, learned_mean, learned_std) = self.learned.populated(2);
@@ -285,4 +275,15 @@ impl super::experiment::Experiment for Tracking {
             bin_s: p.bin_s,
         })
     }
+}
+
+/// A row of `tracking_aligned.csv`: one controller's step error in one bin after a reference
+/// change.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct AlignedRow<'a> {
+    controller: &'a str,
+    time_since_change_s: Fixed<3>,
+    mean_f_e_m: Fixed<6>,
+    std_f_e_m: Fixed<6>,
+    steps: usize,
 }

@@ -9,6 +9,7 @@
 
 use super::schedule::{Push, ReferenceSchedule};
 use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
+use crate::report::Fixed;
 use crate::sim::{Fall, GroundTruth, Humanoid, SimConfig, SimError};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -154,37 +155,50 @@ impl StepRecord {
         self.f_hat - self.f_r
     }
 
-    /// Column names of [`StepRecord::csv_row`].
-    pub const CSV_HEADER: [&'static str; 10] = [
-        "controller",
-        "time_s",
-        "f_r_m",
-        "f_hat_m",
-        "f_e_m",
-        "theta_e_rad",
-        "theta_e_dot_rad_s",
-        "learned_offset_m",
-        "learning_gain",
-        "learning_response",
-    ];
-
-    /// The step as a CSV row whose first column names the controller.
-    pub fn csv_row(&self, controller: &str) -> Vec<String> {
-        vec![
-            controller.to_string(),
-            format!("{:.4}", self.time),
-            format!("{:.4}", self.f_r),
-            format!("{:.5}", self.f_hat),
-            format!("{:.5}", self.f_e()),
-            format!("{:.5}", self.theta_e),
-            format!("{:.5}", self.theta_e_dot),
-            format!("{:.5}", self.learned_offset),
-            self.learning_gain
-                .map_or(String::new(), |g| format!("{g:.5}")),
-            self.learning_response
-                .map_or(String::new(), |r| format!("{r:.5}")),
-        ]
+    /// The step as the cells of a steps table (after its label column).
+    pub fn cells(&self) -> StepCells {
+        StepCells {
+            time_s: Fixed(self.time),
+            f_r_m: Fixed(self.f_r),
+            f_hat_m: Fixed(self.f_hat),
+            f_e_m: Fixed(self.f_e()),
+            theta_e_rad: Fixed(self.theta_e),
+            theta_e_dot_rad_s: Fixed(self.theta_e_dot),
+            learned_offset_m: Fixed(self.learned_offset),
+            learning_gain: self.learning_gain.map(Fixed),
+            learning_response: self.learning_response.map(Fixed),
+        }
     }
+}
+
+/// A [`StepRecord`] as CSV cells: the field names are the column names.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct StepCells {
+    /// Touch-down time (s).
+    pub time_s: Fixed<4>,
+    /// Reference step F_R (m).
+    pub f_r_m: Fixed<4>,
+    /// Measured step F_hat (m).
+    pub f_hat_m: Fixed<5>,
+    /// Step error F_E (m).
+    pub f_e_m: Fixed<5>,
+    /// theta_E (rad).
+    pub theta_e_rad: Fixed<5>,
+    /// theta_E_dot (rad/s).
+    pub theta_e_dot_rad_s: Fixed<5>,
+    /// dF (m).
+    pub learned_offset_m: Fixed<5>,
+    /// The learning gain; empty without a learner.
+    pub learning_gain: Option<Fixed<5>>,
+    /// The approximator's response r; empty without a learner.
+    pub learning_response: Option<Fixed<5>>,
+}
+
+/// The label column of a steps table: which controller took the step.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ControllerCell<'a> {
+    /// `model`, `learned`, `open_loop`, ...
+    pub controller: &'a str,
 }
 
 /// A delivered push and whether the robot absorbed it.

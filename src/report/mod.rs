@@ -10,5 +10,5 @@ pub mod figures;
 pub mod html;
 
 pub use atomic::write_atomic;
-pub use csv_file::write_csv;
+pub use csv_file::{Fixed, Shortest, write_rows};
 pub use error::ReportError;
