@@ -38,6 +38,45 @@ impl Force {
     }
 }
 
+/// steplearn patch: `lu.solve_mut(b)` for one right-hand side, with the same floating-point
+/// operations in the same order as nalgebra's (permutation, unit lower triangle, upper
+/// triangle) but without its per-column view and axpy overhead.
+pub(crate) fn lu_solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
+    lu: &LU<Real, Dyn, Dyn>,
+    b: &mut na::Matrix<Real, R, na::U1, S>,
+) -> bool {
+    let m = lu.lu_internal();
+    let n = m.nrows();
+    assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
+    assert!(m.is_square(), "LU solve: unable to solve a non-square system.");
+    lu.p().permute_rows(b);
+    let a = m.as_slice();
+    // `solve_lower_triangular_with_diag_mut(b, 1.0)`: `coeff = b[i] / 1`, `b[k] += -coeff L[k, i]`.
+    for i in 0..n.saturating_sub(1) {
+        let coeff = b[i];
+        let col = &a[i * n..(i + 1) * n];
+        for k in i + 1..n {
+            let y = &mut b[k];
+            *y = -coeff * col[k] + *y;
+        }
+    }
+    // `solve_upper_triangular_mut`.
+    for i in (0..n).rev() {
+        let diag = a[i * n + i];
+        if diag == 0.0 {
+            return false;
+        }
+        let coeff = b[i] / diag;
+        b[i] = coeff;
+        let col = &a[i * n..i * n + i];
+        for (k, l) in col.iter().enumerate() {
+            let y = &mut b[k];
+            *y = -coeff * *l + *y;
+        }
+    }
+    true
+}
+
 /// steplearn patch: the generalized-coordinate indices of the joints from the root to link `i`.
 fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     out.clear();
@@ -690,7 +729,7 @@ impl Multibody {
 
         self.augmented_mass_indices
             .with_rearranged_rows_mut(&mut self.accelerations, |accs| {
-                self.acc_inv_augmented_mass.solve_mut(accs);
+                lu_solve_mut(&self.acc_inv_augmented_mass, accs);
             });
 
         if check_implicit_coriolis_divergence {
@@ -753,7 +792,7 @@ impl Multibody {
                 self.augmented_mass_indices.with_rearranged_rows_mut(
                     &mut self.accelerations,
                     |accs| {
-                        self.inv_augmented_mass.solve_mut(accs);
+                        lu_solve_mut(&self.inv_augmented_mass, accs);
                     },
                 );
 
@@ -1701,7 +1740,7 @@ impl Multibody {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
             self.augmented_mass_indices
                 .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
-                    self.inv_augmented_mass.solve_mut(out_invm_j);
+                    lu_solve_mut(&self.inv_augmented_mass, out_invm_j);
                 });
         }
 
@@ -1774,7 +1813,7 @@ impl Multibody {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
             self.augmented_mass_indices
                 .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
-                    self.inv_augmented_mass.solve_mut(out_invm_j);
+                    lu_solve_mut(&self.inv_augmented_mass, out_invm_j);
                 });
         }
 
