@@ -77,6 +77,25 @@ pub(crate) fn lu_solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
     true
 }
 
+/// steplearn patch: `y = alpha a b + beta y` on the columns `cols` only, as nalgebra's `gemm`
+/// computes each column of a product with three rows (one `gemv` per column).
+#[cfg(feature = "dim3")]
+fn gemm_cols<SY, SB>(
+    y: &mut na::Matrix<Real, na::U3, Dyn, SY>,
+    alpha: Real,
+    a: &na::Matrix3<Real>,
+    b: &na::Matrix<Real, na::U3, Dyn, SB>,
+    beta: Real,
+    cols: &[usize],
+) where
+    SY: StorageMut<Real, na::U3, Dyn>,
+    SB: na::Storage<Real, na::U3, Dyn>,
+{
+    for &j in cols {
+        y.column_mut(j).gemv(alpha, a, &b.column(j), beta);
+    }
+}
+
 /// steplearn patch: the generalized-coordinate indices of the joints from the root to link `i`.
 fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     out.clear();
@@ -1007,28 +1026,37 @@ impl Multibody {
 
                 // [c1 - c0].gcross() * (JDot + JDot/u * qdot)"
                 let shift_cross_tr = vect_to_na(link.shift02).gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &shift_cross_tr, parent_coriolis_w, 1.0);
+                gemm_cols(coriolis_v, 1.0, &shift_cross_tr, parent_coriolis_w, 1.0, &self.link_dofs);
 
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
                 let dvel_cross = vect_to_na(
                     rb.vels.angvel.gcross(link.shift02) + 2.0 * link.joint_velocity.linvel,
                 )
                 .gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &dvel_cross, &parent_j_w, 1.0);
+                gemm_cols(coriolis_v, 1.0, &dvel_cross, &parent_j_w, 1.0, &self.link_dofs);
 
                 // JDot/u * qdot
-                coriolis_v.gemm(
+                gemm_cols(
+                    coriolis_v,
                     1.0,
                     &vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr(),
                     &parent_j_w,
                     1.0,
+                    &self.link_dofs,
                 );
-                coriolis_v.gemm(1.0, &(parent_w * shift_cross_tr), &parent_j_w, 1.0);
+                gemm_cols(
+                    coriolis_v,
+                    1.0,
+                    &(parent_w * shift_cross_tr),
+                    &parent_j_w,
+                    1.0,
+                    &self.link_dofs,
+                );
 
                 #[cfg(feature = "dim3")]
                 {
                     let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
-                    coriolis_w.gemm(-1.0, &vel_wrt_joint_w, &parent_j_w, 1.0);
+                    gemm_cols(coriolis_w, -1.0, &vel_wrt_joint_w, &parent_j_w, 1.0, &self.link_dofs);
                 }
 
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
@@ -1064,18 +1092,20 @@ impl Multibody {
             {
                 // [c3 - c2].gcross() * (JDot + JDot/u * qdot)
                 let shift_cross_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &shift_cross_tr, coriolis_w, 1.0);
+                gemm_cols(coriolis_v, 1.0, &shift_cross_tr, coriolis_w, 1.0, &self.link_dofs);
 
                 // JDot
                 let dvel_cross = vect_to_na(rb.vels.angvel.gcross(link.shift23)).gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &dvel_cross, &rb_j_w, 1.0);
+                gemm_cols(coriolis_v, 1.0, &dvel_cross, &rb_j_w, 1.0, &self.link_dofs);
 
                 // JDot/u * qdot
-                coriolis_v.gemm(
+                gemm_cols(
+                    coriolis_v,
                     1.0,
                     &(SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr),
                     &rb_j_w,
                     1.0,
+                    &self.link_dofs,
                 );
             }
 
@@ -1086,12 +1116,14 @@ impl Multibody {
              * Meld with the mass matrix.
              */
             {
+                // steplearn patch: only the link's dofs' columns (the only ones read below).
                 let mut i_coriolis_dt_v = self.i_coriolis_dt.fixed_rows_mut::<DIM>(0);
-                i_coriolis_dt_v.copy_from(coriolis_v);
                 let rb_mass_dt = vect_to_na(rb_mass * dt);
-                i_coriolis_dt_v
-                    .column_iter_mut()
-                    .for_each(|mut c| c.component_mul_assign(&rb_mass_dt));
+                for &j in &self.link_dofs {
+                    let mut c = i_coriolis_dt_v.column_mut(j);
+                    c.copy_from(&coriolis_v.column(j));
+                    c.component_mul_assign(&rb_mass_dt);
+                }
             }
 
             #[cfg(feature = "dim2")]
@@ -1103,7 +1135,14 @@ impl Multibody {
             #[cfg(feature = "dim3")]
             {
                 let mut i_coriolis_dt_w = self.i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
-                i_coriolis_dt_w.gemm(dt, &mat_to_na(rb_inertia), coriolis_w, 0.0);
+                gemm_cols(
+                    &mut i_coriolis_dt_w,
+                    dt,
+                    &mat_to_na(rb_inertia),
+                    coriolis_w,
+                    0.0,
+                    &self.link_dofs,
+                );
             }
 
             // steplearn patch: `acc_augmented_mass += rb_j^T i_coriolis_dt` on the link's dofs
