@@ -80,16 +80,18 @@ pub(crate) fn lu_solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
 /// steplearn patch: `y = alpha a b + beta y` on the columns `cols` only, as nalgebra's `gemm`
 /// computes each column of a product with three rows (one `gemv` per column).
 #[cfg(feature = "dim3")]
-fn gemm_cols<SY, SB>(
-    y: &mut na::Matrix<Real, na::U3, Dyn, SY>,
+fn gemm_cols<RY: na::Dim, RB: na::Dim, SY, SB>(
+    y: &mut na::Matrix<Real, RY, Dyn, SY>,
     alpha: Real,
     a: &na::Matrix3<Real>,
-    b: &na::Matrix<Real, na::U3, Dyn, SB>,
+    b: &na::Matrix<Real, RB, Dyn, SB>,
     beta: Real,
     cols: &[usize],
 ) where
-    SY: StorageMut<Real, na::U3, Dyn>,
-    SB: na::Storage<Real, na::U3, Dyn>,
+    SY: StorageMut<Real, RY, Dyn>,
+    SB: na::Storage<Real, RB, Dyn>,
+    na::base::constraint::ShapeConstraint: na::base::constraint::DimEq<RY, na::U3>
+        + na::base::constraint::AreMultipliable<na::U3, na::U3, RB, na::U1>,
 {
     for &j in cols {
         y.column_mut(j).gemv(alpha, a, &b.column(j), beta);
@@ -862,6 +864,9 @@ impl Multibody {
 
     fn update_body_jacobians(&mut self) {
         for i in 0..self.links.len() {
+            // steplearn patch: the products below only on the columns where the Jacobians can be
+            // non-zero (the dofs of the joints from the root to the link).
+            fill_link_dofs(&self.links, i, &mut self.link_dofs);
             let link = &self.links[i];
 
             if self.body_jacobians[i].ncols() != self.ndofs {
@@ -884,7 +889,14 @@ impl Multibody {
                     let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
 
                     let shift_tr = vect_to_na(link.shift02).gcross_matrix_tr();
-                    link_j_v.gemm(1.0, &shift_tr, &parent_j_w, 1.0);
+                    gemm_cols(
+                        &mut link_j_v,
+                        1.0,
+                        &shift_tr,
+                        &parent_j_w,
+                        1.0,
+                        &self.link_dofs,
+                    );
                 }
             } else {
                 self.body_jacobians[i].fill(0.0);
@@ -906,7 +918,14 @@ impl Multibody {
                 let (mut link_j_v, link_j_w) =
                     link_j.rows_range_pair_mut(0..DIM, DIM..DIM + ANG_DIM);
                 let shift_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                link_j_v.gemm(1.0, &shift_tr, &link_j_w, 1.0);
+                gemm_cols(
+                    &mut link_j_v,
+                    1.0,
+                    &shift_tr,
+                    &link_j_w,
+                    1.0,
+                    &self.link_dofs,
+                );
             }
         }
     }
