@@ -51,13 +51,35 @@ pub(crate) fn lu_solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
     assert!(m.is_square(), "LU solve: unable to solve a non-square system.");
     lu.p().permute_rows(b);
     let a = m.as_slice();
+    // Work on a contiguous copy (exact) so the loops below are plain slice axpys.
+    const MAX_STACK: usize = 64;
+    let mut stack = [0.0; MAX_STACK];
+    let mut heap = Vec::new();
+    let x: &mut [Real] = if n <= MAX_STACK {
+        &mut stack[..n]
+    } else {
+        heap.resize(n, 0.0);
+        &mut heap
+    };
+    for (k, xk) in x.iter_mut().enumerate() {
+        *xk = b[k];
+    }
+    let ok = lu_solve_slice(a, x);
+    for (k, xk) in x.iter().enumerate() {
+        b[k] = *xk;
+    }
+    ok
+}
+
+/// The triangular solves of [`lu_solve_mut`] on `x`, the LU factors `a` (column-major, n x n).
+fn lu_solve_slice(a: &[Real], x: &mut [Real]) -> bool {
+    let n = x.len();
     // `solve_lower_triangular_with_diag_mut(b, 1.0)`: `coeff = b[i] / 1`, `b[k] += -coeff L[k, i]`.
     for i in 0..n.saturating_sub(1) {
-        let coeff = b[i];
-        let col = &a[i * n..(i + 1) * n];
-        for k in i + 1..n {
-            let y = &mut b[k];
-            *y = -coeff * col[k] + *y;
+        let coeff = x[i];
+        let col = &a[i * n + i + 1..(i + 1) * n];
+        for (y, l) in x[i + 1..].iter_mut().zip(col) {
+            *y = -coeff * *l + *y;
         }
     }
     // `solve_upper_triangular_mut`.
@@ -66,11 +88,10 @@ pub(crate) fn lu_solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
         if diag == 0.0 {
             return false;
         }
-        let coeff = b[i] / diag;
-        b[i] = coeff;
+        let coeff = x[i] / diag;
+        x[i] = coeff;
         let col = &a[i * n..i * n + i];
-        for (k, l) in col.iter().enumerate() {
-            let y = &mut b[k];
+        for (y, l) in x[..i].iter_mut().zip(col) {
             *y = -coeff * *l + *y;
         }
     }
