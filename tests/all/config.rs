@@ -273,6 +273,27 @@ fn the_shipped_configs_pass_the_check() {
         },
         default
     );
+
+    // The compensated mismatch: the default robot with the step range cut to 85%.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/mismatch_compensated.toml"
+    );
+    let o = steplearn(&["config", "--check", path]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let config = ConfigFile::load(Path::new(path)).unwrap();
+    let mismatch = ConfigFile::load(Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/mismatch.toml"
+    )))
+    .unwrap();
+    let motion = config.settings.walker.motion;
+    let scale = mismatch.settings.walker.motion.swing_step_scale;
+    let range = steplearn::control::motion::MotionConfig::default().step_x_range;
+    for k in 0..2 {
+        assert!((motion.step_x_range[k] - scale * range[k]).abs() < 1e-12);
+    }
+    assert_eq!(motion.swing_step_scale, 1.0);
 }
 
 #[test]
