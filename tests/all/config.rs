@@ -290,8 +290,8 @@ fn the_shipped_configs_pass_the_check() {
     let motion = config.settings.walker.motion;
     let scale = mismatch.settings.walker.motion.swing_step_scale;
     let range = steplearn::control::motion::MotionConfig::default().step_x_range;
-    for k in 0..2 {
-        assert!((motion.step_x_range[k] - scale * range[k]).abs() < 1e-12);
+    for (cut, full) in motion.step_x_range.iter().zip(range) {
+        assert!((cut - scale * full).abs() < 1e-12);
     }
     assert_eq!(motion.swing_step_scale, 1.0);
 }
