@@ -45,9 +45,12 @@
 //!
 //! A fourth, the **trust region** (`trust_region`, default 2), applies the offset only near
 //! the inputs the learner was trained at, so that what it learned stepping or walking does
-//! not reach states it never learned from (the catch step after a push).
+//! not reach states it never learned from (the catch step after a push). By default the
+//! learner also learns from a step that ends in a fall (`learn_from_falls`), as the paper's
+//! robot learned from its first falls.
 //!
-//! [`LearnerConfig::literal`] is eq. (6) as written, without the four.
+//! [`LearnerConfig::literal`] is eq. (6) as written, without the four and without learning
+//! from falls.
 //!
 
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
@@ -294,8 +297,8 @@ impl Default for LearnerConfig {
 
 impl LearnerConfig {
     /// Eq. (6) as written: no gain guard, no anti-windup, no prior (the approximator starts as
-    /// built), no trust region, no learning from falls, eta = 1. On the humanoid this learner is unstable (see the
-    /// module docs).
+    /// built), no trust region, no learning from falls, eta = 1. On the humanoid this learner
+    /// is unstable (see the module docs).
     pub fn literal() -> Self {
         LearnerConfig {
             max_gain: None,
