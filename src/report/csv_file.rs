@@ -24,11 +24,7 @@ pub struct Shortest(pub f64);
 
 impl Serialize for Shortest {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        if self.0.is_finite() {
-            s.collect_str(&self.0)
-        } else {
-            s.serialize_none()
-        }
+        s.collect_str(self)
     }
 }
 
