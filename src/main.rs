@@ -15,7 +15,7 @@ use steplearn::experiments::reproduce::{self, Claims};
 use steplearn::experiments::run::{Protocols, run_spec};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::sweep::{
-    RunOutcome, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
+    RunOutcome, RunSpec, RunStatus, SUMMARY_FILE, Shard, SweepGrid, SweepOptions, merge, run_sweep,
 };
 use steplearn::rules::{PendulumCart, RuleKind};
 use strum::VariantArray;
@@ -316,6 +316,18 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Merge { dir } => {
             let merged = merge(&dir).map_err(|e| e.to_string())?;
+            for p in &merged.problems {
+                eprintln!("skipped {p}");
+            }
+            if merged.runs_read == 0 {
+                // Nothing to tabulate: an empty table would overwrite a real one.
+                return Err(format!(
+                    "no finished runs to merge in {} (a run is a directory with {SUMMARY_FILE}; {} unfinished, {} unreadable)",
+                    dir.display(),
+                    merged.unfinished.len(),
+                    merged.problems.len()
+                ));
+            }
             merged.write(&dir).map_err(|e| e.to_string())?;
             write_index(
                 &dir,
@@ -325,9 +337,6 @@ fn run(cli: Cli) -> Result<(), String> {
                 None,
             )
             .map_err(|e| e.to_string())?;
-            for p in &merged.problems {
-                eprintln!("skipped: {p:?}");
-            }
             println!(
                 "{} runs merged into {}",
                 merged.runs_read,

@@ -410,6 +410,18 @@ pub struct MergeProblem {
     pub message: String,
 }
 
+impl std::fmt::Display for MergeProblem {
+    /// `path: message`, without repeating a path the message already starts with.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let path = self.path.display().to_string();
+        if self.message.starts_with(&path) {
+            f.write_str(&self.message)
+        } else {
+            write!(f, "{path}: {}", self.message)
+        }
+    }
+}
+
 /// Mean, standard deviation (n - 1) and count of some values.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Stat {

@@ -187,6 +187,31 @@ fn bad_arguments_are_messages_and_failures() {
     assert!(!dir.path().join("out").join("summary.json").exists());
 }
 
+/// `merge` on a directory without finished runs fails and writes no (empty) table; a malformed
+/// run is named in plain words.
+#[test]
+fn merge_without_finished_runs_fails_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = dir.path().join("stability__lwpr__pendulum-cart__s0");
+    std::fs::create_dir_all(&run).unwrap();
+    std::fs::write(run.join("summary.json"), "{bad").unwrap();
+    std::fs::create_dir_all(dir.path().join("stability__lwpr__pendulum-cart__s1")).unwrap();
+    let o = steplearn(&["merge", dir.path().to_str().unwrap()]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("no finished runs to merge") && err.contains("1 unfinished, 1 unreadable"),
+        "{err}"
+    );
+    assert!(
+        err.contains("skipped ") && err.contains("summary.json: malformed"),
+        "{err}"
+    );
+    assert!(!err.contains("MergeProblem"), "{err}");
+    assert!(!dir.path().join("ablation.md").exists());
+    assert!(!dir.path().join("index.html").exists());
+}
+
 /// The main job, shrunk by a config file: every experiment runs once, the claims report is
 /// written, and a second call reuses the finished runs and writes the same report.
 #[test]
