@@ -69,9 +69,10 @@ enum Command {
         /// Push impulse range in Ns, "A,B" (disturbance and robustness use one impulse: A,A).
         #[arg(long, value_parser = parse_range)]
         impulse_range: Option<(f64, f64)>,
-        /// Direction of the pushes.
-        #[arg(long, value_enum, default_value = "forward")]
-        push_direction: Direction,
+        /// Direction of the pushes (default: the protocol's, forward unless a config file
+        /// sets `direction`).
+        #[arg(long, value_enum)]
+        push_direction: Option<Direction>,
         /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
         #[arg(long)]
         config: Option<PathBuf>,
@@ -247,7 +248,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 experiment,
                 pushes,
                 impulse_range,
-                push_direction.unit(),
+                push_direction.map(Direction::unit),
             )?;
             let spec = RunSpec {
                 experiment,
@@ -390,7 +391,7 @@ fn apply_push_options(
     experiment: ExperimentKind,
     pushes: Option<usize>,
     impulse_range: Option<(f64, f64)>,
-    direction: [f64; 3],
+    direction: Option<[f64; 3]>,
 ) -> Result<(), String> {
     if pushes == Some(0) {
         return Err("--pushes must be at least 1".into());

@@ -45,8 +45,8 @@ pub struct PushOptions {
     pub pushes: Option<usize>,
     /// Impulse range (Ns), if given.
     pub impulse_range: Option<(f64, f64)>,
-    /// Unit push direction.
-    pub direction: [f64; 3],
+    /// Unit push direction, if given (otherwise the protocol's, e.g. from a config file).
+    pub direction: Option<[f64; 3]>,
 }
 
 impl PushOptions {
@@ -73,7 +73,7 @@ impl PushOptions {
         let single = self.single_impulse(kind)?;
         *pushes = self.pushes.unwrap_or(*pushes);
         *impulse = single.unwrap_or(*impulse);
-        *direction = self.direction;
+        *direction = self.direction.unwrap_or(*direction);
         Ok(())
     }
 }

@@ -279,7 +279,7 @@ impl super::experiment::Experiment for Stability {
         let p = &mut protocols.stability;
         p.pushes = options.pushes.unwrap_or(p.pushes);
         p.impulse = options.impulse_range.unwrap_or(p.impulse);
-        p.direction = options.direction;
+        p.direction = options.direction.unwrap_or(p.direction);
         Ok(())
     }
 

@@ -255,7 +255,10 @@ impl super::experiment::Experiment for Tracking {
         _protocols: &mut super::run::Protocols,
         options: &super::experiment::PushOptions,
     ) -> Result<(), String> {
-        if options.pushes.is_some() || options.impulse_range.is_some() {
+        if options.pushes.is_some()
+            || options.impulse_range.is_some()
+            || options.direction.is_some()
+        {
             return Err("the tracking experiment has no pushes".into());
         }
         Ok(())

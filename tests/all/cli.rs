@@ -187,6 +187,56 @@ fn bad_arguments_are_messages_and_failures() {
     assert!(!dir.path().join("out").join("summary.json").exists());
 }
 
+/// A config file's push direction holds unless `--push-direction` is given (the flag's
+/// absence is not "forward").
+#[test]
+fn push_direction_comes_from_the_config_unless_the_flag_is_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("left.toml");
+    std::fs::write(
+        &config,
+        "[protocols.stability]\ndirection = [0.0, 1.0, 0.0]\n",
+    )
+    .unwrap();
+    let config = config.to_str().unwrap();
+    for (flag, expected) in [(None, "left push"), (Some("backward"), "backward push")] {
+        let out = dir.path().join(expected.replace(' ', "_"));
+        let out = out.to_str().unwrap();
+        let mut args = vec![
+            "experiment",
+            "stability",
+            "--pushes",
+            "1",
+            "--config",
+            config,
+            "--out",
+            out,
+        ];
+        if let Some(f) = flag {
+            args.extend(["--push-direction", f]);
+        }
+        let o = steplearn(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let svg =
+            std::fs::read_to_string(dir.path().join(out).join("fall_probability.svg")).unwrap();
+        assert!(
+            svg.contains(expected),
+            "{flag:?}: no {expected:?} in the figure's title"
+        );
+    }
+    // Tracking has no pushes: a direction is an error there, as a push count is.
+    let o = steplearn(&[
+        "experiment",
+        "tracking",
+        "--push-direction",
+        "left",
+        "--out",
+        "x",
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("has no pushes"));
+}
+
 /// `merge` on a directory without finished runs fails and writes no (empty) table; a malformed
 /// run is named in plain words.
 #[test]
