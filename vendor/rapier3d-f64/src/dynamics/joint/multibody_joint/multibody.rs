@@ -133,21 +133,69 @@ fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     }
 }
 
-/// steplearn patch: `out += rhs^T mid rhs` on the rows and columns `dofs` only, with the same
-/// operations as nalgebra's `quadform` (`alpha = beta = 1`) for those entries.
-fn sparse_quadform(
-    out: &mut DMatrix<Real>,
+/// steplearn patch: nalgebra's `dot` on two `SPATIAL_DIM`-vectors (fewer than 8 rows, so its
+/// unrolled accumulators stay zero): `res = 0`, then `res += a[k] b[k]` for each row in order.
+#[inline(always)]
+fn dot_spatial(a: &[Real], b: &[Real; SPATIAL_DIM]) -> Real {
+    let mut res = 0.0;
+    for k in 0..SPATIAL_DIM {
+        res += a[k] * b[k];
+    }
+    res
+}
+
+/// steplearn patch: nalgebra's `work.gemv(1.0, mid, x, 0.0)`: `work = (1 mid[:, 0]) x[0]`, then
+/// `work = (1 mid[:, c]) x[c] + 1 work` for each further column (`1 v` is exactly `v`).
+#[inline(always)]
+fn gemv_spatial(mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>, x: &[Real]) -> [Real; SPATIAL_DIM] {
+    let m = mid.as_slice();
+    let mut work = [0.0; SPATIAL_DIM];
+    for r in 0..SPATIAL_DIM {
+        work[r] = m[r] * x[0];
+    }
+    for c in 1..SPATIAL_DIM {
+        for r in 0..SPATIAL_DIM {
+            work[r] = m[c * SPATIAL_DIM + r] * x[c] + work[r];
+        }
+    }
+    work
+}
+
+/// steplearn patch: on the rows and columns `dofs` only (the link's body Jacobian `rhs` and
+/// `i_coriolis_dt` are zero in every other column), and on plain slices:
+/// `mass += rhs^T mid_wo_gyro rhs` and `acc_mass += rhs^T mid rhs`, each as nalgebra's
+/// `quadform` (`alpha = beta = 1`) computes those entries, then `acc_mass += rhs^T i_coriolis_dt`
+/// as nalgebra's `gemm_tr` does. Each entry of `acc_mass` gets its two terms in the same order as
+/// the three separate passes did (quadform first), so the results are bit-identical.
+fn link_mass_quadforms(
+    mass: &mut DMatrix<Real>,
+    acc_mass: &mut DMatrix<Real>,
+    mid_wo_gyro: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
     mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
     rhs: &Jacobian<Real>,
+    i_coriolis_dt: &Jacobian<Real>,
     dofs: &[usize],
 ) {
-    let mut work = SVector::<Real, SPATIAL_DIM>::zeros();
+    let n = mass.nrows();
+    let mass = mass.as_mut_slice();
+    let acc_mass = acc_mass.as_mut_slice();
+    let rhs = rhs.as_slice();
+    let icd = i_coriolis_dt.as_slice();
     for &j in dofs {
-        work.gemv(1.0, mid, &rhs.column(j), 0.0);
+        let col_j = &rhs[j * SPATIAL_DIM..(j + 1) * SPATIAL_DIM];
+        let work_wo = gemv_spatial(mid_wo_gyro, col_j);
+        let work = gemv_spatial(mid, col_j);
+        let mut icd_j = [0.0; SPATIAL_DIM];
+        icd_j.copy_from_slice(&icd[j * SPATIAL_DIM..(j + 1) * SPATIAL_DIM]);
+        let mass_j = &mut mass[j * n..(j + 1) * n];
+        let acc_j = &mut acc_mass[j * n..(j + 1) * n];
         for &a in dofs {
-            let v = rhs.column(a).dot(&work);
-            let o = &mut out[(a, j)];
-            *o = v + *o;
+            let col_a = &rhs[a * SPATIAL_DIM..(a + 1) * SPATIAL_DIM];
+            let v = dot_spatial(col_a, &work_wo);
+            mass_j[a] = v + mass_j[a];
+            let v = dot_spatial(col_a, &work);
+            let v2 = dot_spatial(col_a, &icd_j);
+            acc_j[a] = v2 + (v + acc_j[a]);
         }
     }
 }
@@ -983,7 +1031,6 @@ impl Multibody {
             let rb = &bodies[link.rigid_body];
             let rb_mass = rb.mprops.effective_mass();
             let rb_inertia = rb.mprops.effective_angular_inertia().into_matrix();
-            let body_jacobian = &self.body_jacobians[i];
 
             // NOTE: the mass matrix index reordering operates on the assumption that the assembly
             //       ids are traversed in order. This assert is here to ensure the assumption always
@@ -1025,20 +1072,9 @@ impl Multibody {
             // steplearn patch: the body Jacobian is zero outside the dofs of the link's
             // ancestors' joints, so only those rows and columns of the quadratic forms are
             // computed (the same floating-point operations as nalgebra's `quadform` on them;
-            // the skipped entries would only add zeros).
+            // the skipped entries would only add zeros). They are added below, with the
+            // Coriolis term, by `link_mass_quadforms` (these matrices are not read in between).
             fill_link_dofs(&self.links, i, &mut self.link_dofs);
-            sparse_quadform(
-                &mut self.augmented_mass,
-                &rb_mass_matrix_wo_gyro,
-                body_jacobian,
-                &self.link_dofs,
-            );
-            sparse_quadform(
-                &mut self.acc_augmented_mass,
-                &rb_mass_matrix,
-                body_jacobian,
-                &self.link_dofs,
-            );
 
             /*
              *
@@ -1186,15 +1222,17 @@ impl Multibody {
             }
 
             // steplearn patch: `acc_augmented_mass += rb_j^T i_coriolis_dt` on the link's dofs
-            // only (both factors are zero in every other column), as nalgebra's `gemm_tr` does it.
-            for &j in &self.link_dofs {
-                let b = self.i_coriolis_dt.column(j);
-                for &a in &self.link_dofs {
-                    let v = rb_j.column(a).dot(&b);
-                    let out = &mut self.acc_augmented_mass[(a, j)];
-                    *out = v + *out;
-                }
-            }
+            // only (both factors are zero in every other column), as nalgebra's `gemm_tr` does it,
+            // fused with the two quadratic forms above (see `link_mass_quadforms`).
+            link_mass_quadforms(
+                &mut self.augmented_mass,
+                &mut self.acc_augmented_mass,
+                &rb_mass_matrix_wo_gyro,
+                &rb_mass_matrix,
+                rb_j,
+                &self.i_coriolis_dt,
+                &self.link_dofs,
+            );
         }
 
         /*
