@@ -7,7 +7,8 @@ use crate::dynamics::{
     IntegrationParameters, RigidBodyHandle, RigidBodySet, RigidBodyType, RigidBodyVelocity,
 };
 use crate::math::{
-    ANG_DIM, AngDim, AngVector, DIM, DVector, Dim, Jacobian, Pose, Real, SPATIAL_DIM,
+    ANG_DIM, AngDim, AngVector, DIM, DVector, Dim, Jacobian, MAX_MANIFOLD_POINTS, Pose, Real,
+    SPATIAL_DIM,
     SimdAngVector, Vector,
 };
 use crate::prelude::MultibodyJoint;
@@ -15,7 +16,7 @@ use crate::prelude::MultibodyJoint;
 use crate::utils::mat_to_na;
 use crate::utils::{AngularInertiaOps, CrossProduct, CrossProductMatrix, IndexMut2, vect_to_na};
 use na::{
-    self, DMatrix, DVectorView, DVectorViewMut, Dyn, LU, OMatrix, SMatrix, SVector, StorageMut,
+    self, DMatrix, DVectorView, DVectorViewMut, Dyn, OMatrix, SMatrix, SVector, StorageMut,
 };
 
 #[cfg(doc)]
@@ -38,40 +39,188 @@ impl Force {
     }
 }
 
-/// steplearn patch: `lu.solve_mut(b)` for one right-hand side, with the same floating-point
-/// operations in the same order as nalgebra's (permutation, unit lower triangle, upper
-/// triangle) but without its per-column view and axpy overhead.
-pub(crate) fn lu_solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
-    lu: &LU<Real, Dyn, Dyn>,
-    b: &mut na::Matrix<Real, R, na::U1, S>,
-) -> bool {
-    let m = lu.lu_internal();
-    let n = m.nrows();
-    assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
-    assert!(m.is_square(), "LU solve: unable to solve a non-square system.");
-    lu.p().permute_rows(b);
-    let a = m.as_slice();
-    // Work on a contiguous copy (exact) so the loops below are plain slice axpys.
-    const MAX_STACK: usize = 64;
-    let mut stack = [0.0; MAX_STACK];
-    let mut heap = Vec::new();
-    let x: &mut [Real] = if n <= MAX_STACK {
-        &mut stack[..n]
-    } else {
-        heap.resize(n, 0.0);
-        &mut heap
-    };
-    for (k, xk) in x.iter_mut().enumerate() {
-        *xk = b[k];
-    }
-    let ok = lu_solve_slice(a, x);
-    for (k, xk) in x.iter().enumerate() {
-        b[k] = *xk;
-    }
-    ok
+/// steplearn patch: nalgebra's `LU` (partial pivoting), factorised into buffers that are reused
+/// from one step to the next instead of a matrix allocated (and copied element by element) at
+/// every step. `factor` performs nalgebra's `LU::new` operations in the same order (`icamax`
+/// pivot search, row swaps, `coeffs *= 1 / diag`, then one `axpy(-pivot_row[k], coeffs, 1)` per
+/// column, i.e. `y = (-p) c + y`), so the factors and the permutation are bit-identical.
+#[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
+#[derive(Clone, Debug, Default)]
+pub struct MultibodyLu {
+    /// The LU factors, column-major, `n x n` (nalgebra's `lu_internal`).
+    lu: Vec<Real>,
+    n: usize,
+    /// The row interchanges, in order (nalgebra's `PermutationSequence`).
+    perm: Vec<(usize, usize)>,
 }
 
-/// The triangular solves of [`lu_solve_mut`] on `x`, the LU factors `a` (column-major, n x n).
+impl MultibodyLu {
+    /// Factorises the top-left `dim x dim` block of `m`.
+    fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
+        let n = dim;
+        let ld = m.nrows();
+        let src = m.as_slice();
+        self.n = n;
+        self.perm.clear();
+        self.lu.clear();
+        for c in 0..n {
+            self.lu.extend_from_slice(&src[c * ld..c * ld + n]);
+        }
+        let a = &mut self.lu[..];
+        for i in 0..n {
+            // `icamax` on the rows `i..` of column `i`: the first largest `|.|`.
+            let col = &a[i * n..(i + 1) * n];
+            let mut the_max = col[i].abs();
+            let mut piv = i;
+            for (r, v) in col.iter().enumerate().skip(i + 1) {
+                let val = v.abs();
+                if val > the_max {
+                    the_max = val;
+                    piv = r;
+                }
+            }
+            let diag = a[i * n + piv];
+            if diag == 0.0 {
+                // No non-zero entries on this column.
+                continue;
+            }
+            if piv != i {
+                self.perm.push((i, piv));
+                for c in 0..n {
+                    a.swap(c * n + i, c * n + piv);
+                }
+            }
+            let inv_diag = 1.0 / diag;
+            let (left, right) = a.split_at_mut((i + 1) * n);
+            let coeffs = &mut left[i * n + i + 1..];
+            for c in coeffs.iter_mut() {
+                *c *= inv_diag;
+            }
+            for col_k in right.chunks_exact_mut(n) {
+                let p = col_k[i];
+                for (y, c) in col_k[i + 1..].iter_mut().zip(coeffs.iter()) {
+                    *y = -p * *c + *y;
+                }
+            }
+        }
+    }
+
+    /// The dimension of the factorised matrix.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// `lu.solve_mut(b)` for one right-hand side, with the same floating-point operations in the
+    /// same order as nalgebra's (permutation, unit lower triangle, upper triangle) but without its
+    /// per-column view and axpy overhead. Returns `false` if the matrix is singular.
+    pub fn solve_mut<R: na::Dim, S: StorageMut<Real, R, na::U1>>(
+        &self,
+        b: &mut na::Matrix<Real, R, na::U1, S>,
+    ) -> bool {
+        let n = self.n;
+        assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
+        for &(i, p) in &self.perm {
+            b.swap_rows(i, p);
+        }
+        // Work on a contiguous copy (exact) so the loops below are plain slice axpys.
+        const MAX_STACK: usize = 64;
+        let mut stack = [0.0; MAX_STACK];
+        let mut heap = Vec::new();
+        let x: &mut [Real] = if n <= MAX_STACK {
+            &mut stack[..n]
+        } else {
+            heap.resize(n, 0.0);
+            &mut heap
+        };
+        for (k, xk) in x.iter_mut().enumerate() {
+            *xk = b[k];
+        }
+        let ok = lu_solve_slice(&self.lu, x);
+        for (k, xk) in x.iter().enumerate() {
+            b[k] = *xk;
+        }
+        ok
+    }
+
+    /// steplearn patch: [`Self::solve_mut`] on several right-hand sides at once, each the `n`
+    /// values of `data` from one of `offsets`. Each right-hand side goes through exactly the
+    /// operations of `solve_mut` (in the same order); they are only interleaved (`B` lanes) so
+    /// that the independent solves overlap instead of each waiting on its own division chain.
+    pub(crate) fn solve_many(&self, data: &mut [Real], offsets: &[usize]) {
+        const MAX_LANES: usize = 12;
+        for chunk in offsets.chunks(MAX_LANES) {
+            match chunk.len() {
+                1 => {
+                    let off = chunk[0];
+                    let _ = self.solve_mut(&mut DVectorViewMut::from_slice(
+                        &mut data[off..off + self.n],
+                        self.n,
+                    ));
+                }
+                2..=4 => self.solve_lanes::<4>(data, chunk),
+                5..=8 => self.solve_lanes::<8>(data, chunk),
+                _ => self.solve_lanes::<MAX_LANES>(data, chunk),
+            }
+        }
+    }
+
+    fn solve_lanes<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
+        const MAX_N: usize = 32;
+        let n = self.n;
+        if n > MAX_N {
+            for &off in offsets {
+                let _ = self.solve_mut(&mut DVectorViewMut::from_slice(&mut data[off..off + n], n));
+            }
+            return;
+        }
+        let a = &self.lu[..];
+        // Row `r` of every right-hand side: `x[r][lane]` (unused lanes solve zeros).
+        let mut x = [[0.0; B]; MAX_N];
+        for (lane, &off) in offsets.iter().enumerate() {
+            for (r, xr) in x[..n].iter_mut().enumerate() {
+                xr[lane] = data[off + r];
+            }
+        }
+        for &(i, p) in &self.perm {
+            x.swap(i, p);
+        }
+        // Unit lower triangle, as `lu_solve_slice`.
+        for i in 0..n.saturating_sub(1) {
+            let coeff = x[i];
+            let col = &a[i * n + i + 1..(i + 1) * n];
+            for (xr, l) in x[i + 1..n].iter_mut().zip(col) {
+                for lane in 0..B {
+                    xr[lane] = -coeff[lane] * *l + xr[lane];
+                }
+            }
+        }
+        // Upper triangle, as `lu_solve_slice` (a zero diagonal stops every lane at the same row).
+        for i in (0..n).rev() {
+            let diag = a[i * n + i];
+            if diag == 0.0 {
+                break;
+            }
+            let mut coeff = [0.0; B];
+            for lane in 0..B {
+                coeff[lane] = x[i][lane] / diag;
+            }
+            x[i] = coeff;
+            let col = &a[i * n..i * n + i];
+            for (xr, u) in x[..i].iter_mut().zip(col) {
+                for lane in 0..B {
+                    xr[lane] = -coeff[lane] * *u + xr[lane];
+                }
+            }
+        }
+        for (lane, &off) in offsets.iter().enumerate() {
+            for (r, xr) in x[..n].iter().enumerate() {
+                data[off + r] = xr[lane];
+            }
+        }
+    }
+}
+
+/// The triangular solves of [`MultibodyLu::solve_mut`] on `x`, the LU factors `a` (column-major, n x n).
 fn lu_solve_slice(a: &[Real], x: &mut [Real]) -> bool {
     let n = x.len();
     // `solve_lower_triangular_with_diag_mut(b, 1.0)`: `coeff = b[i] / 1`, `b[k] += -coeff L[k, i]`.
@@ -133,21 +282,69 @@ fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     }
 }
 
-/// steplearn patch: `out += rhs^T mid rhs` on the rows and columns `dofs` only, with the same
-/// operations as nalgebra's `quadform` (`alpha = beta = 1`) for those entries.
-fn sparse_quadform(
-    out: &mut DMatrix<Real>,
+/// steplearn patch: nalgebra's `dot` on two `SPATIAL_DIM`-vectors (fewer than 8 rows, so its
+/// unrolled accumulators stay zero): `res = 0`, then `res += a[k] b[k]` for each row in order.
+#[inline(always)]
+fn dot_spatial(a: &[Real], b: &[Real; SPATIAL_DIM]) -> Real {
+    let mut res = 0.0;
+    for k in 0..SPATIAL_DIM {
+        res += a[k] * b[k];
+    }
+    res
+}
+
+/// steplearn patch: nalgebra's `work.gemv(1.0, mid, x, 0.0)`: `work = (1 mid[:, 0]) x[0]`, then
+/// `work = (1 mid[:, c]) x[c] + 1 work` for each further column (`1 v` is exactly `v`).
+#[inline(always)]
+fn gemv_spatial(mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>, x: &[Real]) -> [Real; SPATIAL_DIM] {
+    let m = mid.as_slice();
+    let mut work = [0.0; SPATIAL_DIM];
+    for r in 0..SPATIAL_DIM {
+        work[r] = m[r] * x[0];
+    }
+    for c in 1..SPATIAL_DIM {
+        for r in 0..SPATIAL_DIM {
+            work[r] = m[c * SPATIAL_DIM + r] * x[c] + work[r];
+        }
+    }
+    work
+}
+
+/// steplearn patch: on the rows and columns `dofs` only (the link's body Jacobian `rhs` and
+/// `i_coriolis_dt` are zero in every other column), and on plain slices:
+/// `mass += rhs^T mid_wo_gyro rhs` and `acc_mass += rhs^T mid rhs`, each as nalgebra's
+/// `quadform` (`alpha = beta = 1`) computes those entries, then `acc_mass += rhs^T i_coriolis_dt`
+/// as nalgebra's `gemm_tr` does. Each entry of `acc_mass` gets its two terms in the same order as
+/// the three separate passes did (quadform first), so the results are bit-identical.
+fn link_mass_quadforms(
+    mass: &mut DMatrix<Real>,
+    acc_mass: &mut DMatrix<Real>,
+    mid_wo_gyro: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
     mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
     rhs: &Jacobian<Real>,
+    i_coriolis_dt: &Jacobian<Real>,
     dofs: &[usize],
 ) {
-    let mut work = SVector::<Real, SPATIAL_DIM>::zeros();
+    let n = mass.nrows();
+    let mass = mass.as_mut_slice();
+    let acc_mass = acc_mass.as_mut_slice();
+    let rhs = rhs.as_slice();
+    let icd = i_coriolis_dt.as_slice();
     for &j in dofs {
-        work.gemv(1.0, mid, &rhs.column(j), 0.0);
+        let col_j = &rhs[j * SPATIAL_DIM..(j + 1) * SPATIAL_DIM];
+        let work_wo = gemv_spatial(mid_wo_gyro, col_j);
+        let work = gemv_spatial(mid, col_j);
+        let mut icd_j = [0.0; SPATIAL_DIM];
+        icd_j.copy_from_slice(&icd[j * SPATIAL_DIM..(j + 1) * SPATIAL_DIM]);
+        let mass_j = &mut mass[j * n..(j + 1) * n];
+        let acc_j = &mut acc_mass[j * n..(j + 1) * n];
         for &a in dofs {
-            let v = rhs.column(a).dot(&work);
-            let o = &mut out[(a, j)];
-            *o = v + *o;
+            let col_a = &rhs[a * SPATIAL_DIM..(a + 1) * SPATIAL_DIM];
+            let v = dot_spatial(col_a, &work_wo);
+            mass_j[a] = v + mass_j[a];
+            let v = dot_spatial(col_a, &work);
+            let v2 = dot_spatial(col_a, &icd_j);
+            acc_j[a] = v2 + (v + acc_j[a]);
         }
     }
 }
@@ -224,13 +421,14 @@ pub struct Multibody {
     //       move dofs from/to a format that matches the augmented mass.
     // TODO: use sparse matrices?
     augmented_mass: DMatrix<Real>,
-    inv_augmented_mass: LU<Real, Dyn, Dyn>,
+    // steplearn patch: `MultibodyLu` (nalgebra's `LU`, in reused buffers).
+    inv_augmented_mass: MultibodyLu,
     // The indexing sequence for moving all kinematics degrees of
     // freedoms to the end of the generalized coordinates vector.
     augmented_mass_indices: IndexSequence,
 
     acc_augmented_mass: DMatrix<Real>,
-    acc_inv_augmented_mass: LU<Real, Dyn, Dyn>,
+    acc_inv_augmented_mass: MultibodyLu,
 
     ndofs: usize,
     pub(crate) root_is_dynamic: bool,
@@ -274,9 +472,9 @@ impl Multibody {
             accelerations: DVector::zeros(0),
             body_jacobians: Vec::new(),
             augmented_mass: DMatrix::zeros(0, 0),
-            inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
+            inv_augmented_mass: MultibodyLu::default(),
             acc_augmented_mass: DMatrix::zeros(0, 0),
-            acc_inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
+            acc_inv_augmented_mass: MultibodyLu::default(),
             augmented_mass_indices: IndexSequence::new(),
             ndofs: 0,
             solver_id: 0,
@@ -481,7 +679,9 @@ impl Multibody {
     }
 
     /// The inverse augmented mass matrix of this multibody.
-    pub fn inv_augmented_mass(&self) -> &LU<Real, Dyn, Dyn> {
+    ///
+    /// steplearn patch: a [`MultibodyLu`] (nalgebra's `LU` factors, in reused buffers).
+    pub fn inv_augmented_mass(&self) -> &MultibodyLu {
         &self.inv_augmented_mass
     }
 
@@ -771,7 +971,7 @@ impl Multibody {
 
         self.augmented_mass_indices
             .with_rearranged_rows_mut(&mut self.accelerations, |accs| {
-                lu_solve_mut(&self.acc_inv_augmented_mass, accs);
+                self.acc_inv_augmented_mass.solve_mut(accs);
             });
 
         if check_implicit_coriolis_divergence {
@@ -834,7 +1034,7 @@ impl Multibody {
                 self.augmented_mass_indices.with_rearranged_rows_mut(
                     &mut self.accelerations,
                     |accs| {
-                        lu_solve_mut(&self.inv_augmented_mass, accs);
+                        self.inv_augmented_mass.solve_mut(accs);
                     },
                 );
 
@@ -983,7 +1183,6 @@ impl Multibody {
             let rb = &bodies[link.rigid_body];
             let rb_mass = rb.mprops.effective_mass();
             let rb_inertia = rb.mprops.effective_angular_inertia().into_matrix();
-            let body_jacobian = &self.body_jacobians[i];
 
             // NOTE: the mass matrix index reordering operates on the assumption that the assembly
             //       ids are traversed in order. This assert is here to ensure the assumption always
@@ -1025,20 +1224,9 @@ impl Multibody {
             // steplearn patch: the body Jacobian is zero outside the dofs of the link's
             // ancestors' joints, so only those rows and columns of the quadratic forms are
             // computed (the same floating-point operations as nalgebra's `quadform` on them;
-            // the skipped entries would only add zeros).
+            // the skipped entries would only add zeros). They are added below, with the
+            // Coriolis term, by `link_mass_quadforms` (these matrices are not read in between).
             fill_link_dofs(&self.links, i, &mut self.link_dofs);
-            sparse_quadform(
-                &mut self.augmented_mass,
-                &rb_mass_matrix_wo_gyro,
-                body_jacobian,
-                &self.link_dofs,
-            );
-            sparse_quadform(
-                &mut self.acc_augmented_mass,
-                &rb_mass_matrix,
-                body_jacobian,
-                &self.link_dofs,
-            );
 
             /*
              *
@@ -1186,15 +1374,17 @@ impl Multibody {
             }
 
             // steplearn patch: `acc_augmented_mass += rb_j^T i_coriolis_dt` on the link's dofs
-            // only (both factors are zero in every other column), as nalgebra's `gemm_tr` does it.
-            for &j in &self.link_dofs {
-                let b = self.i_coriolis_dt.column(j);
-                for &a in &self.link_dofs {
-                    let v = rb_j.column(a).dot(&b);
-                    let out = &mut self.acc_augmented_mass[(a, j)];
-                    *out = v + *out;
-                }
-            }
+            // only (both factors are zero in every other column), as nalgebra's `gemm_tr` does it,
+            // fused with the two quadratic forms above (see `link_mass_quadforms`).
+            link_mass_quadforms(
+                &mut self.augmented_mass,
+                &mut self.acc_augmented_mass,
+                &rb_mass_matrix_wo_gyro,
+                &rb_mass_matrix,
+                rb_j,
+                &self.i_coriolis_dt,
+                &self.link_dofs,
+            );
         }
 
         /*
@@ -1247,17 +1437,12 @@ impl Multibody {
         self.augmented_mass_indices
             .rearrange_rows(&mut self.augmented_mass, true);
 
-        // TODO: avoid allocation inside LU at each timestep.
-        self.acc_inv_augmented_mass = LU::new(
-            self.acc_augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
-        self.inv_augmented_mass = LU::new(
-            self.augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
+        // steplearn patch: factorised into the reused buffers of `MultibodyLu` (bit-identical
+        // to `LU::new` on a copy of the block).
+        self.acc_inv_augmented_mass
+            .factor(&self.acc_augmented_mass, effective_dim);
+        self.inv_augmented_mass
+            .factor(&self.augmented_mass, effective_dim);
     }
 
     /// Per-DoF inverse joint-space inertia `diag(M⁻¹)` at the current configuration, where `M`
@@ -1819,7 +2004,7 @@ impl Multibody {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
             self.augmented_mass_indices
                 .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
-                    lu_solve_mut(&self.inv_augmented_mass, out_invm_j);
+                    self.inv_augmented_mass.solve_mut(out_invm_j);
                 });
         }
 
@@ -1828,6 +2013,78 @@ impl Multibody {
         *j_id += self.ndofs * 2;
 
         (j.dot(&invm_j), j.dot(&self.generalized_velocity()))
+    }
+
+    /// steplearn patch: the first half of [`Self::fill_jacobians`]: `J` and its copy (the slot of
+    /// `M⁻¹ J`, still to be solved) at `*j_id`, which advances as in `fill_jacobians`. Returns
+    /// the index of `J` for [`Self::solve_jacobians`] and [`Self::jacobian_dot`], or `None` if
+    /// the multibody has no dof. With those two, the same values as `fill_jacobians` (the
+    /// contact builder batches the solves of a whole manifold through one pass).
+    pub(crate) fn fill_jacobians_unsolved(
+        &self,
+        link_id: usize,
+        unit_force: Vector,
+        unit_torque: AngVector,
+        j_id: &mut usize,
+        jacobians: &mut DVector,
+    ) -> Option<usize> {
+        if self.ndofs == 0 {
+            return None;
+        }
+
+        let start = *j_id;
+        let wj_id = *j_id + self.ndofs;
+        let force = Force {
+            linear: unit_force,
+            angular: unit_torque,
+        };
+
+        let link = &self.links[link_id];
+        let mut out_j = jacobians.rows_mut(*j_id, self.ndofs);
+        self.body_jacobians[link.internal_id].tr_mul_to(force.as_vector(), &mut out_j);
+
+        let (src, dst) = jacobians
+            .as_mut_slice()
+            .split_at_mut(wj_id);
+        dst[..self.ndofs].copy_from_slice(&src[start..start + self.ndofs]);
+        *j_id += self.ndofs * 2;
+        Some(start)
+    }
+
+    /// steplearn patch: `M⁻¹ J` in place for each `J` index in `j_ids` (from
+    /// [`Self::fill_jacobians_unsolved`]), as [`Self::fill_jacobians`] solves them.
+    pub(crate) fn solve_jacobians(&self, jacobians: &mut DVector, j_ids: &[usize]) {
+        if self.ndofs == 0 || j_ids.is_empty() {
+            return;
+        }
+        if self.augmented_mass_indices.first_to_remove == IndexSequence::NONE {
+            // No kinematic dof: `with_rearranged_rows_mut` is the identity.
+            const MAX_IDS: usize = MAX_MANIFOLD_POINTS * DIM;
+            let mut wj_ids = [0; MAX_IDS];
+            for chunk in j_ids.chunks(MAX_IDS) {
+                for (w, j) in wj_ids.iter_mut().zip(chunk) {
+                    *w = *j + self.ndofs;
+                }
+                self.inv_augmented_mass
+                    .solve_many(jacobians.as_mut_slice(), &wj_ids[..chunk.len()]);
+            }
+        } else {
+            for &j in j_ids {
+                let mut out_invm_j = jacobians.rows_mut(j + self.ndofs, self.ndofs);
+                self.augmented_mass_indices
+                    .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
+                        self.inv_augmented_mass.solve_mut(out_invm_j);
+                    });
+            }
+        }
+    }
+
+    /// steplearn patch: `J · M⁻¹ J` for the `J` at `j_id`, the first value [`Self::fill_jacobians`]
+    /// returns (the same expression).
+    pub(crate) fn jacobian_dot(&self, j_id: usize, jacobians: &DVector) -> Real {
+        let j = jacobians.rows(j_id, self.ndofs);
+        let invm_j = jacobians.rows(j_id + self.ndofs, self.ndofs);
+        j.dot(&invm_j)
     }
 
     /// Fills `jacobians` with the relative jacobian `J = J2ᵀ·f2 − J1ᵀ·f1` of two links of `self`, then `M⁻¹·J`
@@ -1892,7 +2149,7 @@ impl Multibody {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
             self.augmented_mass_indices
                 .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
-                    lu_solve_mut(&self.inv_augmented_mass, out_invm_j);
+                    self.inv_augmented_mass.solve_mut(out_invm_j);
                 });
         }
 

@@ -145,6 +145,26 @@ impl GenericContactConstraintBuilder {
             out_constraint.tangent1 = tangents1[0];
         }
 
+        // steplearn patch: the multibody Jacobians of the whole manifold are filled first and their
+        // `M⁻¹ J` solved together after the loop (`Multibody::solve_jacobians`: the same
+        // operations per right-hand side as `fill_jacobians`, only interleaved); each row's
+        // `r = 1 / (inv_r1 + inv_r2)` is then computed from the same values as before.
+        // Row `k * DIM` is point `k`'s normal, `k * DIM + 1 + j` its tangent `j`.
+        const MAX_ROWS: usize = MAX_MANIFOLD_POINTS * DIM;
+        // The `J` index of each row's multibody side (`usize::MAX`: not a multibody)...
+        let mut mb_rows = [[usize::MAX; 2]; MAX_ROWS];
+        // ... or its `inv_r` for a rigid or fixed side.
+        let mut rigid_inv_r = [[0.0; 2]; MAX_ROWS];
+        let mut mb_ids = [[0; MAX_ROWS]; 2];
+        let mut mb_counts = [0; 2];
+        let mut push_mb_row = |row: usize, side: usize, j: Option<usize>| {
+            if let Some(j) = j {
+                mb_rows[row][side] = j;
+                mb_ids[side][mb_counts[side]] = j;
+                mb_counts[side] += 1;
+            }
+        };
+
         for k in 0..manifold_points.len() {
             let manifold_point = &manifold_points[k];
             // Reconstruct the world contact points and separation from the
@@ -198,27 +218,34 @@ impl GenericContactConstraintBuilder {
                     Default::default()
                 };
 
-                let inv_r1 = if let Some((mb1, link_id1)) = multibody1.as_ref() {
-                    mb1.fill_jacobians(*link_id1, force_dir1, torque_dir1, jacobian_id, jacobians)
-                        .0
+                let row = k * DIM;
+                if let Some((mb1, link_id1)) = multibody1.as_ref() {
+                    let j = mb1.fill_jacobians_unsolved(
+                        *link_id1,
+                        force_dir1,
+                        torque_dir1,
+                        jacobian_id,
+                        jacobians,
+                    );
+                    push_mb_row(row, 0, j);
                 } else if type1.is_dynamic_or_kinematic() {
-                    force_dir1.dot(mprops1.effective_inv_mass * force_dir1)
-                        + ii_torque_dir1.gdot(torque_dir1)
-                } else {
-                    0.0
-                };
+                    rigid_inv_r[row][0] = force_dir1.dot(mprops1.effective_inv_mass * force_dir1)
+                        + ii_torque_dir1.gdot(torque_dir1);
+                }
 
-                let inv_r2 = if let Some((mb2, link_id2)) = multibody2.as_ref() {
-                    mb2.fill_jacobians(*link_id2, -force_dir1, torque_dir2, jacobian_id, jacobians)
-                        .0
+                if let Some((mb2, link_id2)) = multibody2.as_ref() {
+                    let j = mb2.fill_jacobians_unsolved(
+                        *link_id2,
+                        -force_dir1,
+                        torque_dir2,
+                        jacobian_id,
+                        jacobians,
+                    );
+                    push_mb_row(row, 1, j);
                 } else if type2.is_dynamic_or_kinematic() {
-                    force_dir1.dot(mprops2.effective_inv_mass * force_dir1)
-                        + ii_torque_dir2.gdot(torque_dir2)
-                } else {
-                    0.0
-                };
-
-                let r = crate::utils::inv(inv_r1 + inv_r2);
+                    rigid_inv_r[row][1] = force_dir1.dot(mprops2.effective_inv_mass * force_dir1)
+                        + ii_torque_dir2.gdot(torque_dir2);
+                }
 
                 // Warm-start impulses and contact newness come from the manifold
                 // point (they are not duplicated on the solver contacts).
@@ -241,7 +268,8 @@ impl GenericContactConstraintBuilder {
                     // the coulomb-friction `generate`).
                     impulse_accumulator: -pt_data.warmstart_impulse,
                     impulse: pt_data.warmstart_impulse,
-                    r,
+                    // steplearn patch: set after the loop.
+                    r: 0.0,
                     #[cfg(feature = "block-solver")]
                     r_mat_elts: [0.0; 2],
                 };
@@ -290,39 +318,37 @@ impl GenericContactConstraintBuilder {
                     out_constraint.tangent_part[k].ii_torque_dir2[j] = ii_torque_dir2;
 
                     let tangent_glam = tangents1[j];
-                    let inv_r1 = if let Some((mb1, link_id1)) = multibody1.as_ref() {
-                        mb1.fill_jacobians(
+                    let row = k * DIM + 1 + j;
+                    if let Some((mb1, link_id1)) = multibody1.as_ref() {
+                        let jid = mb1.fill_jacobians_unsolved(
                             *link_id1,
                             tangent_glam,
                             torque_dir1,
                             jacobian_id,
                             jacobians,
-                        )
-                        .0
+                        );
+                        push_mb_row(row, 0, jid);
                     } else if type1.is_dynamic_or_kinematic() {
-                        tangent_glam.dot(mprops1.effective_inv_mass * tangent_glam)
-                            + ii_torque_dir1.gdot(torque_dir1)
-                    } else {
-                        0.0
-                    };
+                        rigid_inv_r[row][0] = tangent_glam
+                            .dot(mprops1.effective_inv_mass * tangent_glam)
+                            + ii_torque_dir1.gdot(torque_dir1);
+                    }
 
-                    let inv_r2 = if let Some((mb2, link_id2)) = multibody2.as_ref() {
-                        mb2.fill_jacobians(
+                    if let Some((mb2, link_id2)) = multibody2.as_ref() {
+                        let jid = mb2.fill_jacobians_unsolved(
                             *link_id2,
                             -tangent_glam,
                             torque_dir2,
                             jacobian_id,
                             jacobians,
-                        )
-                        .0
+                        );
+                        push_mb_row(row, 1, jid);
                     } else if type2.is_dynamic_or_kinematic() {
-                        tangent_glam.dot(mprops2.effective_inv_mass * tangent_glam)
-                            + ii_torque_dir2.gdot(torque_dir2)
-                    } else {
-                        0.0
-                    };
+                        rigid_inv_r[row][1] = tangent_glam
+                            .dot(mprops2.effective_inv_mass * tangent_glam)
+                            + ii_torque_dir2.gdot(torque_dir2);
+                    }
 
-                    let r = crate::utils::inv(inv_r1 + inv_r2);
                     let rhs_wo_bias = manifold_point.tangent_velocity.gdot(tangents1[j]);
 
                     out_constraint.tangent_part[k].rhs_wo_bias[j] = rhs_wo_bias;
@@ -331,7 +357,7 @@ impl GenericContactConstraintBuilder {
                     // TODO: in 3D, we should take into account gcross[0].dot(gcross[1])
                     // in lhs. See the corresponding code on the `velocity_constraint.rs`
                     // file.
-                    out_constraint.tangent_part[k].r[j] = r;
+                    // steplearn patch: `tangent_part[k].r[j]` is set after the loop.
                 }
             }
 
@@ -373,6 +399,37 @@ impl GenericContactConstraintBuilder {
             out_builder.infos[k] = infos;
             out_constraint.manifold_contact_id[k] =
                 (manifold_point.contact_id[0] & !crate::geometry::NEW_CONTACT_BIT) as u8;
+        }
+
+        // steplearn patch: the batched `M⁻¹ J` solves, then each row's `r` (see above).
+        if let Some((mb1, _)) = multibody1.as_ref() {
+            mb1.solve_jacobians(jacobians, &mb_ids[0][..mb_counts[0]]);
+        }
+        if let Some((mb2, _)) = multibody2.as_ref() {
+            mb2.solve_jacobians(jacobians, &mb_ids[1][..mb_counts[1]]);
+        }
+        for k in 0..manifold_points.len() {
+            for d in 0..DIM {
+                let row = k * DIM + d;
+                let inv_r1 = match multibody1.as_ref() {
+                    Some((mb1, _)) if mb_rows[row][0] != usize::MAX => {
+                        mb1.jacobian_dot(mb_rows[row][0], jacobians)
+                    }
+                    _ => rigid_inv_r[row][0],
+                };
+                let inv_r2 = match multibody2.as_ref() {
+                    Some((mb2, _)) if mb_rows[row][1] != usize::MAX => {
+                        mb2.jacobian_dot(mb_rows[row][1], jacobians)
+                    }
+                    _ => rigid_inv_r[row][1],
+                };
+                let r = crate::utils::inv(inv_r1 + inv_r2);
+                if d == 0 {
+                    out_constraint.normal_part[k].r = r;
+                } else {
+                    out_constraint.tangent_part[k].r[d - 1] = r;
+                }
+            }
         }
 
         let ndofs1 = multibody1.map(|mb| mb.0.ndofs()).unwrap_or(0);
