@@ -263,8 +263,34 @@ fn gemm_cols<RY: na::Dim, RB: na::Dim, SY, SB>(
     na::base::constraint::ShapeConstraint: na::base::constraint::DimEq<RY, na::U3>
         + na::base::constraint::AreMultipliable<na::U3, na::U3, RB, na::U1>,
 {
+    // steplearn patch: nalgebra's `gemv` per column without its views: `y = (alpha a[:, 0]) x[0]
+    // + beta y` (`(alpha a[:, 0]) x[0]` alone if `beta` is zero), then `y = (alpha a[:, c]) x[c]
+    // + 1 y` for `c = 1, 2` (`1 y` is exactly `y`). The products `alpha a[r, c]` are the same
+    // values for every column, so they are computed once.
+    let mut sa = [[0.0; 3]; 3];
+    for (c, sc) in sa.iter_mut().enumerate() {
+        for (r, v) in sc.iter_mut().enumerate() {
+            *v = alpha * a[(r, c)];
+        }
+    }
     for &j in cols {
-        y.column_mut(j).gemv(alpha, a, &b.column(j), beta);
+        let x = [b[(0, j)], b[(1, j)], b[(2, j)]];
+        let mut v = [0.0; 3];
+        for r in 0..3 {
+            v[r] = if beta != 0.0 {
+                sa[0][r] * x[0] + beta * y[(r, j)]
+            } else {
+                sa[0][r] * x[0]
+            };
+        }
+        for c in 1..3 {
+            for r in 0..3 {
+                v[r] = sa[c][r] * x[c] + v[r];
+            }
+        }
+        for r in 0..3 {
+            y[(r, j)] = v[r];
+        }
     }
 }
 
@@ -1103,7 +1129,9 @@ impl Multibody {
                 parent_to_world = parent_link.local_to_world;
 
                 let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
-                link_j.copy_from(parent_j);
+                // steplearn patch: a plain slice copy (exact) instead of the element-wise
+                // `copy_from`.
+                link_j.as_mut_slice().copy_from_slice(parent_j.as_slice());
 
                 {
                     let mut link_j_v = link_j.fixed_rows_mut::<DIM>(0);
@@ -1249,8 +1277,14 @@ impl Multibody {
                 let (coriolis_v, parent_coriolis_v) = self.coriolis_v.index_mut2(i, parent_id);
                 let (coriolis_w, parent_coriolis_w) = self.coriolis_w.index_mut2(i, parent_id);
 
-                coriolis_v.copy_from(parent_coriolis_v);
-                coriolis_w.copy_from(parent_coriolis_w);
+                // steplearn patch: plain slice copies (exact) instead of the element-wise
+                // `copy_from`.
+                coriolis_v
+                    .as_mut_slice()
+                    .copy_from_slice(parent_coriolis_v.as_slice());
+                coriolis_w
+                    .as_mut_slice()
+                    .copy_from_slice(parent_coriolis_w.as_slice());
 
                 // [c1 - c0].gcross() * (JDot + JDot/u * qdot)"
                 let shift_cross_tr = vect_to_na(link.shift02).gcross_matrix_tr();
