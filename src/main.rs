@@ -212,6 +212,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     c.statement,
                     c.seeds.len()
                 );
+                for p in &c.over_seeds {
+                    println!("    over seeds: {}", p.describe(3));
+                }
             }
             println!(
                 "{} runs in {} ({:.0} s); report: {}",

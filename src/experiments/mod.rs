@@ -10,6 +10,7 @@ pub mod experiment;
 pub mod fall_causes;
 pub mod index_page;
 mod kind;
+pub mod paired;
 pub mod reproduce;
 pub mod robustness;
 pub mod run;

@@ -297,7 +297,20 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
         serde_json::from_str(&std::fs::read_to_string(out.join("claims.json")).unwrap()).unwrap();
     for c in ["tracking", "disturbance", "stability", "robustness"] {
         assert_eq!(claims[c]["seeds"].as_array().unwrap().len(), 1, "{c}");
+        assert!(
+            !claims[c]["over_seeds"].as_array().unwrap().is_empty(),
+            "{c}"
+        );
     }
+    // One seed: the comparison over seeds has its value but no interval.
+    let i50 = &claims["stability"]["over_seeds"][0];
+    assert_eq!(i50["quantity"], "I50 learned / model");
+    assert_eq!(i50["values"].as_array().unwrap().len(), 1);
+    assert!(i50["verdict"].is_null());
+    assert!(
+        stdout.contains("over seeds: I50 learned / model: ") && stdout.contains("too few seeds"),
+        "{stdout}"
+    );
     let report = std::fs::read(out.join("claims.md")).unwrap();
     let summaries: Vec<_> = ["tracking", "disturbance", "stability", "robustness"]
         .iter()
