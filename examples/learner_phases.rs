@@ -8,7 +8,8 @@
 //!   the fast transients after a push; learning is unchanged).
 //!
 //! Prints each controller's falls and impulse at 50% falls, and the mean analytic step, dF
-//! and realised step of the five steps after pushes of 10-18 Ns.
+//! and realised step of the five steps after pushes of 10-18 Ns. `--p-theta P` sets the
+//! pendulum-cart rule's trunk-angle tolerance (the paper's 0.15 by default).
 //!
 //! `cargo run --release --example learner_phases -- --seed 0 --pushes 200 --settle 60 --learn-steps 120`
 
@@ -53,6 +54,9 @@ struct Args {
     /// model's gait of this size costs push recovery.
     #[arg(long)]
     noise_offset: Option<f64>,
+    /// The pendulum-cart rule's trunk-angle tolerance p_theta (rad; paper 0.15).
+    #[arg(long, default_value_t = 0.15)]
+    p_theta: f64,
 }
 
 /// A random offset, constant within a step, redrawn at every touch-down and fall.
@@ -160,6 +164,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if args.gate_rate.is_some_and(|r| r.is_nan() || r < 0.0) {
         return Err("--gate-rate must be >= 0".into());
     }
+    if !(args.p_theta.is_finite() && args.p_theta > 0.0) {
+        return Err("--p-theta must be > 0".into());
+    }
     let settings = match &args.config {
         Some(path) => ConfigFile::load(path)?.settings,
         None => Default::default(),
@@ -190,7 +197,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             return Ok(rec);
         }
         let approx = ApproxKind::Lwpr.build(&bounds)?;
-        let learner = FootstepLearner::new(approx, PendulumCart::default(), settings.learner)?;
+        let learner = FootstepLearner::new(
+            approx,
+            PendulumCart {
+                p_theta: args.p_theta,
+                ..PendulumCart::default()
+            },
+            settings.learner,
+        )?;
         let mut policy = Phased {
             inner: learner,
             gate_rate: args.gate_rate.unwrap_or(f64::INFINITY),
