@@ -350,11 +350,21 @@ impl Claims {
             md.push('\n');
             if !c.over_seeds.is_empty() {
                 md.push_str(
-                    "Over seeds (paired by seed; mean and 95% Student-t interval; *level*: no \
-                     difference beyond the seed-to-seed noise):\n\n",
+                    "Over seeds, paired by seed (95% Student-t interval of the mean; *level*: \
+                     no difference beyond the seed-to-seed noise):\n\n\
+                     | quantity | mean | 95% interval | seeds | verdict |\n|---|---|---|---|---|\n",
                 );
                 for p in &c.over_seeds {
-                    md.push_str(&format!("- {}\n", p.describe(3)));
+                    let (interval, verdict) = match p.verdict {
+                        Some(v) => (format!("[{:.3}, {:.3}]", p.ci95.0, p.ci95.1), v.to_string()),
+                        None => ("-".to_string(), "too few seeds".to_string()),
+                    };
+                    md.push_str(&format!(
+                        "| {} | {:.3} | {interval} | {} | {verdict} |\n",
+                        p.quantity,
+                        p.mean,
+                        p.values.len()
+                    ));
                 }
                 md.push('\n');
             }
@@ -622,7 +632,7 @@ mod tests {
         );
         assert_eq!(c.robustness.over_seeds[0].values, vec![2.0, 1.0, 0.0, 2.0]);
         assert!(
-            md.contains("- I50 learned / model: 1.083 [1.083, 1.083] over 2 seeds: better"),
+            md.contains("| I50 learned / model | 1.083 | [1.083, 1.083] | 2 | better |"),
             "{md}"
         );
         // Nothing measured, nothing reproduced.
