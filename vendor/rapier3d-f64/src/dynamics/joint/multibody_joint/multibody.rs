@@ -351,6 +351,94 @@ fn link_mass_quadforms(
     i_coriolis_dt: &Jacobian<Real>,
     dofs: &[usize],
 ) {
+    // steplearn patch: the entries of a column `j` are computed `LANES` rows `a` at a time on a
+    // transposed copy of the Jacobian's columns `dofs` (each lane's dot products still add
+    // `0`, then `col_a[k] work[k]` for `k = 0..SPATIAL_DIM` in order: the same operations).
+    // The first `DIM` rows of `mid` and `mid_wo_gyro` are the same values (the mass diagonal and
+    // zeros), so the first `DIM` entries of both `work`s, and the first `DIM` partial sums of
+    // both dot products, are the same values: they are computed once.
+    const LANES: usize = 4;
+    const MAX_BLOCKS: usize = 4;
+    let nd = dofs.len();
+    let nblocks = nd.div_ceil(LANES);
+    if nblocks > MAX_BLOCKS || SPATIAL_DIM != 6 || !cfg!(target_arch = "x86_64") {
+        link_mass_quadforms_scalar(mass, acc_mass, mid_wo_gyro, mid, rhs, i_coriolis_dt, dofs);
+        return;
+    }
+    // SAFETY: SSE2 is part of the x86_64 baseline; the loads and stores are in bounds (below).
+    #[cfg(target_arch = "x86_64")]
+    unsafe {
+        use core::arch::x86_64::{
+            __m128d, _mm_add_pd, _mm_loadu_pd, _mm_mul_pd, _mm_set1_pd, _mm_storeu_pd,
+        };
+        let n = mass.nrows();
+        let mass = mass.as_mut_slice();
+        let acc_mass = acc_mass.as_mut_slice();
+        let rhs = rhs.as_slice();
+        let icd = i_coriolis_dt.as_slice();
+        // `rt[b][k][l]`: row `k` of the Jacobian column `dofs[b * LANES + l]` (zero past `nd`).
+        let mut rt = [[[0.0; LANES]; 6]; MAX_BLOCKS];
+        for (idx, &a) in dofs.iter().enumerate() {
+            let col_a = &rhs[a * 6..(a + 1) * 6];
+            let blk = &mut rt[idx / LANES];
+            for k in 0..6 {
+                blk[k][idx % LANES] = col_a[k];
+            }
+        }
+        let rt = &rt[..nblocks];
+        for &j in dofs {
+            let col_j = &rhs[j * 6..(j + 1) * 6];
+            let work_wo = gemv_spatial(mid_wo_gyro, col_j);
+            let work = gemv_spatial(mid, col_j);
+            let icd_j = &icd[j * 6..(j + 1) * 6];
+            let bw: [__m128d; 6] = core::array::from_fn(|k| _mm_set1_pd(work[k]));
+            let bwo: [__m128d; 6] = core::array::from_fn(|k| _mm_set1_pd(work_wo[k]));
+            let bi: [__m128d; 6] = core::array::from_fn(|k| _mm_set1_pd(icd_j[k]));
+            let mass_j = &mut mass[j * n..(j + 1) * n];
+            let acc_j = &mut acc_mass[j * n..(j + 1) * n];
+            for (blk, dofs_b) in rt.iter().zip(dofs.chunks(LANES)) {
+                let mut out = [[0.0; LANES]; 3];
+                for h in 0..LANES / 2 {
+                    // `2 h + 1 < LANES`: in bounds of each row of `blk` and `out`.
+                    let r = |k: usize| _mm_loadu_pd(blk[k].as_ptr().add(2 * h));
+                    let mut s = _mm_set1_pd(0.0);
+                    for k in 0..DIM {
+                        s = _mm_add_pd(s, _mm_mul_pd(r(k), bw[k]));
+                    }
+                    let mut v_wo = s;
+                    let mut v = s;
+                    for k in DIM..6 {
+                        let rk = r(k);
+                        v_wo = _mm_add_pd(v_wo, _mm_mul_pd(rk, bwo[k]));
+                        v = _mm_add_pd(v, _mm_mul_pd(rk, bw[k]));
+                    }
+                    let mut v2 = _mm_set1_pd(0.0);
+                    for k in 0..6 {
+                        v2 = _mm_add_pd(v2, _mm_mul_pd(r(k), bi[k]));
+                    }
+                    _mm_storeu_pd(out[0].as_mut_ptr().add(2 * h), v_wo);
+                    _mm_storeu_pd(out[1].as_mut_ptr().add(2 * h), v);
+                    _mm_storeu_pd(out[2].as_mut_ptr().add(2 * h), v2);
+                }
+                for (l, &a) in dofs_b.iter().enumerate() {
+                    mass_j[a] = out[0][l] + mass_j[a];
+                    acc_j[a] = out[2][l] + (out[1][l] + acc_j[a]);
+                }
+            }
+        }
+    }
+}
+
+/// The scalar form of [`link_mass_quadforms`] (for links with many dofs).
+fn link_mass_quadforms_scalar(
+    mass: &mut DMatrix<Real>,
+    acc_mass: &mut DMatrix<Real>,
+    mid_wo_gyro: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
+    mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
+    rhs: &Jacobian<Real>,
+    i_coriolis_dt: &Jacobian<Real>,
+    dofs: &[usize],
+) {
     let n = mass.nrows();
     let mass = mass.as_mut_slice();
     let acc_mass = acc_mass.as_mut_slice();
