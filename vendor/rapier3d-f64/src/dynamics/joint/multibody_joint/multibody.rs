@@ -1909,6 +1909,18 @@ impl Multibody {
         bodies: &RigidBodySet,
         read_root_pose_from_rigid_body: bool,
     ) {
+        self.forward_kinematics_internal(bodies, read_root_pose_from_rigid_body, true);
+    }
+
+    /// steplearn patch: [`Self::forward_kinematics`], with the body Jacobians updated only if
+    /// `update_jacobians` (the solver's last substep skips them: every step starts with a full
+    /// forward kinematics that recomputes them from the poses alone before anything reads them).
+    pub(crate) fn forward_kinematics_internal(
+        &mut self,
+        bodies: &RigidBodySet,
+        read_root_pose_from_rigid_body: bool,
+        update_jacobians: bool,
+    ) {
         // Be sure the degrees of freedom match and take the root position if needed.
         self.update_root_type(bodies, read_root_pose_from_rigid_body);
 
@@ -1947,7 +1959,9 @@ impl Multibody {
         /*
          * Compute body jacobians.
          */
-        self.update_body_jacobians();
+        if update_jacobians {
+            self.update_body_jacobians();
+        }
     }
 
     /// Computes the ids of all the links between the root and the link identified by `link_id`.
