@@ -294,6 +294,62 @@ fn gemm_cols<RY: na::Dim, RB: na::Dim, SY, SB>(
     }
 }
 
+/// steplearn patch: `alpha a` as [`gemm_cols`] computes it (`sa[c][r] = alpha a[(r, c)]`).
+#[cfg(feature = "dim3")]
+#[inline(always)]
+fn scaled3(alpha: Real, a: &na::Matrix3<Real>) -> [[Real; 3]; 3] {
+    let mut sa = [[0.0; 3]; 3];
+    for (c, sc) in sa.iter_mut().enumerate() {
+        for (r, v) in sc.iter_mut().enumerate() {
+            *v = alpha * a[(r, c)];
+        }
+    }
+    sa
+}
+
+/// steplearn patch: one column of [`gemm_cols`] with `beta = 1` on plain values:
+/// `v = sa[:, 0] x[0] + 1 y`, then `v = sa[:, c] x[c] + v` for `c = 1, 2`.
+#[cfg(feature = "dim3")]
+#[inline(always)]
+fn gemv3_col(sa: &[[Real; 3]; 3], x: &[Real], y: &mut [Real]) {
+    let beta: Real = 1.0;
+    let mut v = [0.0; 3];
+    for r in 0..3 {
+        v[r] = sa[0][r] * x[0] + beta * y[r];
+    }
+    for c in 1..3 {
+        for r in 0..3 {
+            v[r] = sa[c][r] * x[c] + v[r];
+        }
+    }
+    y[..3].copy_from_slice(&v);
+}
+
+/// steplearn patch: `y.gemv_tr(1.0, jac, x, 1.0)` on the columns `cols` only (the body Jacobian
+/// `jac` is zero in the others), each as nalgebra computes it: `y[j] = 1 dot(jac[:, j], x) + 1 y[j]`.
+/// With a non-finite `x` the full `gemv_tr` runs (`0 inf` is not zero).
+fn gemv_tr_cols(
+    y: &mut DVector,
+    jac: &Jacobian<Real>,
+    x: &SVector<Real, SPATIAL_DIM>,
+    cols: &[usize],
+) {
+    if !x.iter().all(|v| v.is_finite()) {
+        y.gemv_tr(1.0, jac, x, 1.0);
+        return;
+    }
+    let alpha: Real = 1.0;
+    let beta: Real = 1.0;
+    let mut xa = [0.0; SPATIAL_DIM];
+    xa.copy_from_slice(x.as_slice());
+    let jac = jac.as_slice();
+    let y = y.as_mut_slice();
+    for &j in cols {
+        let d = dot_spatial(&jac[j * SPATIAL_DIM..(j + 1) * SPATIAL_DIM], &xa);
+        y[j] = alpha * d + beta * y[j];
+    }
+}
+
 /// steplearn patch: the generalized-coordinate indices of the joints from the root to link `i`.
 fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     out.clear();
@@ -1031,20 +1087,24 @@ impl Multibody {
                 rb.forces.force - rb_mass * acc.linvel,
                 rb.forces.torque - gyroscopic - rb_inertia * acc.angvel,
             );
-            self.accelerations.gemv_tr(
-                1.0,
+            // steplearn patch: `gemv_tr` on the link's dofs' columns only. In every other column
+            // the body Jacobian is zero, so (with finite forces) nalgebra's `dot` gives `+0` there
+            // and `1 (+0) + 1 y` is `y` (these sums start at `+0` and so are never `-0`).
+            fill_link_dofs(&self.links, i, &mut self.link_dofs);
+            gemv_tr_cols(
+                &mut self.accelerations,
                 &self.body_jacobians[i],
                 external_forces.as_vector(),
-                1.0,
+                &self.link_dofs,
             );
 
             if check_implicit_coriolis_divergence {
                 let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
-                pos_forces.gemv_tr(
-                    1.0,
+                gemv_tr_cols(
+                    &mut pos_forces,
                     &self.body_jacobians[i],
                     applied_forces.as_vector(),
-                    1.0,
+                    &self.link_dofs,
                 );
             }
         }
@@ -1350,7 +1410,6 @@ impl Multibody {
              *
              */
             let rb_j = &self.body_jacobians[i];
-            let rb_j_w = rb_j.fixed_rows::<ANG_DIM>(DIM);
 
             let ndofs = link.joint.ndofs();
 
@@ -1359,7 +1418,6 @@ impl Multibody {
                 let parent_link = &self.links[parent_id];
                 let parent_rb = &bodies[parent_link.rigid_body];
                 let parent_j = &self.body_jacobians[parent_id];
-                let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
                 let parent_w = SimdAngVector::<Real>::from(parent_rb.vels.angvel).gcross_matrix();
 
                 let (coriolis_v, parent_coriolis_v) = self.coriolis_v.index_mut2(i, parent_id);
@@ -1376,37 +1434,42 @@ impl Multibody {
 
                 // [c1 - c0].gcross() * (JDot + JDot/u * qdot)"
                 let shift_cross_tr = vect_to_na(link.shift02).gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &shift_cross_tr, parent_coriolis_w, 1.0, &self.link_dofs);
-
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
                 let dvel_cross = vect_to_na(
                     rb.vels.angvel.gcross(link.shift02) + 2.0 * link.joint_velocity.linvel,
                 )
                 .gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &dvel_cross, &parent_j_w, 1.0, &self.link_dofs);
-
                 // JDot/u * qdot
-                gemm_cols(
-                    coriolis_v,
-                    1.0,
-                    &vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr(),
-                    &parent_j_w,
-                    1.0,
-                    &self.link_dofs,
-                );
-                gemm_cols(
-                    coriolis_v,
-                    1.0,
-                    &(parent_w * shift_cross_tr),
-                    &parent_j_w,
-                    1.0,
-                    &self.link_dofs,
-                );
-
+                let jv_cross = vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr();
+                let pw_shift = parent_w * shift_cross_tr;
                 #[cfg(feature = "dim3")]
+                let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
+                // steplearn patch: the five `gemm_cols` (`coriolis_v += shift_cross_tr
+                // parent_coriolis_w`, `+= dvel_cross parent_j_w`, `+= jv_cross parent_j_w`,
+                // `+= pw_shift parent_j_w`, then `coriolis_w += -vel_wrt_joint_w parent_j_w`) in
+                // one pass over the columns: each column goes through the same operations in the
+                // same order (the columns are independent).
                 {
-                    let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
-                    gemm_cols(coriolis_w, -1.0, &vel_wrt_joint_w, &parent_j_w, 1.0, &self.link_dofs);
+                    let s1 = scaled3(1.0, &shift_cross_tr);
+                    let s2 = scaled3(1.0, &dvel_cross);
+                    let s3 = scaled3(1.0, &jv_cross);
+                    let s4 = scaled3(1.0, &pw_shift);
+                    #[cfg(feature = "dim3")]
+                    let s5 = scaled3(-1.0, &vel_wrt_joint_w);
+                    let cv = coriolis_v.as_mut_slice();
+                    let cw = coriolis_w.as_mut_slice();
+                    let pcw = parent_coriolis_w.as_slice();
+                    let pj = parent_j.as_slice();
+                    for &j in &self.link_dofs {
+                        let cv_j = &mut cv[j * DIM..(j + 1) * DIM];
+                        gemv3_col(&s1, &pcw[j * ANG_DIM..(j + 1) * ANG_DIM], cv_j);
+                        let pjw = &pj[j * SPATIAL_DIM + DIM..(j + 1) * SPATIAL_DIM];
+                        gemv3_col(&s2, pjw, cv_j);
+                        gemv3_col(&s3, pjw, cv_j);
+                        gemv3_col(&s4, pjw, cv_j);
+                        #[cfg(feature = "dim3")]
+                        gemv3_col(&s5, pjw, &mut cw[j * ANG_DIM..(j + 1) * ANG_DIM]);
+                    }
                 }
 
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
@@ -1442,21 +1505,27 @@ impl Multibody {
             {
                 // [c3 - c2].gcross() * (JDot + JDot/u * qdot)
                 let shift_cross_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &shift_cross_tr, coriolis_w, 1.0, &self.link_dofs);
-
                 // JDot
                 let dvel_cross = vect_to_na(rb.vels.angvel.gcross(link.shift23)).gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &dvel_cross, &rb_j_w, 1.0, &self.link_dofs);
-
                 // JDot/u * qdot
-                gemm_cols(
-                    coriolis_v,
-                    1.0,
-                    &(SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr),
-                    &rb_j_w,
-                    1.0,
-                    &self.link_dofs,
-                );
+                let w_shift =
+                    SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr;
+                // steplearn patch: the three `gemm_cols` (`coriolis_v += shift_cross_tr
+                // coriolis_w`, `+= dvel_cross rb_j_w`, `+= w_shift rb_j_w`) in one pass over the
+                // columns, each column through the same operations in the same order.
+                let s1 = scaled3(1.0, &shift_cross_tr);
+                let s2 = scaled3(1.0, &dvel_cross);
+                let s3 = scaled3(1.0, &w_shift);
+                let cv = coriolis_v.as_mut_slice();
+                let cw = coriolis_w.as_slice();
+                let rj = rb_j.as_slice();
+                for &j in &self.link_dofs {
+                    let cv_j = &mut cv[j * DIM..(j + 1) * DIM];
+                    gemv3_col(&s1, &cw[j * ANG_DIM..(j + 1) * ANG_DIM], cv_j);
+                    let rjw = &rj[j * SPATIAL_DIM + DIM..(j + 1) * SPATIAL_DIM];
+                    gemv3_col(&s2, rjw, cv_j);
+                    gemv3_col(&s3, rjw, cv_j);
+                }
             }
 
             let coriolis_v = &mut self.coriolis_v[i];
