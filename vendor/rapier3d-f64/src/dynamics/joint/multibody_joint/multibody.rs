@@ -56,7 +56,26 @@ pub struct MultibodyLu {
 
 impl MultibodyLu {
     /// Factorises the top-left `dim x dim` block of `m`.
+    /// steplearn patch: compiled for AVX when the processor has it (elementwise IEEE operations
+    /// only, no FMA: the same values).
     fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor supports AVX (checked just above).
+            unsafe { self.factor_avx(m, dim) };
+            return;
+        }
+        self.factor_impl(m, dim)
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx")]
+    unsafe fn factor_avx(&mut self, m: &DMatrix<Real>, dim: usize) {
+        self.factor_impl(m, dim)
+    }
+
+    #[inline(always)]
+    fn factor_impl(&mut self, m: &DMatrix<Real>, dim: usize) {
         let n = dim;
         let ld = m.nrows();
         let src = m.as_slice();
@@ -164,7 +183,27 @@ impl MultibodyLu {
         }
     }
 
+    /// steplearn patch: [`Self::solve_lanes_impl`], compiled for AVX when the processor has it
+    /// (the lanes are independent: the same IEEE operations on each, only wider registers; no
+    /// FMA is enabled, so no product and sum are fused).
     fn solve_lanes<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor supports AVX (checked just above).
+            unsafe { self.solve_lanes_avx::<B>(data, offsets) };
+            return;
+        }
+        self.solve_lanes_impl::<B>(data, offsets)
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx")]
+    unsafe fn solve_lanes_avx<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
+        self.solve_lanes_impl::<B>(data, offsets)
+    }
+
+    #[inline(always)]
+    fn solve_lanes_impl<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
         const MAX_N: usize = 32;
         let n = self.n;
         if n > MAX_N {
