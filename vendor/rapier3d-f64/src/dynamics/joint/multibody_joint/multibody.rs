@@ -392,6 +392,29 @@ fn gemv_tr_cols(
 /// steplearn patch: the generalized-coordinate indices of the joints from the root to link `i`.
 fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     out.clear();
+    append_link_dofs(links, i, out);
+}
+
+/// steplearn patch: `fill_link_dofs(links, i, out)`, copied from the cache `flat` / `start`
+/// (see `Multibody::link_dofs_flat`) when it covers the links.
+#[inline]
+fn cached_link_dofs(
+    links: &MultibodyLinkVec,
+    flat: &[usize],
+    start: &[usize],
+    i: usize,
+    out: &mut Vec<usize>,
+) {
+    if start.len() == links.len() + 1 {
+        out.clear();
+        out.extend_from_slice(&flat[start[i]..start[i + 1]]);
+    } else {
+        fill_link_dofs(links, i, out);
+    }
+}
+
+/// steplearn patch: [`fill_link_dofs`] appended to `out`.
+fn append_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     let mut j = i;
     loop {
         let link = &links[j];
@@ -658,6 +681,12 @@ pub struct Multibody {
     /// steplearn patch: the generalized coordinates of the joints from the root to the link
     /// being processed (the only columns where its body Jacobian can be non-zero).
     link_dofs: Vec<usize>,
+    /// steplearn patch: every link's `fill_link_dofs`, concatenated (link `i`'s from
+    /// `link_dofs_start[i]` to `link_dofs_start[i + 1]`), rebuilt by each forward kinematics
+    /// that updates the body Jacobians (the topology cannot change between that and the mass
+    /// matrix and accelerations of the same step).
+    link_dofs_flat: Vec<usize>,
+    link_dofs_start: Vec<usize>,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -692,6 +721,8 @@ impl Multibody {
             coriolis_w: Vec::new(),
             i_coriolis_dt: Jacobian::zeros(0),
             link_dofs: Vec::new(),
+            link_dofs_flat: Vec::new(),
+            link_dofs_start: Vec::new(),
             root_is_dynamic: false,
             self_contacts_enabled,
             couplings: Vec::new(),
@@ -1129,7 +1160,13 @@ impl Multibody {
             // steplearn patch: `gemv_tr` on the link's dofs' columns only. In every other column
             // the body Jacobian is zero, so (with finite forces) nalgebra's `dot` gives `+0` there
             // and `1 (+0) + 1 y` is `y` (these sums start at `+0` and so are never `-0`).
-            fill_link_dofs(&self.links, i, &mut self.link_dofs);
+            cached_link_dofs(
+                &self.links,
+                &self.link_dofs_flat,
+                &self.link_dofs_start,
+                i,
+                &mut self.link_dofs,
+            );
             gemv_tr_cols(
                 &mut self.accelerations,
                 &self.body_jacobians[i],
@@ -1297,10 +1334,23 @@ impl Multibody {
     }
 
     fn update_body_jacobians(&mut self) {
+        self.link_dofs_flat.clear();
+        self.link_dofs_start.clear();
+        for i in 0..self.links.len() {
+            self.link_dofs_start.push(self.link_dofs_flat.len());
+            append_link_dofs(&self.links, i, &mut self.link_dofs_flat);
+        }
+        self.link_dofs_start.push(self.link_dofs_flat.len());
         for i in 0..self.links.len() {
             // steplearn patch: the products below only on the columns where the Jacobians can be
             // non-zero (the dofs of the joints from the root to the link).
-            fill_link_dofs(&self.links, i, &mut self.link_dofs);
+            cached_link_dofs(
+                &self.links,
+                &self.link_dofs_flat,
+                &self.link_dofs_start,
+                i,
+                &mut self.link_dofs,
+            );
             let link = &self.links[i];
 
             if self.body_jacobians[i].ncols() != self.ndofs {
@@ -1441,7 +1491,13 @@ impl Multibody {
             // computed (the same floating-point operations as nalgebra's `quadform` on them;
             // the skipped entries would only add zeros). They are added below, with the
             // Coriolis term, by `link_mass_quadforms` (these matrices are not read in between).
-            fill_link_dofs(&self.links, i, &mut self.link_dofs);
+            cached_link_dofs(
+                &self.links,
+                &self.link_dofs_flat,
+                &self.link_dofs_start,
+                i,
+                &mut self.link_dofs,
+            );
 
             /*
              *
