@@ -56,7 +56,26 @@ pub struct MultibodyLu {
 
 impl MultibodyLu {
     /// Factorises the top-left `dim x dim` block of `m`.
+    /// steplearn patch: compiled for AVX when the processor has it (elementwise IEEE operations
+    /// only, no FMA: the same values).
     fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor supports AVX (checked just above).
+            unsafe { self.factor_avx(m, dim) };
+            return;
+        }
+        self.factor_impl(m, dim)
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx")]
+    unsafe fn factor_avx(&mut self, m: &DMatrix<Real>, dim: usize) {
+        self.factor_impl(m, dim)
+    }
+
+    #[inline(always)]
+    fn factor_impl(&mut self, m: &DMatrix<Real>, dim: usize) {
         let n = dim;
         let ld = m.nrows();
         let src = m.as_slice();
@@ -164,7 +183,27 @@ impl MultibodyLu {
         }
     }
 
+    /// steplearn patch: [`Self::solve_lanes_impl`], compiled for AVX when the processor has it
+    /// (the lanes are independent: the same IEEE operations on each, only wider registers; no
+    /// FMA is enabled, so no product and sum are fused).
     fn solve_lanes<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor supports AVX (checked just above).
+            unsafe { self.solve_lanes_avx::<B>(data, offsets) };
+            return;
+        }
+        self.solve_lanes_impl::<B>(data, offsets)
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx")]
+    unsafe fn solve_lanes_avx<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
+        self.solve_lanes_impl::<B>(data, offsets)
+    }
+
+    #[inline(always)]
+    fn solve_lanes_impl<const B: usize>(&self, data: &mut [Real], offsets: &[usize]) {
         const MAX_N: usize = 32;
         let n = self.n;
         if n > MAX_N {
@@ -294,9 +333,88 @@ fn gemm_cols<RY: na::Dim, RB: na::Dim, SY, SB>(
     }
 }
 
+/// steplearn patch: `alpha a` as [`gemm_cols`] computes it (`sa[c][r] = alpha a[(r, c)]`).
+#[cfg(feature = "dim3")]
+#[inline(always)]
+fn scaled3(alpha: Real, a: &na::Matrix3<Real>) -> [[Real; 3]; 3] {
+    let mut sa = [[0.0; 3]; 3];
+    for (c, sc) in sa.iter_mut().enumerate() {
+        for (r, v) in sc.iter_mut().enumerate() {
+            *v = alpha * a[(r, c)];
+        }
+    }
+    sa
+}
+
+/// steplearn patch: one column of [`gemm_cols`] with `beta = 1` on plain values:
+/// `v = sa[:, 0] x[0] + 1 y`, then `v = sa[:, c] x[c] + v` for `c = 1, 2`.
+#[cfg(feature = "dim3")]
+#[inline(always)]
+fn gemv3_col(sa: &[[Real; 3]; 3], x: &[Real], y: &mut [Real]) {
+    let beta: Real = 1.0;
+    let mut v = [0.0; 3];
+    for r in 0..3 {
+        v[r] = sa[0][r] * x[0] + beta * y[r];
+    }
+    for c in 1..3 {
+        for r in 0..3 {
+            v[r] = sa[c][r] * x[c] + v[r];
+        }
+    }
+    y[..3].copy_from_slice(&v);
+}
+
+/// steplearn patch: `y.gemv_tr(1.0, jac, x, 1.0)` on the columns `cols` only (the body Jacobian
+/// `jac` is zero in the others), each as nalgebra computes it: `y[j] = 1 dot(jac[:, j], x) + 1 y[j]`.
+/// With a non-finite `x` the full `gemv_tr` runs (`0 inf` is not zero).
+fn gemv_tr_cols(
+    y: &mut DVector,
+    jac: &Jacobian<Real>,
+    x: &SVector<Real, SPATIAL_DIM>,
+    cols: &[usize],
+) {
+    if !x.iter().all(|v| v.is_finite()) {
+        y.gemv_tr(1.0, jac, x, 1.0);
+        return;
+    }
+    let alpha: Real = 1.0;
+    let beta: Real = 1.0;
+    let mut xa = [0.0; SPATIAL_DIM];
+    xa.copy_from_slice(x.as_slice());
+    let jac = jac.as_slice();
+    let y = y.as_mut_slice();
+    for &j in cols {
+        let d = dot_spatial(&jac[j * SPATIAL_DIM..(j + 1) * SPATIAL_DIM], &xa);
+        y[j] = alpha * d + beta * y[j];
+    }
+}
+
 /// steplearn patch: the generalized-coordinate indices of the joints from the root to link `i`.
 fn fill_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     out.clear();
+    append_link_dofs(links, i, out);
+}
+
+/// steplearn patch: `fill_link_dofs(links, i, out)`, copied from the cache `flat` / `start`
+/// (see `Multibody::link_dofs_flat`) when it covers the links.
+#[inline]
+fn cached_link_dofs(
+    links: &MultibodyLinkVec,
+    flat: &[usize],
+    start: &[usize],
+    i: usize,
+    out: &mut Vec<usize>,
+) {
+    if start.len() == links.len() + 1 {
+        out.clear();
+        out.extend_from_slice(&flat[start[i]..start[i + 1]]);
+    } else {
+        fill_link_dofs(links, i, out);
+    }
+}
+
+/// steplearn patch: [`fill_link_dofs`] appended to `out`.
+fn append_link_dofs(links: &MultibodyLinkVec, i: usize, out: &mut Vec<usize>) {
     let mut j = i;
     loop {
         let link = &links[j];
@@ -343,6 +461,94 @@ fn gemv_spatial(mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>, x: &[Real]) -> [R
 /// as nalgebra's `gemm_tr` does. Each entry of `acc_mass` gets its two terms in the same order as
 /// the three separate passes did (quadform first), so the results are bit-identical.
 fn link_mass_quadforms(
+    mass: &mut DMatrix<Real>,
+    acc_mass: &mut DMatrix<Real>,
+    mid_wo_gyro: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
+    mid: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
+    rhs: &Jacobian<Real>,
+    i_coriolis_dt: &Jacobian<Real>,
+    dofs: &[usize],
+) {
+    // steplearn patch: the entries of a column `j` are computed `LANES` rows `a` at a time on a
+    // transposed copy of the Jacobian's columns `dofs` (each lane's dot products still add
+    // `0`, then `col_a[k] work[k]` for `k = 0..SPATIAL_DIM` in order: the same operations).
+    // The first `DIM` rows of `mid` and `mid_wo_gyro` are the same values (the mass diagonal and
+    // zeros), so the first `DIM` entries of both `work`s, and the first `DIM` partial sums of
+    // both dot products, are the same values: they are computed once.
+    const LANES: usize = 4;
+    const MAX_BLOCKS: usize = 4;
+    let nd = dofs.len();
+    let nblocks = nd.div_ceil(LANES);
+    if nblocks > MAX_BLOCKS || SPATIAL_DIM != 6 || !cfg!(target_arch = "x86_64") {
+        link_mass_quadforms_scalar(mass, acc_mass, mid_wo_gyro, mid, rhs, i_coriolis_dt, dofs);
+        return;
+    }
+    // SAFETY: SSE2 is part of the x86_64 baseline; the loads and stores are in bounds (below).
+    #[cfg(target_arch = "x86_64")]
+    unsafe {
+        use core::arch::x86_64::{
+            __m128d, _mm_add_pd, _mm_loadu_pd, _mm_mul_pd, _mm_set1_pd, _mm_storeu_pd,
+        };
+        let n = mass.nrows();
+        let mass = mass.as_mut_slice();
+        let acc_mass = acc_mass.as_mut_slice();
+        let rhs = rhs.as_slice();
+        let icd = i_coriolis_dt.as_slice();
+        // `rt[b][k][l]`: row `k` of the Jacobian column `dofs[b * LANES + l]` (zero past `nd`).
+        let mut rt = [[[0.0; LANES]; 6]; MAX_BLOCKS];
+        for (idx, &a) in dofs.iter().enumerate() {
+            let col_a = &rhs[a * 6..(a + 1) * 6];
+            let blk = &mut rt[idx / LANES];
+            for k in 0..6 {
+                blk[k][idx % LANES] = col_a[k];
+            }
+        }
+        let rt = &rt[..nblocks];
+        for &j in dofs {
+            let col_j = &rhs[j * 6..(j + 1) * 6];
+            let work_wo = gemv_spatial(mid_wo_gyro, col_j);
+            let work = gemv_spatial(mid, col_j);
+            let icd_j = &icd[j * 6..(j + 1) * 6];
+            let bw: [__m128d; 6] = core::array::from_fn(|k| _mm_set1_pd(work[k]));
+            let bwo: [__m128d; 6] = core::array::from_fn(|k| _mm_set1_pd(work_wo[k]));
+            let bi: [__m128d; 6] = core::array::from_fn(|k| _mm_set1_pd(icd_j[k]));
+            let mass_j = &mut mass[j * n..(j + 1) * n];
+            let acc_j = &mut acc_mass[j * n..(j + 1) * n];
+            for (blk, dofs_b) in rt.iter().zip(dofs.chunks(LANES)) {
+                let mut out = [[0.0; LANES]; 3];
+                for h in 0..LANES / 2 {
+                    // `2 h + 1 < LANES`: in bounds of each row of `blk` and `out`.
+                    let r = |k: usize| _mm_loadu_pd(blk[k].as_ptr().add(2 * h));
+                    let mut s = _mm_set1_pd(0.0);
+                    for k in 0..DIM {
+                        s = _mm_add_pd(s, _mm_mul_pd(r(k), bw[k]));
+                    }
+                    let mut v_wo = s;
+                    let mut v = s;
+                    for k in DIM..6 {
+                        let rk = r(k);
+                        v_wo = _mm_add_pd(v_wo, _mm_mul_pd(rk, bwo[k]));
+                        v = _mm_add_pd(v, _mm_mul_pd(rk, bw[k]));
+                    }
+                    let mut v2 = _mm_set1_pd(0.0);
+                    for k in 0..6 {
+                        v2 = _mm_add_pd(v2, _mm_mul_pd(r(k), bi[k]));
+                    }
+                    _mm_storeu_pd(out[0].as_mut_ptr().add(2 * h), v_wo);
+                    _mm_storeu_pd(out[1].as_mut_ptr().add(2 * h), v);
+                    _mm_storeu_pd(out[2].as_mut_ptr().add(2 * h), v2);
+                }
+                for (l, &a) in dofs_b.iter().enumerate() {
+                    mass_j[a] = out[0][l] + mass_j[a];
+                    acc_j[a] = out[2][l] + (out[1][l] + acc_j[a]);
+                }
+            }
+        }
+    }
+}
+
+/// The scalar form of [`link_mass_quadforms`] (for links with many dofs).
+fn link_mass_quadforms_scalar(
     mass: &mut DMatrix<Real>,
     acc_mass: &mut DMatrix<Real>,
     mid_wo_gyro: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
@@ -475,6 +681,12 @@ pub struct Multibody {
     /// steplearn patch: the generalized coordinates of the joints from the root to the link
     /// being processed (the only columns where its body Jacobian can be non-zero).
     link_dofs: Vec<usize>,
+    /// steplearn patch: every link's `fill_link_dofs`, concatenated (link `i`'s from
+    /// `link_dofs_start[i]` to `link_dofs_start[i + 1]`), rebuilt by each forward kinematics
+    /// that updates the body Jacobians (the topology cannot change between that and the mass
+    /// matrix and accelerations of the same step).
+    link_dofs_flat: Vec<usize>,
+    link_dofs_start: Vec<usize>,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -509,6 +721,8 @@ impl Multibody {
             coriolis_w: Vec::new(),
             i_coriolis_dt: Jacobian::zeros(0),
             link_dofs: Vec::new(),
+            link_dofs_flat: Vec::new(),
+            link_dofs_start: Vec::new(),
             root_is_dynamic: false,
             self_contacts_enabled,
             couplings: Vec::new(),
@@ -943,20 +1157,30 @@ impl Multibody {
                 rb.forces.force - rb_mass * acc.linvel,
                 rb.forces.torque - gyroscopic - rb_inertia * acc.angvel,
             );
-            self.accelerations.gemv_tr(
-                1.0,
+            // steplearn patch: `gemv_tr` on the link's dofs' columns only. In every other column
+            // the body Jacobian is zero, so (with finite forces) nalgebra's `dot` gives `+0` there
+            // and `1 (+0) + 1 y` is `y` (these sums start at `+0` and so are never `-0`).
+            cached_link_dofs(
+                &self.links,
+                &self.link_dofs_flat,
+                &self.link_dofs_start,
+                i,
+                &mut self.link_dofs,
+            );
+            gemv_tr_cols(
+                &mut self.accelerations,
                 &self.body_jacobians[i],
                 external_forces.as_vector(),
-                1.0,
+                &self.link_dofs,
             );
 
             if check_implicit_coriolis_divergence {
                 let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
-                pos_forces.gemv_tr(
-                    1.0,
+                gemv_tr_cols(
+                    &mut pos_forces,
                     &self.body_jacobians[i],
                     applied_forces.as_vector(),
-                    1.0,
+                    &self.link_dofs,
                 );
             }
         }
@@ -1110,10 +1334,23 @@ impl Multibody {
     }
 
     fn update_body_jacobians(&mut self) {
+        self.link_dofs_flat.clear();
+        self.link_dofs_start.clear();
+        for i in 0..self.links.len() {
+            self.link_dofs_start.push(self.link_dofs_flat.len());
+            append_link_dofs(&self.links, i, &mut self.link_dofs_flat);
+        }
+        self.link_dofs_start.push(self.link_dofs_flat.len());
         for i in 0..self.links.len() {
             // steplearn patch: the products below only on the columns where the Jacobians can be
             // non-zero (the dofs of the joints from the root to the link).
-            fill_link_dofs(&self.links, i, &mut self.link_dofs);
+            cached_link_dofs(
+                &self.links,
+                &self.link_dofs_flat,
+                &self.link_dofs_start,
+                i,
+                &mut self.link_dofs,
+            );
             let link = &self.links[i];
 
             if self.body_jacobians[i].ncols() != self.ndofs {
@@ -1254,7 +1491,13 @@ impl Multibody {
             // computed (the same floating-point operations as nalgebra's `quadform` on them;
             // the skipped entries would only add zeros). They are added below, with the
             // Coriolis term, by `link_mass_quadforms` (these matrices are not read in between).
-            fill_link_dofs(&self.links, i, &mut self.link_dofs);
+            cached_link_dofs(
+                &self.links,
+                &self.link_dofs_flat,
+                &self.link_dofs_start,
+                i,
+                &mut self.link_dofs,
+            );
 
             /*
              *
@@ -1262,7 +1505,6 @@ impl Multibody {
              *
              */
             let rb_j = &self.body_jacobians[i];
-            let rb_j_w = rb_j.fixed_rows::<ANG_DIM>(DIM);
 
             let ndofs = link.joint.ndofs();
 
@@ -1271,7 +1513,6 @@ impl Multibody {
                 let parent_link = &self.links[parent_id];
                 let parent_rb = &bodies[parent_link.rigid_body];
                 let parent_j = &self.body_jacobians[parent_id];
-                let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
                 let parent_w = SimdAngVector::<Real>::from(parent_rb.vels.angvel).gcross_matrix();
 
                 let (coriolis_v, parent_coriolis_v) = self.coriolis_v.index_mut2(i, parent_id);
@@ -1288,37 +1529,42 @@ impl Multibody {
 
                 // [c1 - c0].gcross() * (JDot + JDot/u * qdot)"
                 let shift_cross_tr = vect_to_na(link.shift02).gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &shift_cross_tr, parent_coriolis_w, 1.0, &self.link_dofs);
-
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
                 let dvel_cross = vect_to_na(
                     rb.vels.angvel.gcross(link.shift02) + 2.0 * link.joint_velocity.linvel,
                 )
                 .gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &dvel_cross, &parent_j_w, 1.0, &self.link_dofs);
-
                 // JDot/u * qdot
-                gemm_cols(
-                    coriolis_v,
-                    1.0,
-                    &vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr(),
-                    &parent_j_w,
-                    1.0,
-                    &self.link_dofs,
-                );
-                gemm_cols(
-                    coriolis_v,
-                    1.0,
-                    &(parent_w * shift_cross_tr),
-                    &parent_j_w,
-                    1.0,
-                    &self.link_dofs,
-                );
-
+                let jv_cross = vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr();
+                let pw_shift = parent_w * shift_cross_tr;
                 #[cfg(feature = "dim3")]
+                let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
+                // steplearn patch: the five `gemm_cols` (`coriolis_v += shift_cross_tr
+                // parent_coriolis_w`, `+= dvel_cross parent_j_w`, `+= jv_cross parent_j_w`,
+                // `+= pw_shift parent_j_w`, then `coriolis_w += -vel_wrt_joint_w parent_j_w`) in
+                // one pass over the columns: each column goes through the same operations in the
+                // same order (the columns are independent).
                 {
-                    let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
-                    gemm_cols(coriolis_w, -1.0, &vel_wrt_joint_w, &parent_j_w, 1.0, &self.link_dofs);
+                    let s1 = scaled3(1.0, &shift_cross_tr);
+                    let s2 = scaled3(1.0, &dvel_cross);
+                    let s3 = scaled3(1.0, &jv_cross);
+                    let s4 = scaled3(1.0, &pw_shift);
+                    #[cfg(feature = "dim3")]
+                    let s5 = scaled3(-1.0, &vel_wrt_joint_w);
+                    let cv = coriolis_v.as_mut_slice();
+                    let cw = coriolis_w.as_mut_slice();
+                    let pcw = parent_coriolis_w.as_slice();
+                    let pj = parent_j.as_slice();
+                    for &j in &self.link_dofs {
+                        let cv_j = &mut cv[j * DIM..(j + 1) * DIM];
+                        gemv3_col(&s1, &pcw[j * ANG_DIM..(j + 1) * ANG_DIM], cv_j);
+                        let pjw = &pj[j * SPATIAL_DIM + DIM..(j + 1) * SPATIAL_DIM];
+                        gemv3_col(&s2, pjw, cv_j);
+                        gemv3_col(&s3, pjw, cv_j);
+                        gemv3_col(&s4, pjw, cv_j);
+                        #[cfg(feature = "dim3")]
+                        gemv3_col(&s5, pjw, &mut cw[j * ANG_DIM..(j + 1) * ANG_DIM]);
+                    }
                 }
 
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
@@ -1354,21 +1600,27 @@ impl Multibody {
             {
                 // [c3 - c2].gcross() * (JDot + JDot/u * qdot)
                 let shift_cross_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &shift_cross_tr, coriolis_w, 1.0, &self.link_dofs);
-
                 // JDot
                 let dvel_cross = vect_to_na(rb.vels.angvel.gcross(link.shift23)).gcross_matrix_tr();
-                gemm_cols(coriolis_v, 1.0, &dvel_cross, &rb_j_w, 1.0, &self.link_dofs);
-
                 // JDot/u * qdot
-                gemm_cols(
-                    coriolis_v,
-                    1.0,
-                    &(SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr),
-                    &rb_j_w,
-                    1.0,
-                    &self.link_dofs,
-                );
+                let w_shift =
+                    SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr;
+                // steplearn patch: the three `gemm_cols` (`coriolis_v += shift_cross_tr
+                // coriolis_w`, `+= dvel_cross rb_j_w`, `+= w_shift rb_j_w`) in one pass over the
+                // columns, each column through the same operations in the same order.
+                let s1 = scaled3(1.0, &shift_cross_tr);
+                let s2 = scaled3(1.0, &dvel_cross);
+                let s3 = scaled3(1.0, &w_shift);
+                let cv = coriolis_v.as_mut_slice();
+                let cw = coriolis_w.as_slice();
+                let rj = rb_j.as_slice();
+                for &j in &self.link_dofs {
+                    let cv_j = &mut cv[j * DIM..(j + 1) * DIM];
+                    gemv3_col(&s1, &cw[j * ANG_DIM..(j + 1) * ANG_DIM], cv_j);
+                    let rjw = &rj[j * SPATIAL_DIM + DIM..(j + 1) * SPATIAL_DIM];
+                    gemv3_col(&s2, rjw, cv_j);
+                    gemv3_col(&s3, rjw, cv_j);
+                }
             }
 
             let coriolis_v = &mut self.coriolis_v[i];
@@ -1821,6 +2073,18 @@ impl Multibody {
         bodies: &RigidBodySet,
         read_root_pose_from_rigid_body: bool,
     ) {
+        self.forward_kinematics_internal(bodies, read_root_pose_from_rigid_body, true);
+    }
+
+    /// steplearn patch: [`Self::forward_kinematics`], with the body Jacobians updated only if
+    /// `update_jacobians` (the solver's last substep skips them: every step starts with a full
+    /// forward kinematics that recomputes them from the poses alone before anything reads them).
+    pub(crate) fn forward_kinematics_internal(
+        &mut self,
+        bodies: &RigidBodySet,
+        read_root_pose_from_rigid_body: bool,
+        update_jacobians: bool,
+    ) {
         // Be sure the degrees of freedom match and take the root position if needed.
         self.update_root_type(bodies, read_root_pose_from_rigid_body);
 
@@ -1859,7 +2123,9 @@ impl Multibody {
         /*
          * Compute body jacobians.
          */
-        self.update_body_jacobians();
+        if update_jacobians {
+            self.update_body_jacobians();
+        }
     }
 
     /// Computes the ids of all the links between the root and the link identified by `link_id`.

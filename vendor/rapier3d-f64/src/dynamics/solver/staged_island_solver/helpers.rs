@@ -139,7 +139,9 @@ impl VelocitySolver {
                 .rows(multibody.solver_id as usize, multibody.ndofs());
             multibody.velocities.copy_from(&solver_vels);
             multibody.integrate(params.dt);
-            multibody.forward_kinematics(bodies, false);
+            // steplearn patch: no body Jacobians after the last substep (the next step's forward
+            // kinematics recomputes them before they are read).
+            multibody.forward_kinematics_internal(bodies, false, !is_last_substep);
             multibody.update_rigid_bodies_internal(bodies, !is_last_substep, true, false);
 
             if !is_last_substep {
