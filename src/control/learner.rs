@@ -209,11 +209,28 @@ pub struct LearnerConfig {
     /// other states reached the catch steps of experiment B (1-7.5 cm more step there) and the
     /// learned walker fell after 2-23x as many pushes as the model.
     pub trust_region: Option<f64>,
+    /// What the offset fades to outside the trust region (default [`TrustFallback::Zero`]).
+    pub trust_fallback: TrustFallback,
     /// Share of a step's recorded inputs that are trained at touch-down: the latest ones
     /// (in (0, 1]; default 1, eq. 6: every input of the step). The swing foot lands where the
     /// last commands put it (the generator filters the commanded placement over 0.05 s), so
     /// offsets queried early in a step barely move the step that G measures.
     pub train_share: f64,
+}
+
+/// What the learned offset fades to where the trust region does not cover the input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, strum::Display)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum TrustFallback {
+    /// dF = 0: the model alone decides in states the learner never learned from.
+    #[default]
+    Zero,
+    /// The offset learned at the nominal state: the prediction at the mean trained theta_E
+    /// and theta_E_dot, with F_R clamped into the trust region. A steady correction of a
+    /// model error (a leg that under-reaches) is kept after a push, while the state-dependent
+    /// part is used only near the data.
+    Nominal,
 }
 
 /// The learner's initial belief dF = 0, trained into the approximator before any step so
@@ -290,6 +307,7 @@ impl Default for LearnerConfig {
             leakage: 0.0,
             max_step_error: None,
             trust_region: Some(2.0),
+            trust_fallback: TrustFallback::Zero,
             train_share: 1.0,
         }
     }
@@ -656,7 +674,11 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
                 return Err(LearnerError::NonFinite { what, value: v });
             }
         }
-        let df = self.predict_array(&x)? * self.trust(&x);
+        let trust = self.trust(&x);
+        let mut df = self.predict_array(&x)? * trust;
+        if trust < 1.0 && self.config.trust_fallback == TrustFallback::Nominal {
+            df += (1.0 - trust) * self.predict_array(&self.nominal_input(x[2]))?;
+        }
         self.record(x);
         let df = match self.config.max_offset {
             Some(m) => df.clamp(-m, m),
@@ -671,6 +693,31 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         let n = self.recorded.len();
         let keep = ((n as f64 * self.config.train_share).ceil() as usize).clamp(1, n.max(1));
         n.saturating_sub(keep)
+    }
+
+    /// The nominal state for the reference `f_r`: the mean trained theta_E and theta_E_dot,
+    /// `f_r` clamped into the trust region (the prior's centre before any training).
+    fn nominal_input(&self, f_r: f64) -> [f64; LEARNER_INPUTS] {
+        let (lo, hi) = (
+            self.config.prior.lo.to_array(),
+            self.config.prior.hi.to_array(),
+        );
+        let k = self.config.trust_region.unwrap_or(0.0);
+        let mut x = [0.0; LEARNER_INPUTS];
+        for a in 0..LEARNER_INPUTS {
+            let t = &self.trained[a];
+            x[a] = if t.count() == 0 {
+                0.5 * (lo[a] + hi[a])
+            } else {
+                t.mean()
+            };
+        }
+        let t = &self.trained[2];
+        if t.count() > 0 {
+            let half = k * t.population_std().max(0.02 * (hi[2] - lo[2]));
+            x[2] = f_r.clamp(t.mean() - half, t.mean() + half);
+        }
+        x
     }
 
     /// The share of the offset applied at `x` (1 without a trust region).

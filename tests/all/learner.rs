@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use steplearn::approx::{ApproxError, FunctionApproximator, Persist, check_output, check_vector};
 use steplearn::control::learner::{
-    FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, MapSpec,
+    FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, MapSpec, TrustFallback,
 };
 use steplearn::rules::{BalanceOnly, LearningRule, PendulumCart, StepOutcome};
 
@@ -387,6 +387,66 @@ fn trust_region_applies_the_offset_only_near_trained_inputs() {
         err.to_string().contains("trained-input statistics"),
         "{err}"
     );
+}
+
+#[test]
+fn the_nominal_trust_fallback_keeps_the_offset_learned_at_the_nominal_state() {
+    let learner_with = |fallback| {
+        let cfg = LearnerConfig {
+            trust_region: Some(2.0),
+            trust_fallback: fallback,
+            ..LearnerConfig::literal()
+        };
+        let mut learner = FootstepLearner::new(
+            BinTable::new([10, 8, 6], 1.0),
+            Fixed(0.3, AtomicUsize::new(0)),
+            cfg,
+        )
+        .unwrap();
+        for k in 0..20 {
+            learner
+                .query(input(0.01 * (k % 5) as f64, 0.0, 0.1))
+                .unwrap();
+        }
+        learner.touch_down(&StepOutcome::default()).unwrap();
+        learner
+    };
+    // Trained in one bin (theta_E 0-0.04, theta_E_dot 0, F_R 0.1), which predicts 0.3. Far in
+    // theta_E_dot (another, untrained bin) and far in F_R (0.2: another bin too).
+    let (inside, far_rate, far_ref) = (
+        input(0.02, 0.0, 0.1),
+        input(0.02, 1.5, 0.1),
+        input(0.02, 0.0, 0.2),
+    );
+    let mut zero = learner_with(TrustFallback::Zero);
+    let mut nominal = learner_with(TrustFallback::Nominal);
+    for x in [far_rate, far_ref] {
+        assert_eq!(zero.predict(x).unwrap(), 0.0, "an untrained bin");
+        assert_eq!(zero.query(x).unwrap(), 0.0);
+        // The nominal state (mean theta_E and rate, F_R clamped into the region) is trained.
+        assert_eq!(nominal.query(x).unwrap(), 0.3);
+    }
+    assert_eq!(zero.query(inside).unwrap(), 0.3);
+    assert_eq!(nominal.query(inside).unwrap(), 0.3);
+    // Before any training the fallback is the prior's belief, not a guess.
+    let mut fresh = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.3, AtomicUsize::new(0)),
+        LearnerConfig {
+            trust_region: Some(2.0),
+            trust_fallback: TrustFallback::Nominal,
+            ..LearnerConfig::literal()
+        },
+    )
+    .unwrap();
+    assert_eq!(fresh.query(far_rate).unwrap(), 0.0);
+    // The setting is part of the saved learner.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("learner.json");
+    nominal.save(&path).unwrap();
+    let mut loaded: FootstepLearner<BinTable, _> =
+        FootstepLearner::load(&path, Fixed(0.3, AtomicUsize::new(0))).unwrap();
+    assert_eq!(loaded.query(far_rate).unwrap(), 0.3);
 }
 
 #[test]
