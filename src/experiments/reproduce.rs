@@ -146,9 +146,32 @@ impl Claims {
                     falls,
                 } => {
                     let sooner = return_time_s.learned < return_time_s.model;
-                    return_diff.push(return_time_s.learned - return_time_s.model);
+                    // Paired over seeds: return times only where both walkers absorbed a push
+                    // (without one the return time is the horizon, not a measurement), fall
+                    // rates only where both received pushes (a walker that falls while
+                    // walking gets none, and its 0 falls would look perfect).
+                    let absorbed = |p: u32, f: u32| p.saturating_sub(f) > 0;
+                    let both_absorbed = falls.as_ref().is_none_or(|f| {
+                        absorbed(f.pushes.model, f.falls.model)
+                            && absorbed(f.pushes.learned, f.falls.learned)
+                    });
+                    return_diff.push(if both_absorbed {
+                        return_time_s.learned - return_time_s.model
+                    } else {
+                        f64::NAN
+                    });
                     if let Some(f) = falls {
-                        falls_diff.push(f.falls.learned as f64 - f.falls.model as f64);
+                        let rate = |falls: u32, pushes: u32| {
+                            if pushes == 0 {
+                                f64::NAN
+                            } else {
+                                falls as f64 / pushes as f64
+                            }
+                        };
+                        falls_diff.push(
+                            rate(f.falls.learned, f.pushes.learned)
+                                - rate(f.falls.model, f.pushes.model),
+                        );
                     }
                     let near = max_tda_rad.learned <= 1.5 * p_theta;
                     // Return times cover absorbed pushes only: a walker that falls more often
@@ -274,7 +297,7 @@ impl Claims {
                         Direction::LowerIsBetter,
                     ),
                     Paired::new(
-                        "falls learned - model",
+                        "share of pushes ending in a fall, learned - model",
                         &falls_diff,
                         0.0,
                         Direction::LowerIsBetter,
@@ -436,7 +459,9 @@ pub fn read_summaries(
 mod tests {
     use super::*;
     use crate::experiments::paired::Verdict;
-    use crate::experiments::summary::{ControllerFalls, Controllers, ModelLearned, NoLearning};
+    use crate::experiments::summary::{
+        ControllerFalls, Controllers, ModelLearned, NoLearning, PushFalls,
+    };
 
     fn summary(seed: u64, result: ExperimentResult) -> Summary {
         Summary {
@@ -470,6 +495,56 @@ mod tests {
                 }),
             },
         )
+    }
+
+    fn disturbance(
+        seed: u64,
+        returns: (f64, f64),
+        pushes: (u32, u32),
+        falls: (u32, u32),
+    ) -> Summary {
+        summary(
+            seed,
+            ExperimentResult::Disturbance {
+                return_time_s: ModelLearned {
+                    model: returns.0,
+                    learned: returns.1,
+                },
+                max_tda_rad: ModelLearned {
+                    model: 0.1,
+                    learned: 0.1,
+                },
+                falls: Some(PushFalls {
+                    pushes: ModelLearned {
+                        model: pushes.0,
+                        learned: pushes.1,
+                    },
+                    falls: ModelLearned {
+                        model: falls.0,
+                        learned: falls.1,
+                    },
+                }),
+            },
+        )
+    }
+
+    #[test]
+    fn disturbance_over_seeds_pairs_fall_rates_and_measured_return_times_only() {
+        let s = [
+            disturbance(0, (3.0, 2.0), (60, 60), (6, 3)),
+            disturbance(1, (2.5, 2.0), (60, 30), (6, 6)),
+            // The model fell while walking and received no push: no return time, no rate.
+            disturbance(2, (4.0, 3.0), (0, 60), (0, 50)),
+            // The learned walker absorbed nothing: its return time is the horizon.
+            disturbance(3, (2.0, 4.0), (60, 60), (6, 60)),
+        ];
+        let c = Claims::from_summaries(&s, 0.15);
+        let (ret, rate) = (&c.disturbance.over_seeds[0], &c.disturbance.over_seeds[1]);
+        assert_eq!(ret.values, vec![-1.0, -0.5]);
+        assert_eq!(rate.values.len(), 3, "{:?}", rate.values);
+        assert!((rate.values[0] - (-0.05)).abs() < 1e-12);
+        assert!((rate.values[1] - 0.1).abs() < 1e-12);
+        assert!((rate.values[2] - 0.9).abs() < 1e-12);
     }
 
     #[test]
