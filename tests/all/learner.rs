@@ -330,18 +330,25 @@ fn train_share_trains_only_the_latest_inputs_of_a_step() {
     assert_eq!(learned, vec![0.0, 0.0, 0.3, 0.3]);
 }
 
-#[test]
-fn trust_region_applies_the_offset_only_near_trained_inputs() {
+/// Eq. (6) with a trust region of 2 std and `fallback`, over a bin table and a rule that always
+/// asks for 0.3.
+fn trust_learner(fallback: TrustFallback) -> FootstepLearner<BinTable, Fixed> {
     let cfg = LearnerConfig {
         trust_region: Some(2.0),
+        trust_fallback: fallback,
         ..LearnerConfig::literal()
     };
-    let mut learner = FootstepLearner::new(
+    FootstepLearner::new(
         BinTable::new([10, 8, 6], 1.0),
         Fixed(0.3, AtomicUsize::new(0)),
         cfg,
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn trust_region_applies_the_offset_only_near_trained_inputs() {
+    let mut learner = trust_learner(TrustFallback::Zero);
     // Nothing trained yet: no offset, whatever the approximator says.
     for k in 0..20 {
         assert_eq!(
@@ -392,17 +399,7 @@ fn trust_region_applies_the_offset_only_near_trained_inputs() {
 #[test]
 fn the_nominal_trust_fallback_keeps_the_offset_learned_at_the_nominal_state() {
     let learner_with = |fallback| {
-        let cfg = LearnerConfig {
-            trust_region: Some(2.0),
-            trust_fallback: fallback,
-            ..LearnerConfig::literal()
-        };
-        let mut learner = FootstepLearner::new(
-            BinTable::new([10, 8, 6], 1.0),
-            Fixed(0.3, AtomicUsize::new(0)),
-            cfg,
-        )
-        .unwrap();
+        let mut learner = trust_learner(fallback);
         for k in 0..20 {
             learner
                 .query(input(0.01 * (k % 5) as f64, 0.0, 0.1))
@@ -429,16 +426,7 @@ fn the_nominal_trust_fallback_keeps_the_offset_learned_at_the_nominal_state() {
     assert_eq!(zero.query(inside).unwrap(), 0.3);
     assert_eq!(nominal.query(inside).unwrap(), 0.3);
     // Before any training the fallback is the prior's belief, not a guess.
-    let mut fresh = FootstepLearner::new(
-        BinTable::new([10, 8, 6], 1.0),
-        Fixed(0.3, AtomicUsize::new(0)),
-        LearnerConfig {
-            trust_region: Some(2.0),
-            trust_fallback: TrustFallback::Nominal,
-            ..LearnerConfig::literal()
-        },
-    )
-    .unwrap();
+    let mut fresh = trust_learner(TrustFallback::Nominal);
     assert_eq!(fresh.query(far_rate).unwrap(), 0.0);
     // The setting is part of the saved learner.
     let dir = tempfile::tempdir().unwrap();
