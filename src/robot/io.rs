@@ -97,12 +97,12 @@ pub struct Imu {
 }
 
 impl Imu {
-    /// Roll, pitch and yaw (rad) of the trunk: intrinsic z-y-x Euler angles of `orientation`.
+    /// Roll, pitch and yaw (rad) of the trunk: intrinsic z-y-x Euler angles of `orientation`
+    /// (nalgebra's [`nalgebra::UnitQuaternion::euler_angles`], as the estimator uses).
     pub fn roll_pitch_yaw(&self) -> [f64; 3] {
         let [w, x, y, z] = self.orientation;
-        let roll = (2.0 * (w * x + y * z)).atan2(1.0 - 2.0 * (x * x + y * y));
-        let pitch = (2.0 * (w * y - z * x)).clamp(-1.0, 1.0).asin();
-        let yaw = (2.0 * (w * z + x * y)).atan2(1.0 - 2.0 * (y * y + z * z));
+        let q = nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(w, x, y, z));
+        let (roll, pitch, yaw) = q.euler_angles();
         [roll, pitch, yaw]
     }
 }
@@ -190,5 +190,13 @@ mod tests {
         let [r, p, y] = imu.roll_pitch_yaw();
         assert!(r.abs() < 1e-12 && y.abs() < 1e-12);
         assert!((p - a).abs() < 1e-12);
+        // All three at once round-trip through a quaternion built from them.
+        let q = nalgebra::UnitQuaternion::from_euler_angles(0.1, -0.2, 0.3);
+        let imu = Imu {
+            orientation: [q.w, q.i, q.j, q.k],
+            gyro: [0.0; 3],
+        };
+        let [r, p, y] = imu.roll_pitch_yaw();
+        assert!((r - 0.1).abs() < 1e-12 && (p + 0.2).abs() < 1e-12 && (y - 0.3).abs() < 1e-12);
     }
 }
