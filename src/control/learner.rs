@@ -702,7 +702,6 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
             self.config.prior.lo.to_array(),
             self.config.prior.hi.to_array(),
         );
-        let k = self.config.trust_region.unwrap_or(0.0);
         let mut x = [0.0; LEARNER_INPUTS];
         for a in 0..LEARNER_INPUTS {
             let t = &self.trained[a];
@@ -714,10 +713,22 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         }
         let t = &self.trained[2];
         if t.count() > 0 {
-            let half = k * t.population_std().max(0.02 * (hi[2] - lo[2]));
+            let half = self.config.trust_region.unwrap_or(0.0) * self.trust_std(2);
             x[2] = f_r.clamp(t.mean() - half, t.mean() + half);
         }
         x
+    }
+
+    /// The spread the trust region measures distances in along `axis`: the std of the trained
+    /// inputs, at least 2% of the prior box's width.
+    fn trust_std(&self, axis: usize) -> f64 {
+        let (lo, hi) = (
+            self.config.prior.lo.to_array(),
+            self.config.prior.hi.to_array(),
+        );
+        self.trained[axis]
+            .population_std()
+            .max(0.02 * (hi[axis] - lo[axis]))
     }
 
     /// The share of the offset applied at `x` (1 without a trust region).
@@ -725,18 +736,13 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         let Some(k) = self.config.trust_region else {
             return 1.0;
         };
-        let (lo, hi) = (
-            self.config.prior.lo.to_array(),
-            self.config.prior.hi.to_array(),
-        );
         let mut z: f64 = 0.0;
         for a in 0..LEARNER_INPUTS {
             let t = &self.trained[a];
             if t.count() == 0 {
                 return 0.0;
             }
-            let std = t.population_std().max(0.02 * (hi[a] - lo[a]));
-            z = z.max((x[a] - t.mean()).abs() / std);
+            z = z.max((x[a] - t.mean()).abs() / self.trust_std(a));
         }
         ((1.5 * k - z) / (0.5 * k)).clamp(0.0, 1.0)
     }
