@@ -737,12 +737,11 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
             return 1.0;
         };
         let mut z: f64 = 0.0;
-        for a in 0..LEARNER_INPUTS {
-            let t = &self.trained[a];
+        for (a, (&xa, t)) in x.iter().zip(&self.trained).enumerate() {
             if t.count() == 0 {
                 return 0.0;
             }
-            z = z.max((x[a] - t.mean()).abs() / self.trust_std(a));
+            z = z.max((xa - t.mean()).abs() / self.trust_std(a));
         }
         ((1.5 * k - z) / (0.5 * k)).clamp(0.0, 1.0)
     }
