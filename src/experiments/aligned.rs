@@ -59,6 +59,51 @@ impl AlignedStats {
         })
     }
 
+    /// Bins `samples` `(time, value)` by how many samples came between the latest event at or
+    /// before them and them: bin k holds the k-th sample after an event (k = 0 the first), for
+    /// samples within `horizon` (s) of their event and k < `max_index`. `bin_s` of the result
+    /// is 1 (one sample). Unsorted events or a horizon that is not positive and finite is an
+    /// error; samples must be sorted by time.
+    pub fn by_index(
+        samples: &[(f64, f64)],
+        events: &[f64],
+        horizon: f64,
+        max_index: usize,
+    ) -> Result<Self, ReportError> {
+        if !(horizon.is_finite() && horizon > 0.0) {
+            return Err(ReportError::invalid(format!(
+                "aligned statistics need a positive finite horizon, got {horizon}"
+            )));
+        }
+        if events.windows(2).any(|w| w[0] > w[1] || w[0].is_nan()) {
+            return Err(ReportError::invalid("event times must be sorted"));
+        }
+        if samples.windows(2).any(|w| w[0].0 > w[1].0) {
+            return Err(ReportError::invalid("sample times must be sorted"));
+        }
+        let mut bins = vec![crate::stats::MeanStd::new(); max_index];
+        let (mut event, mut k) = (0usize, 0usize);
+        for &(t, v) in samples {
+            let i = events.partition_point(|&e| e <= t);
+            if i == 0 {
+                continue;
+            }
+            if i != event {
+                (event, k) = (i, 0);
+            }
+            if t - events[i - 1] < horizon && k < max_index {
+                bins[k].push(v);
+            }
+            k += 1;
+        }
+        Ok(AlignedStats {
+            bin_s: 1.0,
+            mean: bins.iter().map(|b| b.mean()).collect(),
+            std: bins.iter().map(|b| b.population_std()).collect(),
+            count: bins.iter().map(|b| b.count()).collect(),
+        })
+    }
+
     /// The bins with at least `min_count` samples, as (bin centre times, means, stds).
     pub fn populated(&self, min_count: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         let mut out = (Vec::new(), Vec::new(), Vec::new());
@@ -110,6 +155,27 @@ mod tests {
         assert_eq!(s.mean[0], 2.0);
         assert_eq!(s.std[0], 0.0);
         assert!(s.mean[1].is_nan());
+    }
+
+    #[test]
+    fn by_index_counts_samples_since_the_latest_event() {
+        // Events at 0 and 10; a sample every 0.4 s valued by its index since the event.
+        let samples: Vec<(f64, f64)> = (0..50)
+            .map(|i| {
+                let t = 0.1 + i as f64 * 0.4;
+                let since = if t >= 10.0 { t - 10.0 } else { t };
+                (t, ((since - 0.1) / 0.4).round())
+            })
+            .collect();
+        let s = AlignedStats::by_index(&samples, &[0.0, 10.0], 2.0, 8).unwrap();
+        assert_eq!(s.bin_s, 1.0);
+        // Samples within 2 s of their event: indices 0-4 after either event.
+        assert_eq!(s.count, vec![2, 2, 2, 2, 2, 0, 0, 0]);
+        for k in 0..5 {
+            assert_eq!(s.mean[k], k as f64);
+        }
+        assert!(AlignedStats::by_index(&samples, &[0.0], 0.0, 8).is_err());
+        assert!(AlignedStats::by_index(&[(1.0, 0.0), (0.5, 0.0)], &[0.0], 1.0, 8).is_err());
     }
 
     #[test]

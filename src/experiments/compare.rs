@@ -6,7 +6,7 @@ use super::settings::LearnerFactory;
 use super::trial::{ControllerCell, StepCells, TrialLog, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::report::ReportError;
-use crate::report::write_rows;
+use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -35,6 +35,32 @@ impl ModelAndLearned {
                 .collect();
         write_rows(path, &rows)
     }
+
+    /// Writes every push of both runs as CSV: controller, time (s), impulse (Ns), whether a
+    /// fall followed.
+    pub fn write_pushes(&self, path: &Path) -> Result<(), ReportError> {
+        let rows: Vec<PushCells> = [("model", &self.model), ("learned", &self.learned)]
+            .into_iter()
+            .flat_map(|(controller, log)| {
+                log.pushes.iter().map(move |p| PushCells {
+                    controller,
+                    time_s: Fixed(p.time),
+                    impulse_ns: Fixed(p.impulse),
+                    fell: p.fell,
+                })
+            })
+            .collect();
+        write_rows(path, &rows)
+    }
+}
+
+/// A row of [`ModelAndLearned::write_pushes`].
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct PushCells<'a> {
+    controller: &'a str,
+    time_s: Fixed<4>,
+    impulse_ns: Fixed<4>,
+    fell: bool,
 }
 
 /// Runs `setup` without a learner and with a fresh learner from `learner`, in parallel (the

@@ -85,6 +85,10 @@ impl DisturbanceProtocol {
     }
 }
 
+/// Touch-downs after a push covered by [`PushResponse::step_by_index`] (more than fit into
+/// the default 4 s horizon at this walker's ~0.4 s steps).
+pub const STEPS_AFTER_PUSH: usize = 12;
+
 /// One controller's response to the pushes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PushResponse {
@@ -92,12 +96,22 @@ pub struct PushResponse {
     pub step: AlignedStats,
     /// TDA theta_E by time since an absorbed push.
     pub tda: AlignedStats,
+    /// Step size F_hat of the k-th touch-down after an absorbed push (within the horizon):
+    /// free of the aliasing of time bins, which hold a varying share of either foot's steps
+    /// when two walkers step at different rates.
+    pub step_by_index: AlignedStats,
+    /// TDA theta_E of the k-th touch-down after an absorbed push.
+    pub tda_by_index: AlignedStats,
     /// Mean step error of the steps outside every push's horizon (m).
     pub undisturbed_f_e: f64,
-    /// Start of the first bin from which the binned mean step error stays within the tolerance
-    /// of `undisturbed_f_e`; the horizon if it never does or if every push ended in a fall
-    /// (censored).
+    /// Return time (the paper's, Fig. 5): start of the first bin from which the binned mean
+    /// step stays within the tolerance of the reference step F_R; the horizon if it never does
+    /// or if every push ended in a fall (censored). A walker whose undisturbed steps miss F_R by
+    /// more than the tolerance never returns.
     pub return_time_s: f64,
+    /// Settle time: as the return time, but back at the walker's own undisturbed mean step
+    /// (F_R + `undisturbed_f_e`), so a steady bias does not count; the recovery dynamics alone.
+    pub settle_time_s: f64,
     /// Largest |binned mean TDA| after an absorbed push (rad); if every push ended in a fall,
     /// the largest |theta_E| at the touch-downs between a push and its fall.
     pub max_tda_rad: f64,
@@ -122,6 +136,12 @@ impl PushResponse {
         };
         let step = stats(|s| s.f_hat)?;
         let tda = stats(|s| s.theta_e)?;
+        let by_index = |f: fn(&StepRecord) -> f64| {
+            let samples: Vec<(f64, f64)> = log.steps.iter().map(|s| (s.time, f(s))).collect();
+            AlignedStats::by_index(&samples, &absorbed, p.horizon_s, STEPS_AFTER_PUSH)
+        };
+        let step_by_index = by_index(|s| s.f_hat)?;
+        let tda_by_index = by_index(|s| s.theta_e)?;
         // Undisturbed: steps not within the horizon after any push.
         let calm: Vec<f64> = log
             .steps
@@ -138,18 +158,22 @@ impl PushResponse {
             ));
         }
         let undisturbed_f_e = crate::stats::MeanStd::of(calm.iter().copied()).mean();
-        let times = step.times();
-        let off = |k: usize| {
-            step.count[k] > 0 && (step.mean[k] - p.f_r - undisturbed_f_e).abs() > p.tolerance_m
-        };
-        let return_time_s = if absorbed.is_empty() {
-            p.horizon_s
-        } else {
-            match (0..times.len()).rev().find(|&k| off(k)) {
+        // The start of the first bin from which every populated bin's mean step error stays
+        // within the tolerance of `target` (m).
+        let back_at = |target: f64| {
+            if absorbed.is_empty() {
+                return p.horizon_s;
+            }
+            let off = |k: usize| {
+                step.count[k] > 0 && (step.mean[k] - p.f_r - target).abs() > p.tolerance_m
+            };
+            match (0..step.mean.len()).rev().find(|&k| off(k)) {
                 None => 0.0,
                 Some(k) => ((k + 1) as f64 * p.bin_s).min(p.horizon_s),
             }
         };
+        let return_time_s = back_at(0.0);
+        let settle_time_s = back_at(undisturbed_f_e);
         let max_tda_rad = if absorbed.is_empty() {
             // Every push ended in a fall: the largest |theta_E| at the touch-downs between a
             // push and its fall.
@@ -180,8 +204,11 @@ impl PushResponse {
         Ok(PushResponse {
             step,
             tda,
+            step_by_index,
+            tda_by_index,
             undisturbed_f_e,
             return_time_s,
+            settle_time_s,
             max_tda_rad,
             pushes: log.pushes.len(),
             falls: log.pushes.iter().filter(|x| x.fell).count(),
@@ -241,12 +268,16 @@ where
 }
 
 impl DisturbanceResult {
-    /// Writes `disturbance_steps.csv` (every step), `disturbance_aligned.csv` (per bin),
+    /// Writes `disturbance_steps.csv` (every step), `disturbance_pushes.csv` (every push),
+    /// `disturbance_aligned.csv` (per bin),
+    /// `disturbance_by_step.csv` (per touch-down after the push),
     /// `disturbance_step.svg` (Fig. 5 left: step size after the push, mean +- std) and
     /// `disturbance_tda.svg` (Fig. 5 right: TDA after the push).
     pub fn write(&self, dir: &Path, f_r: f64) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         self.runs.write_steps(&dir.join("disturbance_steps.csv"))?;
+        self.runs
+            .write_pushes(&dir.join("disturbance_pushes.csv"))?;
         let mut rows = Vec::new();
         for (controller, r) in [("model", &self.model), ("learned", &self.learned)] {
             for (k, t) in r.step.times().into_iter().enumerate() {
@@ -262,6 +293,21 @@ impl DisturbanceResult {
             }
         }
         write_rows(&dir.join("disturbance_aligned.csv"), &rows)?;
+        let mut rows = Vec::new();
+        for (controller, r) in [("model", &self.model), ("learned", &self.learned)] {
+            for k in 0..r.step_by_index.mean.len() {
+                rows.push(ByStepRow {
+                    controller,
+                    touch_down_after_push: k + 1,
+                    mean_step_m: Fixed(r.step_by_index.mean[k]),
+                    std_step_m: Fixed(r.step_by_index.std[k]),
+                    mean_tda_rad: Fixed(r.tda_by_index.mean[k]),
+                    std_tda_rad: Fixed(r.tda_by_index.std[k]),
+                    steps: r.step_by_index.count[k],
+                });
+            }
+        }
+        write_rows(&dir.join("disturbance_by_step.csv"), &rows)?;
         for (file, title, y_label, pick, reference) in [
             (
                 "disturbance_step.svg",
@@ -350,6 +396,10 @@ impl super::experiment::Experiment for Disturbance {
                 model: r.model.return_time_s,
                 learned: r.learned.return_time_s,
             },
+            settle_time_s: Some(ModelLearned {
+                model: r.model.settle_time_s,
+                learned: r.learned.settle_time_s,
+            }),
             max_tda_rad: ModelLearned {
                 model: r.model.max_tda_rad,
                 learned: r.learned.max_tda_rad,
@@ -368,6 +418,19 @@ impl super::experiment::Experiment for Disturbance {
     }
 }
 
+/// A row of `disturbance_by_step.csv`: one controller's k-th touch-down after a push (1 is the
+/// first, the catch step).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+struct ByStepRow<'a> {
+    controller: &'a str,
+    touch_down_after_push: usize,
+    mean_step_m: Fixed<6>,
+    std_step_m: Fixed<6>,
+    mean_tda_rad: Fixed<6>,
+    std_tda_rad: Fixed<6>,
+    steps: usize,
+}
+
 /// A row of `disturbance_aligned.csv`: one controller's steps and TDA in one bin after a push.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 struct AlignedRow<'a> {
@@ -378,4 +441,72 @@ struct AlignedRow<'a> {
     mean_tda_rad: Fixed<6>,
     std_tda_rad: Fixed<6>,
     steps: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::trial::PushRecord;
+
+    /// Steps every 0.5 s for 60 s at F_R + `bias`, pushes at 10, 20, 30, 40 s; the two steps
+    /// after each push are 8 cm and 4 cm long of that.
+    fn log(bias: f64) -> TrialLog {
+        let pushes = [10.0, 20.0, 30.0, 40.0];
+        let steps = (1..120)
+            .map(|k| {
+                let time = k as f64 * 0.5 + 0.1;
+                let since = pushes
+                    .iter()
+                    .map(|&p| time - p)
+                    .filter(|d| *d >= 0.0)
+                    .fold(f64::INFINITY, f64::min);
+                let extra = if since < 0.5 {
+                    0.08
+                } else if since < 1.0 {
+                    0.04
+                } else {
+                    0.0
+                };
+                StepRecord {
+                    time,
+                    f_r: 0.2,
+                    f_hat: 0.2 + bias + extra,
+                    theta_e: 0.0,
+                    theta_e_dot: 0.0,
+                    learned_offset: 0.0,
+                    learning_gain: None,
+                    learning_response: None,
+                }
+            })
+            .collect();
+        TrialLog {
+            steps,
+            pushes: pushes
+                .iter()
+                .map(|&time| PushRecord {
+                    time,
+                    impulse: 8.0,
+                    fell: false,
+                })
+                .collect(),
+            falls: Vec::new(),
+            sim_time_s: 60.0,
+        }
+    }
+
+    #[test]
+    fn return_time_is_to_the_reference_and_settle_time_to_the_own_undisturbed_step() {
+        let p = DisturbanceProtocol::default();
+        // No bias: back at the reference and at its own steps after the 4 cm bin.
+        let r = PushResponse::new(&log(0.0), &p).unwrap();
+        assert_eq!((r.return_time_s, r.settle_time_s), (1.0, 1.0));
+        // A steady 5 cm shortfall (beyond the 3 cm tolerance): never back at the reference,
+        // settled as soon as the pushed steps are over.
+        let r = PushResponse::new(&log(-0.05), &p).unwrap();
+        assert!((r.undisturbed_f_e + 0.05).abs() < 1e-12);
+        assert_eq!((r.return_time_s, r.settle_time_s), (p.horizon_s, 1.0));
+        // A 2 cm shortfall: the 4 cm step is then within 3 cm of the reference.
+        let r = PushResponse::new(&log(-0.02), &p).unwrap();
+        assert_eq!((r.return_time_s, r.settle_time_s), (0.5, 1.0));
+    }
 }

@@ -92,7 +92,8 @@ impl Claims {
         let mut std_n = 0usize;
         // Per-seed values for the comparisons over seeds.
         let mut bin_diff: Vec<Vec<f64>> = Vec::new();
-        let (mut return_diff, mut falls_diff) = (Vec::new(), Vec::new());
+        let (mut return_diff, mut settle_diff, mut falls_diff) =
+            (Vec::new(), Vec::new(), Vec::new());
         let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
         let mut absorbed_diff = Vec::new();
         let mut bin_s_all = f64::NAN;
@@ -142,6 +143,7 @@ impl Claims {
                 }
                 ExperimentResult::Disturbance {
                     return_time_s,
+                    settle_time_s,
                     max_tda_rad,
                     falls,
                 } => {
@@ -160,6 +162,13 @@ impl Claims {
                     } else {
                         f64::NAN
                     });
+                    if let Some(t) = settle_time_s {
+                        settle_diff.push(if both_absorbed {
+                            t.learned - t.model
+                        } else {
+                            f64::NAN
+                        });
+                    }
                     if let Some(f) = falls {
                         let rate = |falls: u32, pushes: u32| {
                             if pushes == 0 {
@@ -188,11 +197,20 @@ impl Claims {
                             )
                         })
                         .unwrap_or_default();
+                    let settle = settle_time_s
+                        .as_ref()
+                        .map(|t| {
+                            format!(
+                                "; settle {:.2} s learned vs {:.2} s model",
+                                t.learned, t.model
+                            )
+                        })
+                        .unwrap_or_default();
                     disturbance.push((
                         s.seed,
                         sooner && near && no_more_falls,
                         format!(
-                            "return {:.2} s learned vs {:.2} s model; max TDA {:.3} vs {:.3} rad{fell}",
+                            "return {:.2} s learned vs {:.2} s model{settle}; max TDA {:.3} vs {:.3} rad{fell}",
                             return_time_s.learned,
                             return_time_s.model,
                             max_tda_rad.learned,
@@ -291,8 +309,14 @@ impl Claims {
                 every,
                 vec![
                     Paired::new(
-                        "return time learned - model (s)",
+                        "return time to the reference step, learned - model (s)",
                         &return_diff,
+                        0.0,
+                        Direction::LowerIsBetter,
+                    ),
+                    Paired::new(
+                        "settle time to the walker's own undisturbed step, learned - model (s)",
+                        &settle_diff,
                         0.0,
                         Direction::LowerIsBetter,
                     ),
@@ -510,6 +534,11 @@ mod tests {
                     model: returns.0,
                     learned: returns.1,
                 },
+                // Settled half a second before returning (a steady bias of either walker).
+                settle_time_s: Some(ModelLearned {
+                    model: (returns.0 - 0.5).max(0.0),
+                    learned: (returns.1 - 0.5).max(0.0),
+                }),
                 max_tda_rad: ModelLearned {
                     model: 0.1,
                     learned: 0.1,
@@ -539,8 +568,11 @@ mod tests {
             disturbance(3, (2.0, 4.0), (60, 60), (6, 60)),
         ];
         let c = Claims::from_summaries(&s, 0.15);
-        let (ret, rate) = (&c.disturbance.over_seeds[0], &c.disturbance.over_seeds[1]);
+        let [ret, settle, rate] = &c.disturbance.over_seeds[..] else {
+            panic!("three paired quantities: {:?}", c.disturbance.over_seeds);
+        };
         assert_eq!(ret.values, vec![-1.0, -0.5]);
+        assert_eq!(settle.values, vec![-1.0, -0.5]);
         assert_eq!(rate.values.len(), 3, "{:?}", rate.values);
         assert!((rate.values[0] - (-0.05)).abs() < 1e-12);
         assert!((rate.values[1] - 0.1).abs() < 1e-12);
@@ -590,6 +622,7 @@ mod tests {
                         model: 3.0,
                         learned: 2.0,
                     },
+                    settle_time_s: None,
                     max_tda_rad: ModelLearned {
                         model: 0.1,
                         learned: 0.16,
@@ -604,6 +637,7 @@ mod tests {
                         model: 3.0,
                         learned: 2.0,
                     },
+                    settle_time_s: None,
                     max_tda_rad: ModelLearned {
                         model: 0.1,
                         learned: 0.3,

@@ -100,8 +100,13 @@ pub enum ExperimentResult {
     },
     /// B: recovery after 8 Ns pushes.
     Disturbance {
-        /// Time (s) from the push until the step size is back at the reference.
+        /// Time (s) from the push until the step size is back at the reference step (within
+        /// the protocol's tolerance; the horizon if never).
         return_time_s: ModelLearned<f64>,
+        /// Time (s) from the push until the step size is back at the walker's own undisturbed
+        /// mean step (recovery without a steady bias); absent in older summaries.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        settle_time_s: Option<ModelLearned<f64>>,
         /// Largest |theta_E| (rad) after the push.
         max_tda_rad: ModelLearned<f64>,
         /// Pushes delivered and pushes that ended in a fall, per controller (the return time
@@ -226,9 +231,14 @@ impl Summary {
             }
             ExperimentResult::Disturbance {
                 return_time_s,
+                settle_time_s,
                 max_tda_rad,
                 falls,
             } => {
+                if let Some(t) = settle_time_s {
+                    finite_non_negative("settle_time_s.model", t.model)?;
+                    finite_non_negative("settle_time_s.learned", t.learned)?;
+                }
                 if let Some(f) = falls
                     && (f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned)
                 {
@@ -455,6 +465,10 @@ mod tests {
                         model: 3.0,
                         learned: 2.0,
                     },
+                    settle_time_s: Some(ModelLearned {
+                        model: 2.5,
+                        learned: 2.0,
+                    }),
                     max_tda_rad: ModelLearned {
                         model: 0.1,
                         learned: 0.14,
@@ -470,7 +484,7 @@ mod tests {
                         },
                     }),
                 },
-                vec!["falls", "max_tda_rad", "return_time_s"],
+                vec!["falls", "max_tda_rad", "return_time_s", "settle_time_s"],
             ),
             (
                 robustness(),

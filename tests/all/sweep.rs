@@ -76,6 +76,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 model: rng.random_range(0.0..5.0),
                 learned: rng.random_range(0.0..5.0),
             },
+            settle_time_s: None,
             max_tda_rad: ModelLearned {
                 model: 0.1,
                 learned: 0.15,
