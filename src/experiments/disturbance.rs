@@ -112,6 +112,10 @@ pub struct PushResponse {
     /// Settle time: as the return time, but back at the walker's own undisturbed mean step
     /// (F_R + `undisturbed_f_e`), so a steady bias does not count; the recovery dynamics alone.
     pub settle_time_s: f64,
+    /// Mean |F_hat - F_R| of the touch-downs within the horizon after an absorbed push (m;
+    /// NaN if every push ended in a fall): how far from the commanded step the walker stepped
+    /// while recovering, the area between Fig. 5's step curve and the reference.
+    pub step_error_after_push_m: f64,
     /// Largest |binned mean TDA| after an absorbed push (rad); if every push ended in a fall,
     /// the largest |theta_E| at the touch-downs between a push and its fall.
     pub max_tda_rad: f64,
@@ -173,6 +177,9 @@ impl PushResponse {
             }
         };
         let return_time_s = back_at(0.0);
+        let errors: Vec<(f64, f64)> = log.steps.iter().map(|s| (s.time, s.f_e().abs())).collect();
+        let step_error_after_push_m =
+            AlignedStats::compute(&errors, &absorbed, p.horizon_s, p.horizon_s)?.mean[0];
         let settle_time_s = back_at(undisturbed_f_e);
         let max_tda_rad = if absorbed.is_empty() {
             // Every push ended in a fall: the largest |theta_E| at the touch-downs between a
@@ -209,6 +216,7 @@ impl PushResponse {
             undisturbed_f_e,
             return_time_s,
             settle_time_s,
+            step_error_after_push_m,
             max_tda_rad,
             pushes: log.pushes.len(),
             falls: log.pushes.iter().filter(|x| x.fell).count(),
@@ -400,6 +408,12 @@ impl super::experiment::Experiment for Disturbance {
                 model: r.model.settle_time_s,
                 learned: r.learned.settle_time_s,
             }),
+            step_error_after_push_m: (r.model.step_error_after_push_m.is_finite()
+                && r.learned.step_error_after_push_m.is_finite())
+            .then_some(ModelLearned {
+                model: r.model.step_error_after_push_m,
+                learned: r.learned.step_error_after_push_m,
+            }),
             max_tda_rad: ModelLearned {
                 model: r.model.max_tda_rad,
                 learned: r.learned.max_tda_rad,
@@ -500,6 +514,8 @@ mod tests {
         // No bias: back at the reference and at its own steps after the 4 cm bin.
         let r = PushResponse::new(&log(0.0), &p).unwrap();
         assert_eq!((r.return_time_s, r.settle_time_s), (1.0, 1.0));
+        // Eight touch-downs within 4 s of each push: 8 cm, 4 cm, then on the reference.
+        assert!((r.step_error_after_push_m - 0.12 / 8.0).abs() < 1e-12);
         // A steady 5 cm shortfall (beyond the 3 cm tolerance): never back at the reference,
         // settled as soon as the pushed steps are over.
         let r = PushResponse::new(&log(-0.05), &p).unwrap();

@@ -92,8 +92,8 @@ impl Claims {
         let mut std_n = 0usize;
         // Per-seed values for the comparisons over seeds.
         let mut bin_diff: Vec<Vec<f64>> = Vec::new();
-        let (mut return_diff, mut settle_diff, mut falls_diff) =
-            (Vec::new(), Vec::new(), Vec::new());
+        let (mut return_diff, mut settle_diff, mut error_diff, mut falls_diff) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
         let mut absorbed_diff = Vec::new();
         let mut bin_s_all = f64::NAN;
@@ -144,6 +144,7 @@ impl Claims {
                 ExperimentResult::Disturbance {
                     return_time_s,
                     settle_time_s,
+                    step_error_after_push_m,
                     max_tda_rad,
                     falls,
                 } => {
@@ -168,6 +169,13 @@ impl Claims {
                         } else {
                             f64::NAN
                         });
+                    }
+                    if settle_time_s.is_some() {
+                        error_diff.push(
+                            step_error_after_push_m
+                                .as_ref()
+                                .map_or(f64::NAN, |e| 100.0 * (e.learned - e.model)),
+                        );
                     }
                     if let Some(f) = falls {
                         let rate = |falls: u32, pushes: u32| {
@@ -317,6 +325,12 @@ impl Claims {
                     Paired::new(
                         "settle time to the walker's own undisturbed step, learned - model (s)",
                         &settle_diff,
+                        0.0,
+                        Direction::LowerIsBetter,
+                    ),
+                    Paired::new(
+                        "mean |F_hat - F_R| of the touch-downs within the horizon after a push, learned - model (cm)",
+                        &error_diff,
                         0.0,
                         Direction::LowerIsBetter,
                     ),
@@ -539,6 +553,11 @@ mod tests {
                     model: (returns.0 - 0.5).max(0.0),
                     learned: (returns.1 - 0.5).max(0.0),
                 }),
+                // 1 cm per second of return time.
+                step_error_after_push_m: Some(ModelLearned {
+                    model: returns.0 / 100.0,
+                    learned: returns.1 / 100.0,
+                }),
                 max_tda_rad: ModelLearned {
                     model: 0.1,
                     learned: 0.1,
@@ -568,11 +587,15 @@ mod tests {
             disturbance(3, (2.0, 4.0), (60, 60), (6, 60)),
         ];
         let c = Claims::from_summaries(&s, 0.15);
-        let [ret, settle, rate] = &c.disturbance.over_seeds[..] else {
-            panic!("three paired quantities: {:?}", c.disturbance.over_seeds);
+        let [ret, settle, error, rate] = &c.disturbance.over_seeds[..] else {
+            panic!("four paired quantities: {:?}", c.disturbance.over_seeds);
         };
         assert_eq!(ret.values, vec![-1.0, -0.5]);
         assert_eq!(settle.values, vec![-1.0, -0.5]);
+        // Every seed has step errors (both walkers absorbed a push in the fixtures where it
+        // is a measurement; otherwise the summary leaves it out).
+        assert_eq!(error.values.len(), 4);
+        assert!((error.values[0] - (-1.0)).abs() < 1e-12);
         assert_eq!(rate.values.len(), 3, "{:?}", rate.values);
         assert!((rate.values[0] - (-0.05)).abs() < 1e-12);
         assert!((rate.values[1] - 0.1).abs() < 1e-12);
@@ -623,6 +646,7 @@ mod tests {
                         learned: 2.0,
                     },
                     settle_time_s: None,
+                    step_error_after_push_m: None,
                     max_tda_rad: ModelLearned {
                         model: 0.1,
                         learned: 0.16,
@@ -638,6 +662,7 @@ mod tests {
                         learned: 2.0,
                     },
                     settle_time_s: None,
+                    step_error_after_push_m: None,
                     max_tda_rad: ModelLearned {
                         model: 0.1,
                         learned: 0.3,

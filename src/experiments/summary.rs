@@ -107,6 +107,10 @@ pub enum ExperimentResult {
         /// mean step (recovery without a steady bias); absent in older summaries.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         settle_time_s: Option<ModelLearned<f64>>,
+        /// Mean |F_hat - F_R| (m) of the touch-downs within the horizon after an absorbed
+        /// push; absent in older summaries and when a walker absorbed no push.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        step_error_after_push_m: Option<ModelLearned<f64>>,
         /// Largest |theta_E| (rad) after the push.
         max_tda_rad: ModelLearned<f64>,
         /// Pushes delivered and pushes that ended in a fall, per controller (the return time
@@ -232,12 +236,17 @@ impl Summary {
             ExperimentResult::Disturbance {
                 return_time_s,
                 settle_time_s,
+                step_error_after_push_m,
                 max_tda_rad,
                 falls,
             } => {
                 if let Some(t) = settle_time_s {
                     finite_non_negative("settle_time_s.model", t.model)?;
                     finite_non_negative("settle_time_s.learned", t.learned)?;
+                }
+                if let Some(e) = step_error_after_push_m {
+                    finite_non_negative("step_error_after_push_m.model", e.model)?;
+                    finite_non_negative("step_error_after_push_m.learned", e.learned)?;
                 }
                 if let Some(f) = falls
                     && (f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned)
@@ -469,6 +478,10 @@ mod tests {
                         model: 2.5,
                         learned: 2.0,
                     }),
+                    step_error_after_push_m: Some(ModelLearned {
+                        model: 0.05,
+                        learned: 0.04,
+                    }),
                     max_tda_rad: ModelLearned {
                         model: 0.1,
                         learned: 0.14,
@@ -484,7 +497,13 @@ mod tests {
                         },
                     }),
                 },
-                vec!["falls", "max_tda_rad", "return_time_s", "settle_time_s"],
+                vec![
+                    "falls",
+                    "max_tda_rad",
+                    "return_time_s",
+                    "settle_time_s",
+                    "step_error_after_push_m",
+                ],
             ),
             (
                 robustness(),

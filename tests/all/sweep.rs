@@ -77,6 +77,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 learned: rng.random_range(0.0..5.0),
             },
             settle_time_s: None,
+            step_error_after_push_m: None,
             max_tda_rad: ModelLearned {
                 model: 0.1,
                 learned: 0.15,
