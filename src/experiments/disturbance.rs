@@ -278,7 +278,7 @@ where
 impl DisturbanceResult {
     /// Writes `disturbance_steps.csv` (every step), `disturbance_pushes.csv` (every push),
     /// `disturbance_aligned.csv` (per bin),
-    /// `disturbance_by_step.csv` (per touch-down after the push),
+    /// `disturbance_by_step.csv` and `.svg` (per touch-down after the push),
     /// `disturbance_step.svg` (Fig. 5 left: step size after the push, mean +- std) and
     /// `disturbance_tda.svg` (Fig. 5 right: TDA after the push).
     pub fn write(&self, dir: &Path, f_r: f64) -> Result<(), ExperimentError> {
@@ -316,6 +316,7 @@ impl DisturbanceResult {
             }
         }
         write_rows(&dir.join("disturbance_by_step.csv"), &rows)?;
+        self.plot_by_step(&dir.join("disturbance_by_step.svg"), f_r)?;
         for (file, title, y_label, pick, reference) in [
             (
                 "disturbance_step.svg",
@@ -368,6 +369,48 @@ impl DisturbanceResult {
                 },
             )?;
         }
+        Ok(())
+    }
+}
+
+impl DisturbanceResult {
+    /// The mean step (+- std) of the k-th touch-down after a push, both walkers, and F_R.
+    fn plot_by_step(&self, path: &Path, f_r: f64) -> Result<(), ExperimentError> {
+        let (mk, mm, ms) = self.model.step_by_index.populated(1);
+        let (lk, lm, ls) = self.learned.step_by_index.populated(1);
+        // Bin k (0-based) is the (k + 1)-th touch-down; `populated` gives bin centres k + 0.5.
+        let (mk, lk): (Vec<f64>, Vec<f64>) = (
+            mk.iter().map(|k| k + 0.5).collect(),
+            lk.iter().map(|k| k + 0.5).collect(),
+        );
+        let rx = vec![1.0, STEPS_AFTER_PUSH as f64];
+        let ry = vec![f_r; 2];
+        let mut series = Vec::new();
+        for (name, x, y, spread) in [("model", &mk, &mm, &ms), ("learned", &lk, &lm, &ls)] {
+            if !x.is_empty() {
+                series.push(Series {
+                    name,
+                    x,
+                    y,
+                    spread: Some(spread),
+                });
+            }
+        }
+        series.push(Series {
+            name: "reference",
+            x: &rx,
+            y: &ry,
+            spread: None,
+        });
+        line_plot(
+            path,
+            &LinePlot {
+                title: "Step size of each touch-down after an 8 Ns push (mean, band: +-1 std)",
+                x_label: "touch-down after the push (1: the first)",
+                y_label: "step size (m)",
+                series: &series,
+            },
+        )?;
         Ok(())
     }
 }

@@ -24,6 +24,9 @@ pub fn caption(file_name: &str) -> &'static str {
         "disturbance_step.svg" => {
             "Experiment B: mean step size after a push, aligned on the push (model vs learned)."
         }
+        "disturbance_by_step.svg" => {
+            "Experiment B: mean step size of the k-th touch-down after a push (model vs learned)."
+        }
         "disturbance_tda.svg" => {
             "Experiment B: mean trunk deviation angle after a push (model vs learned)."
         }

@@ -106,12 +106,30 @@ fn disturbance_aligns_steps_at_absorbed_pushes() {
     assert!((0.0..=p.horizon_s).contains(&r.model.return_time_s));
     assert!(r.model.max_tda_rad.is_finite() && r.model.max_tda_rad > 0.0);
     assert!(r.learned.return_time_s.is_finite() && r.learned.max_tda_rad.is_finite());
+    // The settle time (to its own undisturbed step) and the return time (to F_R) are the same
+    // bins against different targets; by touch-down, the catch steps come first: the first or
+    // second touch-down after a push is longer than the reference.
+    assert!((0.0..=p.horizon_s).contains(&r.model.settle_time_s));
+    let by_step = &r.model.step_by_index;
+    assert_eq!(
+        by_step.count[0], absorbed,
+        "one first touch-down per absorbed push"
+    );
+    assert!(
+        by_step.mean[0].max(by_step.mean[1]) > p.f_r,
+        "{:?}",
+        by_step.mean
+    );
+    assert!(r.model.step_error_after_push_m > 0.0 && r.model.step_error_after_push_m < 0.3);
 
     let dir = temp_dir("disturbance");
     r.write(&dir, p.f_r).unwrap();
     for f in [
         "disturbance_steps.csv",
+        "disturbance_pushes.csv",
         "disturbance_aligned.csv",
+        "disturbance_by_step.csv",
+        "disturbance_by_step.svg",
         "disturbance_step.svg",
         "disturbance_tda.svg",
     ] {
