@@ -329,7 +329,7 @@ impl Claims {
                         Direction::LowerIsBetter,
                     ),
                     Paired::new(
-                        "mean |F_hat - F_R| of the touch-downs within the horizon after a push, learned - model (cm)",
+                        "mean absolute step error F_hat - F_R of the touch-downs within the horizon after a push, learned - model (cm)",
                         &error_diff,
                         0.0,
                         Direction::LowerIsBetter,
@@ -590,6 +590,12 @@ mod tests {
         let [ret, settle, error, rate] = &c.disturbance.over_seeds[..] else {
             panic!("four paired quantities: {:?}", c.disturbance.over_seeds);
         };
+        // Quantities are Markdown table cells in claims.md (and index.html's tables).
+        for c in c.all() {
+            for p in &c.over_seeds {
+                assert!(!p.quantity.contains('|'), "{}", p.quantity);
+            }
+        }
         assert_eq!(ret.values, vec![-1.0, -0.5]);
         assert_eq!(settle.values, vec![-1.0, -0.5]);
         // Every seed has step errors (both walkers absorbed a push in the fixtures where it
