@@ -59,11 +59,11 @@ impl AlignedStats {
         })
     }
 
-    /// Bins `samples` `(time, value)` by how many samples came between the latest event at or
-    /// before them and them: bin k holds the k-th sample after an event (k = 0 the first), for
-    /// samples within `horizon` (s) of their event and k < `max_index`. `bin_s` of the result
-    /// is 1 (one sample). Unsorted events or a horizon that is not positive and finite is an
-    /// error; samples must be sorted by time.
+    /// Bins `samples` `(time, value)` by their order after the latest event at or before them:
+    /// bin k holds every event's k-th sample (k = 0: the first), for samples within `horizon`
+    /// (s) of their event and k < `max_index`; the result's `bin_s` is 1 (one sample). Samples
+    /// and events must be sorted by time; unsorted ones, or a horizon that is not positive and
+    /// finite, are an error.
     pub fn by_index(
         samples: &[(f64, f64)],
         events: &[f64],
