@@ -114,7 +114,7 @@ pub struct PushResponse {
     pub settle_time_s: f64,
     /// Mean |F_hat - F_R| of the touch-downs within the horizon after an absorbed push (m;
     /// NaN if every push ended in a fall): how far from the commanded step the walker stepped
-    /// while recovering, the area between Fig. 5's step curve and the reference.
+    /// while recovering.
     pub step_error_after_push_m: f64,
     /// Largest |binned mean TDA| after an absorbed push (rad); if every push ended in a fall,
     /// the largest |theta_E| at the touch-downs between a push and its fall.
@@ -177,10 +177,11 @@ impl PushResponse {
             }
         };
         let return_time_s = back_at(0.0);
+        let settle_time_s = back_at(undisturbed_f_e);
+        // One bin as wide as the horizon: the mean over every touch-down within it.
         let errors: Vec<(f64, f64)> = log.steps.iter().map(|s| (s.time, s.f_e().abs())).collect();
         let step_error_after_push_m =
             AlignedStats::compute(&errors, &absorbed, p.horizon_s, p.horizon_s)?.mean[0];
-        let settle_time_s = back_at(undisturbed_f_e);
         let max_tda_rad = if absorbed.is_empty() {
             // Every push ended in a fall: the largest |theta_E| at the touch-downs between a
             // push and its fall.
