@@ -317,77 +317,68 @@ impl DisturbanceResult {
             }
         }
         write_rows(&dir.join("disturbance_by_step.csv"), &rows)?;
-        self.plot_by_step(&dir.join("disturbance_by_step.svg"), f_r)?;
-        for (file, title, y_label, pick, reference) in [
+        let time_span = self.model.step.bin_s * self.model.step.mean.len() as f64;
+        let since_push = "time since the push (s)";
+        self.plot(
+            &dir.join("disturbance_step.svg"),
             (
-                "disturbance_step.svg",
                 "Step size after an 8 Ns push (mean, band: +-1 std)",
+                since_push,
                 "step size (m)",
-                (|r: &PushResponse| &r.step) as fn(&PushResponse) -> &AlignedStats,
-                Some(f_r),
             ),
+            |r| &r.step,
+            0.0,
+            Some(([0.0, time_span], f_r)),
+        )?;
+        self.plot(
+            &dir.join("disturbance_tda.svg"),
             (
-                "disturbance_tda.svg",
                 "Trunk deviation angle after an 8 Ns push (mean, band: +-1 std)",
+                since_push,
                 "TDA theta_E (rad)",
-                |r: &PushResponse| &r.tda,
-                None,
             ),
-        ] {
-            let (mt, mm, ms) = pick(&self.model).populated(1);
-            let (lt, lm, ls) = pick(&self.learned).populated(1);
-            let rt = vec![
-                0.0,
-                self.model.step.bin_s * self.model.step.mean.len() as f64,
-            ];
-            let rv = vec![reference.unwrap_or(0.0); 2];
-            let mut series = Vec::new();
-            for (name, x, y, spread) in [("model", &mt, &mm, &ms), ("learned", &lt, &lm, &ls)] {
-                if !x.is_empty() {
-                    series.push(Series {
-                        name,
-                        x,
-                        y,
-                        spread: Some(spread),
-                    });
-                }
-            }
-            if reference.is_some() {
-                series.push(Series {
-                    name: "reference",
-                    x: &rt,
-                    y: &rv,
-                    spread: None,
-                });
-            }
-            line_plot(
-                &dir.join(file),
-                &LinePlot {
-                    title,
-                    x_label: "time since the push (s)",
-                    y_label,
-                    series: &series,
-                },
-            )?;
-        }
+            |r| &r.tda,
+            0.0,
+            None,
+        )?;
+        // Bin k (0-based) is the (k + 1)-th touch-down; `populated` gives bin centres k + 0.5.
+        self.plot(
+            &dir.join("disturbance_by_step.svg"),
+            (
+                "Step size of each touch-down after an 8 Ns push (mean, band: +-1 std)",
+                "touch-down after the push (1: the first)",
+                "step size (m)",
+            ),
+            |r| &r.step_by_index,
+            0.5,
+            Some(([1.0, STEPS_AFTER_PUSH as f64], f_r)),
+        )?;
         Ok(())
     }
 }
 
 impl DisturbanceResult {
-    /// The mean step (+- std) of the k-th touch-down after a push, both walkers, and F_R.
-    fn plot_by_step(&self, path: &Path, f_r: f64) -> Result<(), ExperimentError> {
-        let (mk, mm, ms) = self.model.step_by_index.populated(1);
-        let (lk, lm, ls) = self.learned.step_by_index.populated(1);
-        // Bin k (0-based) is the (k + 1)-th touch-down; `populated` gives bin centres k + 0.5.
-        let (mk, lk): (Vec<f64>, Vec<f64>) = (
-            mk.iter().map(|k| k + 0.5).collect(),
-            lk.iter().map(|k| k + 0.5).collect(),
-        );
-        let rx = vec![1.0, STEPS_AFTER_PUSH as f64];
-        let ry = vec![f_r; 2];
+    /// One figure of both walkers' `pick` (mean, band +- 1 std; x shifted by `x_shift`) and,
+    /// if given, a reference line at `reference.1` over the x range `reference.0`; `labels`
+    /// are (title, x label, y label).
+    fn plot(
+        &self,
+        path: &Path,
+        labels: (&str, &str, &str),
+        pick: fn(&PushResponse) -> &AlignedStats,
+        x_shift: f64,
+        reference: Option<([f64; 2], f64)>,
+    ) -> Result<(), ExperimentError> {
+        let shifted = |r: &PushResponse| {
+            let (x, y, spread) = pick(r).populated(1);
+            let x: Vec<f64> = x.into_iter().map(|x| x + x_shift).collect();
+            (x, y, spread)
+        };
+        let (model, learned) = (shifted(&self.model), shifted(&self.learned));
+        let (rx, ry) =
+            reference.map_or((Vec::new(), Vec::new()), |(x, y)| (x.to_vec(), vec![y; 2]));
         let mut series = Vec::new();
-        for (name, x, y, spread) in [("model", &mk, &mm, &ms), ("learned", &lk, &lm, &ls)] {
+        for (name, (x, y, spread)) in [("model", &model), ("learned", &learned)] {
             if !x.is_empty() {
                 series.push(Series {
                     name,
@@ -397,18 +388,20 @@ impl DisturbanceResult {
                 });
             }
         }
-        series.push(Series {
-            name: "reference",
-            x: &rx,
-            y: &ry,
-            spread: None,
-        });
+        if reference.is_some() {
+            series.push(Series {
+                name: "reference",
+                x: &rx,
+                y: &ry,
+                spread: None,
+            });
+        }
         line_plot(
             path,
             &LinePlot {
-                title: "Step size of each touch-down after an 8 Ns push (mean, band: +-1 std)",
-                x_label: "touch-down after the push (1: the first)",
-                y_label: "step size (m)",
+                title: labels.0,
+                x_label: labels.1,
+                y_label: labels.2,
                 series: &series,
             },
         )?;
