@@ -8,11 +8,10 @@
 use clap::Parser;
 use std::io::Write;
 use std::path::PathBuf;
-use steplearn::control::walker::{Tick, WalkerMode};
-use steplearn::experiments::disturbance::DisturbanceProtocol;
-use steplearn::experiments::schedule::PushPlan;
+use steplearn::control::walker::Tick;
+use steplearn::experiments::disturbance::{self, DisturbanceProtocol};
 use steplearn::experiments::settings::Settings;
-use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, TrialSetup, run_trial};
+use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, run_trial};
 use steplearn::sim::GroundTruth;
 
 #[derive(Parser)]
@@ -186,22 +185,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         pushes: args.pushes,
         ..DisturbanceProtocol::default()
     };
-    let plan = PushPlan {
-        count: settings.scaled(protocol.pushes, 2),
-        impulse: (protocol.impulse, protocol.impulse),
-        settle: 5.0,
-        gap: protocol.gap_s,
-    };
-    let setup = TrialSetup {
-        stop_after_last_push_s: Some(protocol.horizon_s.max(settings.push_window_s)),
-        ..settings.push_trial(
-            WalkerMode::CaptureStep,
-            protocol.f_r,
-            &plan,
-            args.seed,
-            protocol.direction,
-        )
-    };
+    let setup = disturbance::trial_setup(&settings, &protocol, args.seed);
     let mut rec = Rec::default();
     run_trial(&setup, None, &mut [&mut rec])?;
     // Generator exchange nearest to each touch-down, minus the touch-down time.

@@ -236,6 +236,27 @@ pub struct DisturbanceResult {
     pub learned: PushResponse,
 }
 
+/// B's trial for `seed`: walking at the protocol's F_R, its pushes, and walking on through the
+/// last push's whole horizon (for examples and probes that run it with their own observers).
+pub fn trial_setup(settings: &Settings, protocol: &DisturbanceProtocol, seed: u64) -> TrialSetup {
+    let plan = PushPlan {
+        count: settings.scaled(protocol.pushes, 2),
+        impulse: (protocol.impulse, protocol.impulse),
+        settle: 5.0,
+        gap: protocol.gap_s,
+    };
+    TrialSetup {
+        stop_after_last_push_s: Some(protocol.horizon_s.max(settings.push_window_s)),
+        ..settings.push_trial(
+            WalkerMode::CaptureStep,
+            protocol.f_r,
+            &plan,
+            seed,
+            protocol.direction,
+        )
+    }
+}
+
 /// Runs experiment B.
 pub fn run<A, R>(
     settings: &Settings,
@@ -251,24 +272,7 @@ where
     protocol
         .validate()
         .map_err(|e| e.within("protocols.disturbance"))?;
-    let plan = PushPlan {
-        count: settings.scaled(protocol.pushes, 2),
-        impulse: (protocol.impulse, protocol.impulse),
-        settle: 5.0,
-        gap: protocol.gap_s,
-    };
-    let setup = TrialSetup {
-        // Keep walking through the last push's whole horizon.
-        stop_after_last_push_s: Some(protocol.horizon_s.max(settings.push_window_s)),
-        ..settings.push_trial(
-            WalkerMode::CaptureStep,
-            protocol.f_r,
-            &plan,
-            seed,
-            protocol.direction,
-        )
-    };
-    let runs = run_model_and_learned(&setup, learner)?;
+    let runs = run_model_and_learned(&trial_setup(settings, protocol, seed), learner)?;
     Ok(DisturbanceResult {
         model: PushResponse::new(&runs.model, protocol)?,
         learned: PushResponse::new(&runs.learned, protocol)?,
