@@ -33,9 +33,7 @@ impl AlignedStats {
                 "aligned statistics need a positive finite bin and horizon, got {bin_s} and {horizon}"
             )));
         }
-        if events.windows(2).any(|w| w[0] > w[1] || w[0].is_nan()) {
-            return Err(ReportError::invalid("event times must be sorted"));
-        }
+        check_sorted(events)?;
         let n_bins = (horizon / bin_s).ceil() as usize;
         let mut bins = vec![crate::stats::MeanStd::new(); n_bins];
         for &(t, v) in samples {
@@ -48,15 +46,7 @@ impl AlignedStats {
                 bins[k].push(v);
             }
         }
-        let mean = bins.iter().map(|b| b.mean()).collect();
-        let std = bins.iter().map(|b| b.population_std()).collect();
-        let count = bins.iter().map(|b| b.count()).collect();
-        Ok(AlignedStats {
-            bin_s,
-            mean,
-            std,
-            count,
-        })
+        Ok(AlignedStats::from_bins(bin_s, &bins))
     }
 
     /// Bins `samples` `(time, value)` by their order after the latest event at or before them:
@@ -75,9 +65,7 @@ impl AlignedStats {
                 "aligned statistics need a positive finite horizon, got {horizon}"
             )));
         }
-        if events.windows(2).any(|w| w[0] > w[1] || w[0].is_nan()) {
-            return Err(ReportError::invalid("event times must be sorted"));
-        }
+        check_sorted(events)?;
         if samples.windows(2).any(|w| w[0].0 > w[1].0) {
             return Err(ReportError::invalid("sample times must be sorted"));
         }
@@ -96,12 +84,17 @@ impl AlignedStats {
             }
             k += 1;
         }
-        Ok(AlignedStats {
-            bin_s: 1.0,
+        Ok(AlignedStats::from_bins(1.0, &bins))
+    }
+
+    /// The statistics of filled bins of width `bin_s`.
+    fn from_bins(bin_s: f64, bins: &[crate::stats::MeanStd]) -> Self {
+        AlignedStats {
+            bin_s,
             mean: bins.iter().map(|b| b.mean()).collect(),
             std: bins.iter().map(|b| b.population_std()).collect(),
             count: bins.iter().map(|b| b.count()).collect(),
-        })
+        }
     }
 
     /// The bins with at least `min_count` samples, as (bin centre times, means, stds).
@@ -123,6 +116,14 @@ impl AlignedStats {
             .map(|k| (k as f64 + 0.5) * self.bin_s)
             .collect()
     }
+}
+
+/// An error unless the event times are sorted (and not NaN).
+fn check_sorted(events: &[f64]) -> Result<(), ReportError> {
+    if events.windows(2).any(|w| w[0] > w[1] || w[0].is_nan()) {
+        return Err(ReportError::invalid("event times must be sorted"));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
