@@ -163,20 +163,19 @@ impl Claims {
                     } else {
                         f64::NAN
                     });
-                    if let Some(t) = settle_time_s {
-                        settle_diff.push(if both_absorbed {
-                            t.learned - t.model
-                        } else {
-                            f64::NAN
-                        });
-                    }
-                    if settle_time_s.is_some() {
-                        error_diff.push(
-                            step_error_after_push_m
-                                .as_ref()
-                                .map_or(f64::NAN, |e| 100.0 * (e.learned - e.model)),
-                        );
-                    }
+                    // Absent in older summaries (and the step error without an absorbed push):
+                    // NaN, which the pairing leaves out.
+                    settle_diff.push(
+                        settle_time_s
+                            .as_ref()
+                            .filter(|_| both_absorbed)
+                            .map_or(f64::NAN, |t| t.learned - t.model),
+                    );
+                    error_diff.push(
+                        step_error_after_push_m
+                            .as_ref()
+                            .map_or(f64::NAN, |e| 100.0 * (e.learned - e.model)),
+                    );
                     if let Some(f) = falls {
                         let rate = |falls: u32, pushes: u32| {
                             if pushes == 0 {
