@@ -2,13 +2,16 @@
 //! alone and for the *learned* walker (model plus a fresh learner), run in parallel.
 
 use super::error::ExperimentError;
+use super::fall_causes::{ClassifiedFall, count, push_rows, run_classified};
 use super::settings::LearnerFactory;
-use super::trial::{ControllerCell, StepCells, TrialLog, TrialSetup, run_trial};
+use super::summary::ModelLearned;
+use super::trial::{ControllerCell, StepCells, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
 use crate::report::ReportError;
-use crate::report::{Fixed, write_rows};
+use crate::report::write_rows;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The two runs of one comparison.
@@ -18,6 +21,10 @@ pub struct ModelAndLearned {
     pub model: TrialLog,
     /// The Capture Step controller with the learner, learning from the start.
     pub learned: TrialLog,
+    /// Every fall of either run with its cause, in time order (empty in results saved before
+    /// the causes were recorded).
+    #[serde(default)]
+    pub classified_falls: ModelLearned<Vec<ClassifiedFall>>,
 }
 
 impl ModelAndLearned {
@@ -37,30 +44,22 @@ impl ModelAndLearned {
     }
 
     /// Writes every push of both runs as CSV: controller, time (s), impulse (Ns), whether a
-    /// fall followed.
+    /// fall followed and its cause
+    /// ([`crate::experiments::fall_causes::FallCause::name`], empty where absorbed).
     pub fn write_pushes(&self, path: &Path) -> Result<(), ReportError> {
-        let rows: Vec<PushCells> = [("model", &self.model), ("learned", &self.learned)]
-            .into_iter()
-            .flat_map(|(controller, log)| {
-                log.pushes.iter().map(move |p| PushCells {
-                    controller,
-                    time_s: Fixed(p.time),
-                    impulse_ns: Fixed(p.impulse),
-                    fell: p.fell,
-                })
-            })
-            .collect();
+        let falls = &self.classified_falls;
+        let mut rows = push_rows("model", &self.model.pushes, &falls.model);
+        rows.extend(push_rows("learned", &self.learned.pushes, &falls.learned));
         write_rows(path, &rows)
     }
-}
 
-/// A row of [`ModelAndLearned::write_pushes`].
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
-struct PushCells<'a> {
-    controller: &'a str,
-    time_s: Fixed<4>,
-    impulse_ns: Fixed<4>,
-    fell: bool,
+    /// Falls per cause of each run, every cause present (zero where none).
+    pub fn fall_causes(&self) -> ModelLearned<BTreeMap<String, u32>> {
+        ModelLearned {
+            model: count(&self.classified_falls.model),
+            learned: count(&self.classified_falls.learned),
+        }
+    }
 }
 
 /// Runs `setup` without a learner and with a fresh learner from `learner`, in parallel (the
@@ -74,14 +73,19 @@ where
     R: LearningRule,
 {
     let (model, learned) = rayon::join(
-        || run_trial(setup, None, &mut []),
-        || -> Result<TrialLog, ExperimentError> {
+        || run_classified(setup, None),
+        || -> Result<_, ExperimentError> {
             let mut l = learner.make()?;
-            Ok(run_trial(setup, Some(&mut l), &mut [])?)
+            Ok(run_classified(setup, Some(&mut l))?)
         },
     );
+    let ((model, model_falls), (learned, learned_falls)) = (model?, learned?);
     Ok(ModelAndLearned {
-        model: model?,
-        learned: learned?,
+        model,
+        learned,
+        classified_falls: ModelLearned {
+            model: model_falls,
+            learned: learned_falls,
+        },
     })
 }

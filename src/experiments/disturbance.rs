@@ -468,6 +468,7 @@ impl super::experiment::Experiment for Disturbance {
                     model: count(r.model.falls),
                     learned: count(r.learned.falls),
                 },
+                causes: Some(r.runs.fall_causes()),
             }),
         })
     }

@@ -26,8 +26,11 @@
 //! Slips are not told apart: the observer sees the state estimate and the controller's
 //! decisions, not the contact forces.
 
-use super::trial::{FallRecord, Observer, PushRecord, StepRecord};
-use crate::control::walker::{Tick, WalkerConfig};
+use super::trial::{
+    FallRecord, Observer, PushRecord, StepRecord, TrialError, TrialLog, TrialSetup, run_trial,
+};
+use crate::control::walker::{FootstepPolicy, Tick, WalkerConfig};
+use crate::report::Fixed;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -277,6 +280,52 @@ pub fn cause_by_push(falls: &[ClassifiedFall], pushes: usize) -> Vec<Option<Fall
         }
     }
     by_push
+}
+
+/// Runs `setup` with a [`FallCauseObserver`] and classifies every fall of the trial: the log
+/// and its falls with their causes.
+pub fn run_classified(
+    setup: &TrialSetup,
+    policy: Option<&mut (dyn FootstepPolicy + '_)>,
+) -> Result<(TrialLog, Vec<ClassifiedFall>), TrialError> {
+    let mut observer = FallCauseObserver::new();
+    let log = run_trial(setup, policy, &mut [&mut observer])?;
+    let falls = classify(
+        observer.events(),
+        &log.pushes,
+        &StepLimits::of(&setup.walker),
+    );
+    Ok((log, falls))
+}
+
+/// One CSV row per push: controller, time (s), impulse (Ns), whether a fall followed and its
+/// cause (empty where absorbed).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct PushRow<'a> {
+    controller: &'a str,
+    time_s: Fixed<4>,
+    impulse_ns: Fixed<4>,
+    fell: bool,
+    fall_cause: &'a str,
+}
+
+/// The rows of one controller's `pushes` with the causes of its classified `falls`.
+pub fn push_rows<'a>(
+    controller: &'a str,
+    pushes: &[PushRecord],
+    falls: &[ClassifiedFall],
+) -> Vec<PushRow<'a>> {
+    pushes
+        .iter()
+        .zip(cause_by_push(falls, pushes.len()))
+        .map(|(p, cause)| PushRow {
+            controller,
+            time_s: Fixed(p.time),
+            impulse_ns: Fixed(p.impulse),
+            fell: p.fell,
+            fall_cause: cause.map_or("", FallCause::name),
+        })
+        .collect()
 }
 
 #[cfg(test)]

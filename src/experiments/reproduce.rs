@@ -570,6 +570,7 @@ mod tests {
                         model: falls.0,
                         learned: falls.1,
                     },
+                    causes: None,
                 }),
             },
         )

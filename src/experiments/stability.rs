@@ -4,12 +4,12 @@
 
 use super::error::ExperimentError;
 use super::fall_causes::{
-    ClassifiedFall, FallCause, FallCauseObserver, StepLimits, cause_by_push, classify, count,
+    ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified,
 };
 use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::summary::FallCauseCounts;
-use super::trial::{PushRecord, TrialLog, TrialSetup, run_trial};
+use super::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
@@ -17,7 +17,7 @@ use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
-use crate::report::{Fixed, write_rows};
+use crate::report::write_rows;
 use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -72,14 +72,9 @@ pub struct ControllerPushes {
 }
 
 impl ControllerPushes {
-    fn new(
-        log: TrialLog,
-        causes: &FallCauseObserver,
-        limits: &StepLimits,
-    ) -> Result<Self, ExperimentError> {
+    fn new(log: TrialLog, classified_falls: Vec<ClassifiedFall>) -> Result<Self, ExperimentError> {
         let samples: Vec<PushResult> = log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
         let fall50 = impulse_at_50pct_fall(&samples)?;
-        let classified_falls = classify(causes.events(), &log.pushes, limits);
         Ok(ControllerPushes {
             pushes: log.pushes,
             fall50,
@@ -156,15 +151,13 @@ where
     })
 }
 
-/// Runs one controller's trial with a fall-cause observer; its events and the log classify
-/// the falls.
+/// Runs one controller's trial and classifies its falls.
 fn observed(
     setup: TrialSetup,
     policy: Option<&mut (dyn FootstepPolicy + '_)>,
 ) -> Result<ControllerPushes, ExperimentError> {
-    let mut causes = FallCauseObserver::new();
-    let log = run_trial(&setup, policy, &mut [&mut causes])?;
-    ControllerPushes::new(log, &causes, &StepLimits::of(&setup.walker))
+    let (log, falls) = run_classified(&setup, policy)?;
+    ControllerPushes::new(log, falls)
 }
 
 impl StabilityResult {
@@ -196,18 +189,11 @@ impl StabilityResult {
         direction: [f64; 3],
     ) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
-        let mut rows = Vec::new();
-        for (controller, c) in self.controllers() {
-            for (p, cause) in c.pushes.iter().zip(c.cause_by_push()) {
-                rows.push(PushRow {
-                    controller,
-                    time_s: Fixed(p.time),
-                    impulse_ns: Fixed(p.impulse),
-                    fell: p.fell,
-                    fall_cause: cause.map_or("", FallCause::name),
-                });
-            }
-        }
+        let rows: Vec<_> = self
+            .controllers()
+            .into_iter()
+            .flat_map(|(controller, c)| push_rows(controller, &c.pushes, &c.classified_falls))
+            .collect();
         write_rows(&dir.join("pushes.csv"), &rows)?;
         let bins_per_controller = ((impulse.1 - impulse.0) / 2.0).ceil().max(1.0) as usize;
         let mut curves = Vec::new();
@@ -319,14 +305,4 @@ mod tests {
         assert_eq!(direction_name([0.0, -1.0, 0.0]), "right");
         assert_eq!(direction_name([0.6, 0.8, 0.0]), "(0.6, 0.8, 0)");
     }
-}
-
-/// A row of `pushes.csv`: one push a controller received, and what became of it.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
-struct PushRow<'a> {
-    controller: &'a str,
-    time_s: Fixed<4>,
-    impulse_ns: Fixed<4>,
-    fell: bool,
-    fall_cause: &'a str,
 }

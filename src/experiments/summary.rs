@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// A pair of results for the Capture Step model alone and with learning.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelLearned<T> {
     /// The Capture Step controller alone.
@@ -72,6 +72,11 @@ pub struct PushFalls {
     pub pushes: ModelLearned<u32>,
     /// Pushes followed by a fall, per controller.
     pub falls: ModelLearned<u32>,
+    /// Every fall of the trial per cause (names from
+    /// [`crate::experiments::fall_causes::FallCause`]), per controller; absent in older
+    /// summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub causes: Option<ModelLearned<BTreeMap<String, u32>>>,
 }
 
 /// Experiment D: the same episodes walked without learning (dF = 0 throughout).
@@ -171,6 +176,28 @@ pub struct Summary {
     pub result: ExperimentResult,
 }
 
+/// Checks one controller's falls per cause: known causes only, and (where any are recorded)
+/// exactly one fall with a cause after a push for each push that ended in a fall.
+fn check_causes(name: &str, causes: &BTreeMap<String, u32>, falls: u32) -> Result<(), ReportError> {
+    let mut pushed = 0u64;
+    for (k, &n) in causes {
+        match FallCause::from_name(k) {
+            Some(cause) => pushed += u64::from(cause.after_push()) * u64::from(n),
+            None => {
+                return Err(ReportError::invalid(format!(
+                    "{name}: unknown fall cause {k:?}"
+                )));
+            }
+        }
+    }
+    if !causes.is_empty() && pushed != u64::from(falls) {
+        return Err(ReportError::invalid(format!(
+            "{name}: fall causes count {pushed} falls after pushes, the pushes {falls}"
+        )));
+    }
+    Ok(())
+}
+
 fn finite_non_negative(what: &str, v: f64) -> Result<(), ReportError> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
@@ -248,12 +275,16 @@ impl Summary {
                     finite_non_negative("step_error_after_push_m.model", e.model)?;
                     finite_non_negative("step_error_after_push_m.learned", e.learned)?;
                 }
-                if let Some(f) = falls
-                    && (f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned)
-                {
-                    return Err(ReportError::invalid(format!(
-                        "falls: more falls than pushes ({f:?})"
-                    )));
+                if let Some(f) = falls {
+                    if f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned {
+                        return Err(ReportError::invalid(format!(
+                            "falls: more falls than pushes ({f:?})"
+                        )));
+                    }
+                    if let Some(causes) = &f.causes {
+                        check_causes("model", &causes.model, f.falls.model)?;
+                        check_causes("learned", &causes.learned, f.falls.learned)?;
+                    }
                 }
                 finite_non_negative("return_time_s.model", return_time_s.model)?;
                 finite_non_negative("return_time_s.learned", return_time_s.learned)?;
@@ -270,25 +301,7 @@ impl Summary {
                     ("learned", &controllers.learned, &fall_causes.learned),
                 ] {
                     c.validate(name)?;
-                    // Every push that ended in a fall owns exactly one fall with a cause after a
-                    // push.
-                    let mut pushed = 0u64;
-                    for (k, &n) in causes {
-                        match FallCause::from_name(k) {
-                            Some(cause) => pushed += u64::from(cause.after_push()) * u64::from(n),
-                            None => {
-                                return Err(ReportError::invalid(format!(
-                                    "{name}: unknown fall cause {k:?}"
-                                )));
-                            }
-                        }
-                    }
-                    if !causes.is_empty() && pushed != u64::from(c.falls) {
-                        return Err(ReportError::invalid(format!(
-                            "{name}: fall causes count {pushed} falls after pushes, the pushes {}",
-                            c.falls
-                        )));
-                    }
+                    check_causes(name, causes, c.falls)?;
                 }
             }
             ExperimentResult::Robustness {
@@ -495,6 +508,10 @@ mod tests {
                             model: 0,
                             learned: 3,
                         },
+                        causes: Some(ModelLearned {
+                            model: cause_counts(&[("no_push", 1)]),
+                            learned: cause_counts(&[("tipped_after_catch_step", 3)]),
+                        }),
                     }),
                 },
                 vec![
@@ -597,6 +614,76 @@ mod tests {
         );
         // Written back, it has no invented fields.
         assert!(!s.to_json().unwrap().contains("no_learning"));
+    }
+
+    /// Every cause at zero but `nonzero`.
+    fn cause_counts(nonzero: &[(&str, u32)]) -> BTreeMap<String, u32> {
+        let mut m: BTreeMap<String, u32> = FallCause::ALL
+            .iter()
+            .map(|c| (c.name().to_string(), 0))
+            .collect();
+        for &(k, n) in nonzero {
+            m.insert(k.to_string(), n);
+        }
+        m
+    }
+
+    #[test]
+    fn disturbance_fall_causes_must_match_its_falls() {
+        let b = |model: &[(&str, u32)], learned: &[(&str, u32)]| Summary {
+            result: ExperimentResult::Disturbance {
+                return_time_s: ModelLearned {
+                    model: 1.0,
+                    learned: 1.0,
+                },
+                settle_time_s: None,
+                step_error_after_push_m: None,
+                max_tda_rad: ModelLearned {
+                    model: 0.1,
+                    learned: 0.1,
+                },
+                falls: Some(PushFalls {
+                    pushes: ModelLearned {
+                        model: 10,
+                        learned: 10,
+                    },
+                    falls: ModelLearned {
+                        model: 2,
+                        learned: 1,
+                    },
+                    causes: Some(ModelLearned {
+                        model: cause_counts(model),
+                        learned: cause_counts(learned),
+                    }),
+                }),
+            },
+            ..stability()
+        };
+        let ok = b(
+            &[("later_step_clamped", 2), ("no_push", 4)],
+            &[("catch_step_clamped", 1)],
+        );
+        ok.validate().unwrap();
+        assert_eq!(Summary::from_json(&ok.to_json().unwrap()).unwrap(), ok);
+        // one fall after a push short, one too many, an unknown cause
+        assert!(
+            b(&[("later_step_clamped", 1)], &[("catch_step_clamped", 1)])
+                .validate()
+                .is_err()
+        );
+        assert!(
+            b(&[("later_step_clamped", 2)], &[("before_touch_down", 2)])
+                .validate()
+                .is_err()
+        );
+        assert!(
+            b(
+                &[("later_step_clamped", 2), ("gremlins", 0)],
+                &[("no_push", 0), ("before_touch_down", 1)]
+            )
+            .validate()
+            .is_err()
+        );
     }
 
     #[test]
