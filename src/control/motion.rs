@@ -250,7 +250,8 @@ pub struct MotionGenerator {
     legs: [LegPose; 2],
 }
 
-fn smooth(x: f64) -> f64 {
+/// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
+pub(crate) fn smooth(x: f64) -> f64 {
     let x = x.clamp(0.0, 1.0);
     0.5 - 0.5 * (std::f64::consts::PI * x).cos()
 }
@@ -293,6 +294,11 @@ impl MotionGenerator {
     /// [`MotionConfig::fade_in`]): the share of the commanded placement the legs realise.
     pub fn fade(&self) -> f64 {
         self.fade_after(0.0)
+    }
+
+    /// Time since the start or the last reset (s).
+    pub fn time_since_start(&self) -> f64 {
+        self.time
     }
 
     /// The same fade (cosine over [`MotionConfig::fade_in`]) begun `delay` seconds after the

@@ -23,8 +23,9 @@ use super::capture_step::{
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
-use super::motion::{MotionConfig, MotionGenerator, StepCommand};
+use super::motion::{MotionConfig, MotionGenerator, StepCommand, smooth};
 use crate::approx::FunctionApproximator;
+use crate::config::{self, ConfigError};
 use crate::robot::kinematics::LegGeometry;
 use crate::robot::{JointTargets, Sensors, Side};
 use crate::rules::{LearningRule, StepOutcome};
@@ -82,6 +83,31 @@ pub struct WalkerConfig {
     /// learner-only mode, where the learned offset is the whole step.
     #[serde(default)]
     pub learner_during_fade_in: bool,
+    /// Where the learned offset dF enters the Capture Step controller (see [`OffsetTarget`]).
+    #[serde(default)]
+    pub offset_target: OffsetTarget,
+    /// After a start or a reset the walker tracks a reference that rises from 0 to the
+    /// requested one over this time (s, cosine; 0: the full reference at once), as a gait
+    /// command ramps up from standing. Without it the Capture Step walker failed to start
+    /// from standing at F_R 0.17, 0.19 and 0.22-0.30 m (it fell, again after every reset;
+    /// 0.10-0.16, 0.18, 0.20 and 0.21 m started; seed 0); with 1 s it started up to 0.25 m,
+    /// with 2 s (the default) at every F_R from -0.15 to 0.30 m (seeds 0 and 1, model and
+    /// learned walker).
+    #[serde(default = "default_start_ramp_s")]
+    pub start_ramp_s: f64,
+}
+
+/// Where the learned sagittal offset dF enters the Capture Step controller.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OffsetTarget {
+    /// Added to the analytic footstep F (the paper's learner).
+    #[default]
+    Footstep,
+    /// Added to the reference step the controller plans for (F_R + dF): the controller's
+    /// whole step (target state, ZMP, footstep) follows, as for a changed reference. The
+    /// learner's inputs and its error F_E still use the true F_R.
+    Reference,
 }
 
 impl WalkerConfig {
@@ -94,7 +120,21 @@ impl WalkerConfig {
             motion: MotionConfig::default(),
             offset_in_gait: true,
             learner_during_fade_in: false,
+            offset_target: OffsetTarget::Footstep,
+            start_ramp_s: default_start_ramp_s(),
         }
+    }
+
+    /// Checks the walker's own values and its controller's and estimator's; errors name the
+    /// field relative to the walker's section.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        config::non_negative("start_ramp_s", self.start_ramp_s)?;
+        self.capture_step
+            .validate()
+            .map_err(|e| ConfigError::new("capture_step", e.to_string()))?;
+        self.estimator
+            .validate()
+            .map_err(|e| ConfigError::new("estimator", e.to_string()))
     }
 }
 
@@ -110,6 +150,13 @@ fn default_offset_in_gait() -> bool {
     true
 }
 
+fn default_start_ramp_s() -> f64 {
+    START_RAMP_S
+}
+
+/// The default [`WalkerConfig::start_ramp_s`].
+pub const START_RAMP_S: f64 = 2.0;
+
 /// What can go wrong in a control tick.
 #[derive(Debug, Error)]
 pub enum WalkerError {
@@ -122,6 +169,9 @@ pub enum WalkerError {
     /// The learner failed.
     #[error("learner: {0}")]
     Learner(#[from] LearnerError),
+    /// The walker's configuration is invalid.
+    #[error("walker config: {0}")]
+    Config(#[from] ConfigError),
 }
 
 /// A source of learned sagittal footstep offsets dF: asked every tick, told at touch-down.
@@ -171,6 +221,9 @@ pub struct Tick {
     pub decision: Option<StepDecision>,
     /// The command given to the motion generator.
     pub command: StepCommand,
+    /// The reference step the walker tracked this tick (m): the requested one, ramped in after
+    /// a start ([`WalkerConfig::start_ramp_s`]).
+    pub f_r: f64,
     /// The learned offset used this tick (0 without a policy).
     pub learned_offset: f64,
     /// The step that ended this tick, if a touch-down was detected.
@@ -193,6 +246,7 @@ pub struct Walker {
 impl Walker {
     /// A walker for a robot with legs `geometry`.
     pub fn new(config: WalkerConfig, geometry: LegGeometry) -> Result<Self, WalkerError> {
+        config.validate()?;
         let mut capture_step = config.capture_step;
         capture_step.analytic_footstep = config.mode != WalkerMode::LearnerOnly;
         Ok(Walker {
@@ -239,6 +293,11 @@ impl Walker {
         f_r: f64,
         mut policy: Option<&mut (dyn FootstepPolicy + '_)>,
     ) -> Result<Tick, WalkerError> {
+        let f_r = if self.config.start_ramp_s > 0.0 {
+            f_r * smooth(self.generator.time_since_start() / self.config.start_ramp_s)
+        } else {
+            f_r
+        };
         // The desired trunk pitch theta_R: the lean the generator gives the trunk for the
         // reference gait (its halt lean plus the lean with the nominal step, which follows F_R).
         let m = &self.config.motion;
@@ -287,17 +346,24 @@ impl Walker {
                 }
                 let support = self.generator.support();
                 let com = com_relative_to(&estimate, support);
+                let (planned_f_r, footstep_offset) = match self.config.offset_target {
+                    OffsetTarget::Footstep => (f_r, learned_offset),
+                    OffsetTarget::Reference => (f_r + learned_offset, 0.0),
+                };
                 let reference = GaitReference {
-                    step_x: f_r,
+                    step_x: planned_f_r,
                     lateral: 0.0,
                 };
-                let d = self.controller.update(&com, &reference, learned_offset)?;
+                let d = self.controller.update(&com, &reference, footstep_offset)?;
                 if let Some(p) = policy {
                     // Offsets beyond these would be clamped away by the step range.
                     let cap = self.config.capture_step.max_step_x;
                     let lo = m.step_x_range[0].max(-cap);
                     let hi = m.step_x_range[1].min(cap);
-                    p.set_reach(lo - d.analytic_step_x, hi - d.analytic_step_x)?;
+                    // The step without the offset (in reference mode the analytic step holds
+                    // it, at about one metre of step per metre of reference).
+                    let base = d.analytic_step_x + footstep_offset - learned_offset;
+                    p.set_reach(lo - base, hi - base)?;
                 }
                 let gait_x = if self.config.offset_in_gait {
                     f_r + learned_offset
@@ -320,6 +386,7 @@ impl Walker {
             estimate,
             decision,
             command,
+            f_r,
             learned_offset,
             step,
             learning,

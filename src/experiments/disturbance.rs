@@ -273,9 +273,20 @@ where
         .validate()
         .map_err(|e| e.within("protocols.disturbance"))?;
     let runs = run_model_and_learned(&trial_setup(settings, protocol, seed), learner)?;
+    let (model, learned) = (
+        PushResponse::new(&runs.model, protocol)?,
+        PushResponse::new(&runs.learned, protocol)?,
+    );
+    if model.falls == model.pushes && learned.falls == learned.pushes {
+        return Err(ExperimentError::NothingToMeasure(format!(
+            "every push ended in a fall for both walkers ({} and {} pushes of {} Ns at F_R {} m): \
+             B measures the recovery after absorbed pushes; try a smaller impulse",
+            model.pushes, learned.pushes, protocol.impulse, protocol.f_r
+        )));
+    }
     Ok(DisturbanceResult {
-        model: PushResponse::new(&runs.model, protocol)?,
-        learned: PushResponse::new(&runs.learned, protocol)?,
+        model,
+        learned,
         runs,
     })
 }

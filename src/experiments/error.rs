@@ -24,4 +24,8 @@ pub enum ExperimentError {
     /// The experiment's settings are invalid.
     #[error("invalid experiment settings: {0}")]
     Invalid(String),
+    /// The run finished but left nothing the experiment measures (e.g. every push of B ended
+    /// in a fall, so there is no recovery to align).
+    #[error("nothing to measure: {0}")]
+    NothingToMeasure(String),
 }

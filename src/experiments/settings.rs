@@ -67,14 +67,7 @@ impl Settings {
         self.sim
             .validate()
             .map_err(|e| ConfigError::new("sim", e.to_string()))?;
-        self.walker
-            .capture_step
-            .validate()
-            .map_err(|e| ConfigError::new("walker.capture_step", e.to_string()))?;
-        self.walker
-            .estimator
-            .validate()
-            .map_err(|e| ConfigError::new("walker.estimator", e.to_string()))?;
+        self.walker.validate().map_err(|e| e.within("walker"))?;
         self.learner
             .validate()
             .map_err(|e| ConfigError::new("learner", e.to_string()))

@@ -296,7 +296,7 @@ pub fn run_trial(
             Some(walker.tick(&sensors, f_r, policy.as_deref_mut())?)
         };
         if let Some(tick) = &tick {
-            last_outcome = Some(Walker::outcome_at(&tick.estimate, f_r));
+            last_outcome = Some(Walker::outcome_at(&tick.estimate, tick.f_r));
         }
         let targets = match &tick {
             Some(tick) => {

@@ -211,6 +211,18 @@ fn a_walker_section_without_mode_takes_the_defaults() {
     let (ok, out, err) = check("[settings.walker]\noffset_in_gait = false\n");
     assert!(ok, "{err}");
     assert_eq!(out.trim(), "ok");
+    let config =
+        ConfigFile::parse_toml("[settings.walker]\noffset_target = \"reference\"\n").unwrap();
+    assert_eq!(
+        config.settings.walker.offset_target,
+        steplearn::control::walker::OffsetTarget::Reference
+    );
+    let (ok, _, err) = check("[settings.walker]\noffset_target = \"elsewhere\"\n");
+    assert!(!ok);
+    assert!(
+        err.contains("offset_target") || err.contains("elsewhere"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -4,7 +4,9 @@
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
 use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use steplearn::experiments::ExperimentError;
 use steplearn::experiments::disturbance::{self, DisturbanceProtocol};
+use steplearn::experiments::fall_causes::FallCause;
 use steplearn::experiments::robustness::{self, RobustnessProtocol};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::tracking::{self, TrackingProtocol};
@@ -135,12 +137,33 @@ fn disturbance_aligns_steps_at_absorbed_pushes() {
     ] {
         assert!(dir.join(f).exists(), "{f}");
     }
+    // Every fall after a push has one cause, in the summary counts and the pushes CSV.
+    let causes = r.runs.fall_causes();
+    for (counts, falls) in [
+        (&causes.model, r.model.falls),
+        (&causes.learned, r.learned.falls),
+    ] {
+        let after_push: u32 = counts
+            .iter()
+            .filter(|(k, _)| FallCause::from_name(k).unwrap().after_push())
+            .map(|(_, n)| n)
+            .sum();
+        assert_eq!(after_push as usize, falls, "{counts:?}");
+    }
+    let pushes_csv = std::fs::read_to_string(dir.join("disturbance_pushes.csv")).unwrap();
+    assert!(pushes_csv.starts_with("controller,time_s,impulse_ns,fell,fall_cause\n"));
     std::fs::remove_dir_all(&dir).ok();
     let bad = DisturbanceProtocol {
         gap_s: (3.0, 6.0),
         ..p
     };
     assert!(disturbance::run(&settings, &bad, 5, &learner).is_err());
+    // Pushes nobody survives leave nothing to align: a clear error, not a figure error.
+    let hopeless = DisturbanceProtocol { impulse: 60.0, ..p };
+    match disturbance::run(&settings, &hopeless, 5, &learner) {
+        Err(ExperimentError::NothingToMeasure(m)) => assert!(m.contains("every push"), "{m}"),
+        other => panic!("{:?}", other.map(|r| (r.model.falls, r.learned.falls))),
+    }
 }
 
 #[test]

@@ -243,3 +243,141 @@ fn pushes_delayed_by_a_fall_wait_for_the_gait_and_trials_end_after_the_last_push
         log.sim_time_s
     );
 }
+
+/// A policy with one fixed offset that records the reach the walker reports.
+struct FixedOffset {
+    offset: f64,
+    reach: Vec<[f64; 2]>,
+}
+
+impl steplearn::control::walker::FootstepPolicy for FixedOffset {
+    fn offset(
+        &mut self,
+        _: steplearn::control::learner::LearnerInput,
+    ) -> Result<f64, steplearn::control::learner::LearnerError> {
+        Ok(self.offset)
+    }
+    fn set_reach(
+        &mut self,
+        lo: f64,
+        hi: f64,
+    ) -> Result<(), steplearn::control::learner::LearnerError> {
+        self.reach.push([lo, hi]);
+        Ok(())
+    }
+    fn touch_down(
+        &mut self,
+        _: &steplearn::rules::StepOutcome,
+    ) -> Result<
+        steplearn::control::learner::TouchDownReport,
+        steplearn::control::learner::LearnerError,
+    > {
+        Ok(steplearn::control::learner::TouchDownReport {
+            gradient: 0.0,
+            samples: 0,
+            response: 0.0,
+            gain: 0.0,
+            scale: 1.0,
+        })
+    }
+    fn fall(
+        &mut self,
+        _: &steplearn::rules::StepOutcome,
+    ) -> Result<
+        Option<steplearn::control::learner::TouchDownReport>,
+        steplearn::control::learner::LearnerError,
+    > {
+        Ok(None)
+    }
+    fn discard_step(&mut self) {}
+}
+
+/// The learned offset enters the footstep (the paper) or the controller's reference: with
+/// the offset in the reference the controller plans the whole step for F_R + dF (its target
+/// state moves, the footstep carries no separate offset), the sweep still gets F_R + dF, and
+/// the reach the learner is told is the same offset range as in footstep mode.
+#[test]
+fn the_learned_offset_enters_the_footstep_or_the_reference() {
+    use steplearn::control::walker::OffsetTarget;
+    let (f_r, d_f) = (0.2, 0.03);
+    for target in [OffsetTarget::Footstep, OffsetTarget::Reference] {
+        let mut config = WalkerConfig::new(WalkerMode::CaptureStep);
+        config.offset_target = target;
+        let range = config.motion.step_x_range;
+        let mut robot = Humanoid::new(SimConfig::default()).unwrap();
+        let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
+        let mut policy = FixedOffset {
+            offset: d_f,
+            reach: vec![],
+        };
+        let mut checked = 0;
+        while robot.time() < 4.0 {
+            let tick = walker
+                .tick(&robot.sensors(), f_r, Some(&mut policy))
+                .unwrap();
+            let d = tick.decision.unwrap();
+            // Fully engaged once the generator and then the offset have faded in (2 x 1 s).
+            if robot.time() > 2.1 {
+                checked += 1;
+                assert_eq!(tick.learned_offset, d_f);
+                assert!((tick.command.gait_x - (f_r + d_f)).abs() < 1e-12);
+                let [lo, hi] = *policy.reach.last().unwrap();
+                let (planned, footstep_offset) = match target {
+                    OffsetTarget::Footstep => (f_r, d_f),
+                    OffsetTarget::Reference => (f_r + d_f, 0.0),
+                };
+                assert!(
+                    (d.target[0].pos - 0.5 * planned).abs() < 1e-12,
+                    "{target:?}"
+                );
+                assert_eq!(d.learned_offset, footstep_offset, "{target:?}");
+                // The reach is measured from the step without the offset.
+                let base = d.analytic_step_x + footstep_offset - d_f;
+                assert!((lo - (range[0] - base)).abs() < 1e-12, "{target:?}");
+                assert!((hi - (range[1] - base)).abs() < 1e-12, "{target:?}");
+            }
+            robot.step(&tick.targets).unwrap();
+            assert!(
+                robot.fall().is_none(),
+                "{target:?}: fell at {:.2} s",
+                robot.time()
+            );
+        }
+        assert!(checked > 100, "{checked}");
+    }
+}
+
+/// With the default start ramp the Capture Step walker starts from standing at references
+/// where it fell at once without one (0.19 m, 0.25 m) and at the controller's largest (0.30 m).
+#[test]
+fn the_walker_starts_from_standing_at_brisk_references() {
+    for f_r in [0.19, 0.25, 0.30] {
+        let setup = Settings::default().trial(
+            WalkerMode::CaptureStep,
+            ReferenceSchedule::constant(f_r),
+            vec![],
+            [1.0, 0.0, 0.0],
+            6.0,
+        );
+        let log = run_trial(&setup, None, &mut []).unwrap();
+        assert!(log.falls.is_empty(), "F_R {f_r}: fell at {:?}", log.falls);
+        // Walking at the reference by the end (the model steps a little short).
+        let last: Vec<_> = log.steps.iter().filter(|s| s.time > 4.0).collect();
+        assert!(last.len() >= 4);
+        let mean = last.iter().map(|s| s.f_hat).sum::<f64>() / last.len() as f64;
+        assert!((mean - f_r).abs() < 0.08, "F_R {f_r}: mean step {mean}");
+        // The ramp shows in the logged reference of the first steps.
+        assert!(log.steps[0].f_r < 0.5 * f_r, "{:?}", log.steps[0]);
+    }
+}
+
+#[test]
+fn a_negative_start_ramp_is_refused() {
+    let mut config = WalkerConfig::new(WalkerMode::CaptureStep);
+    config.start_ramp_s = -1.0;
+    let robot = Humanoid::new(SimConfig::default()).unwrap();
+    let err = Walker::new(config, robot.body().leg_geometry()).unwrap_err();
+    assert!(err.to_string().contains("start_ramp_s"), "{err}");
+    config.start_ramp_s = f64::NAN;
+    assert!(Walker::new(config, robot.body().leg_geometry()).is_err());
+}
