@@ -106,7 +106,8 @@ pub enum OffsetTarget {
     Footstep,
     /// Added to the reference step the controller plans for (F_R + dF): the controller's
     /// whole step (target state, ZMP, footstep) follows, as for a changed reference. The
-    /// learner's inputs and its error F_E still use the true F_R.
+    /// learner's inputs and its error F_E still use the true F_R. Capture Step mode only: in
+    /// learner-only mode the offset is the whole step either way.
     Reference,
 }
 
@@ -346,9 +347,13 @@ impl Walker {
                 }
                 let support = self.generator.support();
                 let com = com_relative_to(&estimate, support);
-                let (planned_f_r, footstep_offset) = match self.config.offset_target {
-                    OffsetTarget::Footstep => (f_r, learned_offset),
-                    OffsetTarget::Reference => (f_r + learned_offset, 0.0),
+                // In learner-only mode the offset is the whole sagittal step.
+                let into_reference = self.config.offset_target == OffsetTarget::Reference
+                    && self.config.mode == WalkerMode::CaptureStep;
+                let (planned_f_r, footstep_offset) = if into_reference {
+                    (f_r + learned_offset, 0.0)
+                } else {
+                    (f_r, learned_offset)
                 };
                 let reference = GaitReference {
                     step_x: planned_f_r,

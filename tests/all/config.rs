@@ -306,6 +306,25 @@ fn the_shipped_configs_pass_the_check() {
         assert!((cut - scale * full).abs() < 1e-12);
     }
     assert_eq!(motion.swing_step_scale, 1.0);
+
+    // The offset in the reference: the defaults but for where dF enters; with the mismatch,
+    // the mismatch robot but for the same.
+    use steplearn::control::walker::OffsetTarget;
+    for (file, base) in [
+        ("offset_in_reference.toml", ConfigFile::default()),
+        ("mismatch_offset_in_reference.toml", mismatch),
+    ] {
+        let path = format!("{}/configs/{file}", env!("CARGO_MANIFEST_DIR"));
+        let o = steplearn(&["config", "--check", &path]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut config = ConfigFile::load(Path::new(&path)).unwrap();
+        assert_eq!(
+            config.settings.walker.offset_target,
+            OffsetTarget::Reference
+        );
+        config.settings.walker.offset_target = OffsetTarget::Footstep;
+        assert_eq!(config, base, "{file}");
+    }
 }
 
 #[test]

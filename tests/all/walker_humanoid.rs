@@ -345,6 +345,21 @@ fn the_learned_offset_enters_the_footstep_or_the_reference() {
         }
         assert!(checked > 100, "{checked}");
     }
+    // In learner-only mode the offset is the whole step whatever the target.
+    let mut config = WalkerConfig::new(WalkerMode::LearnerOnly);
+    config.offset_target = OffsetTarget::Reference;
+    let robot = Humanoid::new(SimConfig::default()).unwrap();
+    let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
+    let mut policy = FixedOffset {
+        offset: d_f,
+        reach: vec![],
+    };
+    let tick = walker
+        .tick(&robot.sensors(), 0.0, Some(&mut policy))
+        .unwrap();
+    let d = tick.decision.unwrap();
+    assert_eq!(d.learned_offset, d_f);
+    assert_eq!(d.target[0].pos, 0.0);
 }
 
 /// With the default start ramp the Capture Step walker starts from standing at references
