@@ -367,7 +367,11 @@ impl Walker {
                     let hi = m.step_x_range[1].min(cap);
                     // The step without the offset (in reference mode the analytic step holds
                     // it, at about one metre of step per metre of reference).
-                    let base = d.analytic_step_x + footstep_offset - learned_offset;
+                    let base = if into_reference {
+                        d.analytic_step_x - learned_offset
+                    } else {
+                        d.analytic_step_x
+                    };
                     p.set_reach(lo - base, hi - base)?;
                 }
                 let gait_x = if self.config.offset_in_gait {

@@ -332,7 +332,10 @@ fn the_learned_offset_enters_the_footstep_or_the_reference() {
                 );
                 assert_eq!(d.learned_offset, footstep_offset, "{target:?}");
                 // The reach is measured from the step without the offset.
-                let base = d.analytic_step_x + footstep_offset - d_f;
+                let base = match target {
+                    OffsetTarget::Footstep => d.analytic_step_x,
+                    OffsetTarget::Reference => d.analytic_step_x - d_f,
+                };
                 assert!((lo - (range[0] - base)).abs() < 1e-12, "{target:?}");
                 assert!((hi - (range[1] - base)).abs() < 1e-12, "{target:?}");
             }
