@@ -123,6 +123,10 @@ pub struct PushResponse {
     pub pushes: usize,
     /// Pushes followed by a fall (left out of the statistics).
     pub falls: usize,
+    /// Pushes followed by a fall before the next push (before the trial's end for the last):
+    /// also the falls that come after the push window closed, which `falls` leaves out.
+    #[serde(default)]
+    pub falls_before_next_push: usize,
 }
 
 impl PushResponse {
@@ -221,8 +225,22 @@ impl PushResponse {
             max_tda_rad,
             pushes: log.pushes.len(),
             falls: log.pushes.iter().filter(|x| x.fell).count(),
+            falls_before_next_push: falls_before_next_push(log),
         })
     }
+}
+
+/// Pushes of `log` followed by a fall before the next push (or, for the last, at all).
+fn falls_before_next_push(log: &TrialLog) -> usize {
+    let times: Vec<f64> = log.pushes.iter().map(|p| p.time).collect();
+    times
+        .iter()
+        .enumerate()
+        .filter(|&(i, &t)| {
+            let next = times.get(i + 1).copied().unwrap_or(f64::INFINITY);
+            log.falls.iter().any(|f| f.time > t && f.time < next)
+        })
+        .count()
 }
 
 /// Experiment B's result.
@@ -480,6 +498,10 @@ impl super::experiment::Experiment for Disturbance {
                     learned: count(r.learned.falls),
                 },
                 causes: Some(r.runs.fall_causes()),
+                before_next_push: Some(ModelLearned {
+                    model: count(r.model.falls_before_next_push),
+                    learned: count(r.learned.falls_before_next_push),
+                }),
             }),
         })
     }

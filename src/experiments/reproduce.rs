@@ -94,6 +94,7 @@ impl Claims {
         let mut bin_diff: Vec<Vec<f64>> = Vec::new();
         let (mut return_diff, mut settle_diff, mut error_diff, mut falls_diff) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut late_falls_diff = Vec::new();
         let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
         let mut absorbed_diff = Vec::new();
         let mut bin_s_all = f64::NAN;
@@ -188,6 +189,10 @@ impl Claims {
                             rate(f.falls.learned, f.pushes.learned)
                                 - rate(f.falls.model, f.pushes.model),
                         );
+                        // Absent in older summaries: NaN, which the pairing leaves out.
+                        late_falls_diff.push(f.before_next_push.as_ref().map_or(f64::NAN, |b| {
+                            rate(b.learned, f.pushes.learned) - rate(b.model, f.pushes.model)
+                        }));
                     }
                     let near = max_tda_rad.learned <= 1.5 * p_theta;
                     // Return times cover absorbed pushes only: a walker that falls more often
@@ -336,6 +341,12 @@ impl Claims {
                     Paired::new(
                         "share of pushes ending in a fall, learned - model",
                         &falls_diff,
+                        0.0,
+                        Direction::LowerIsBetter,
+                    ),
+                    Paired::new(
+                        "share of pushes followed by a fall before the next push, learned - model",
+                        &late_falls_diff,
                         0.0,
                         Direction::LowerIsBetter,
                     ),
@@ -571,6 +582,11 @@ mod tests {
                         learned: falls.1,
                     },
                     causes: None,
+                    // Three more of the learned walker's pushes end in a fall after the window.
+                    before_next_push: Some(ModelLearned {
+                        model: falls.0,
+                        learned: (falls.1 + 3).min(pushes.1),
+                    }),
                 }),
             },
         )
@@ -587,8 +603,8 @@ mod tests {
             disturbance(3, (2.0, 4.0), (60, 60), (6, 60)),
         ];
         let c = Claims::from_summaries(&s, 0.15);
-        let [ret, settle, error, rate] = &c.disturbance.over_seeds[..] else {
-            panic!("four paired quantities: {:?}", c.disturbance.over_seeds);
+        let [ret, settle, error, rate, late] = &c.disturbance.over_seeds[..] else {
+            panic!("five paired quantities: {:?}", c.disturbance.over_seeds);
         };
         // Quantities are Markdown table cells in claims.md (and index.html's tables).
         for c in c.all() {
@@ -606,6 +622,11 @@ mod tests {
         assert!((rate.values[0] - (-0.05)).abs() < 1e-12);
         assert!((rate.values[1] - 0.1).abs() < 1e-12);
         assert!((rate.values[2] - 0.9).abs() < 1e-12);
+        // The falls before the next push pair the same seeds as the fall rate.
+        assert_eq!(late.values.len(), 3, "{:?}", late.values);
+        for (v, want) in late.values.iter().zip([0.0, 0.2, 0.9]) {
+            assert!((v - want).abs() < 1e-12, "{:?}", late.values);
+        }
     }
 
     #[test]

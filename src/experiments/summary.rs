@@ -77,6 +77,10 @@ pub struct PushFalls {
     /// summaries.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub causes: Option<ModelLearned<BTreeMap<String, u32>>>,
+    /// Pushes followed by a fall before the next push, per controller: `falls` plus the
+    /// pushes whose fall came after the push window closed; absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub before_next_push: Option<ModelLearned<u32>>,
 }
 
 /// Experiment D: the same episodes walked without learning (dF = 0 throughout).
@@ -284,6 +288,17 @@ impl Summary {
                     if let Some(causes) = &f.causes {
                         check_causes("model", &causes.model, f.falls.model)?;
                         check_causes("learned", &causes.learned, f.falls.learned)?;
+                    }
+                    if let Some(late) = &f.before_next_push {
+                        let within =
+                            |late: u32, falls: u32, pushes: u32| (falls..=pushes).contains(&late);
+                        if !within(late.model, f.falls.model, f.pushes.model)
+                            || !within(late.learned, f.falls.learned, f.pushes.learned)
+                        {
+                            return Err(ReportError::invalid(format!(
+                                "falls: falls before the next push {late:?} outside [falls, pushes]"
+                            )));
+                        }
                     }
                 }
                 finite_non_negative("return_time_s.model", return_time_s.model)?;
@@ -512,6 +527,10 @@ mod tests {
                             model: cause_counts(&[("no_push", 1)]),
                             learned: cause_counts(&[("tipped_after_catch_step", 3)]),
                         }),
+                        before_next_push: Some(ModelLearned {
+                            model: 1,
+                            learned: 3,
+                        }),
                     }),
                 },
                 vec![
@@ -654,6 +673,10 @@ mod tests {
                     causes: Some(ModelLearned {
                         model: cause_counts(model),
                         learned: cause_counts(learned),
+                    }),
+                    before_next_push: Some(ModelLearned {
+                        model: 3,
+                        learned: 1,
                     }),
                 }),
             },

@@ -145,6 +145,13 @@ fn disturbance_aligns_steps_at_absorbed_pushes() {
     ] {
         assert!(dir.join(f).exists(), "{f}");
     }
+    // Falls after the push window count towards the falls before the next push.
+    for r in [&r.model, &r.learned] {
+        assert!(
+            (r.falls..=r.pushes).contains(&r.falls_before_next_push),
+            "{r:?}"
+        );
+    }
     // Every fall after a push has one cause, in the summary counts and the pushes CSV.
     let causes = r.runs.fall_causes();
     for (counts, falls) in [
