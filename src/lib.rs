@@ -30,6 +30,9 @@
 //! - [`control`]: state estimation, Capture Step control, step motion generation, the learner.
 //! - `sim` (feature `sim`): the humanoid in rapier3d.
 //! - `experiments` (feature `experiments`): the trial harness, the paper's protocols, sweeps.
+//! - `bench` (feature `experiments`): the registry of approximators, rules and experiments by
+//!   name, and the bench that runs any selection into a leaderboard.
+//! - `cli` (feature `cli`): the `steplearn` command line over any registry (`main_with`).
 //! - `report` (feature `experiments`): CSV, `summary.json` and SVG figures.
 //!
 //! ## Features
@@ -41,6 +44,10 @@
 
 pub mod approx;
 pub mod atomic_file;
+#[cfg(feature = "experiments")]
+pub mod bench;
+#[cfg(feature = "cli")]
+pub mod cli;
 pub mod config;
 pub mod control;
 #[cfg(feature = "experiments")]

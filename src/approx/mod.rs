@@ -7,6 +7,7 @@
 
 mod any;
 pub mod batch;
+mod boxed;
 pub mod conformance;
 mod error;
 mod exact_kernel_ridge;
@@ -22,6 +23,7 @@ mod square_matrix;
 
 pub use any::{AnyApproximator, ApproxKind};
 pub use batch::BatchApproximator;
+pub use boxed::{BoxedApproximator, DynApproximator};
 pub use error::{ApproxError, check_output, check_vector};
 pub use exact_kernel_ridge::ExactKernelRidge;
 pub use grid::{Grid, GridConfig};

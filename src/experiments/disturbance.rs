@@ -447,8 +447,49 @@ impl DisturbanceResult {
 pub struct Disturbance;
 
 impl super::experiment::Experiment for Disturbance {
-    fn kind(&self) -> super::ExperimentKind {
-        super::ExperimentKind::Disturbance
+    fn name(&self) -> &str {
+        super::ExperimentKind::Disturbance.into()
+    }
+
+    fn description(&self) -> &str {
+        "B (Fig. 5): disturbance rejection; return to the reference step after 8 Ns pushes"
+    }
+
+    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
+        // The paired comparisons of the paper's claim (one definition, shared with
+        // `reproduce`); the rule's TDA tolerance does not enter them.
+        let runs: Vec<super::summary::Summary> = runs.iter().map(|s| (*s).clone()).collect();
+        super::reproduce::Claims::from_summaries(&runs, 0.0)
+            .disturbance
+            .over_seeds
+    }
+
+    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
+        use super::experiment::Headline;
+        let mut h: [Vec<f64>; 4] = Default::default();
+        for s in runs {
+            if let ExperimentResult::Disturbance {
+                return_time_s,
+                falls,
+                ..
+            } = &s.result
+            {
+                h[0].push(return_time_s.model);
+                h[1].push(return_time_s.learned);
+                if let Some(f) = falls {
+                    let rate = |falls: u32, pushes: u32| f64::from(falls) / f64::from(pushes);
+                    h[2].push(rate(f.falls.model, f.pushes.model));
+                    h[3].push(rate(f.falls.learned, f.pushes.learned));
+                }
+            }
+        }
+        let [a, b, c, d] = h;
+        vec![
+            Headline::mean_of("return time, model (s)", a),
+            Headline::mean_of("return time, learned (s)", b),
+            Headline::mean_of("falls per push, model", c),
+            Headline::mean_of("falls per push, learned", d),
+        ]
     }
 
     fn apply_push_options(
@@ -457,7 +498,7 @@ impl super::experiment::Experiment for Disturbance {
         options: &super::experiment::PushOptions,
     ) -> Result<(), String> {
         let p = &mut protocols.disturbance;
-        options.apply_single(self.kind(), &mut p.pushes, &mut p.impulse, &mut p.direction)
+        options.apply_single(self.name(), &mut p.pushes, &mut p.impulse, &mut p.direction)
     }
 
     fn run(

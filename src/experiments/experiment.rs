@@ -1,40 +1,69 @@
-//! The one abstraction every experiment implements, and the registry the command line,
-//! `reproduce`, `sweep` and `merge` find them in.
+//! The one abstraction every experiment implements, the paper's and a user's.
 //!
-//! An experiment is a unit type in its own file implementing [`Experiment`]: it adjusts its
+//! An experiment is a type in its own file implementing [`Experiment`]: it adjusts its
 //! protocol to the command line's push options, runs with the learners a [`RunContext`] builds
-//! (one approximator and rule per run), writes its CSV and figures, and returns its part of
-//! `summary.json`. [`registry`] lists them in the paper's order.
+//! (one approximator and rule per run, whatever their types), writes its CSV and figures,
+//! returns its part of `summary.json`, and compares the learned walker with the model over
+//! seeds for the leaderboard. `steplearn::bench::Registry` holds them by name.
 
-use super::ExperimentKind;
 use super::error::ExperimentError;
+use super::paired::Paired;
 use super::run::Protocols;
 use super::settings::Settings;
-use crate::approx::AnyApproximator;
+use crate::approx::BoxedApproximator;
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
-use crate::experiments::summary::ExperimentResult;
+use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::rules::LearningRule;
 use std::path::Path;
 
 /// The learner every experiment runs: the run's approximator and rule, chosen by name.
-pub type RunLearner = FootstepLearner<AnyApproximator, Box<dyn LearningRule>>;
+pub type RunLearner = FootstepLearner<BoxedApproximator, Box<dyn LearningRule>>;
+
+/// Builds a fresh, untrained learner of a run's approximator and rule with a learner config.
+pub type LearnerBuilder<'a> = dyn Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + 'a;
 
 /// What one run of an experiment is given.
 pub struct RunContext<'a> {
-    /// The robot, walker and learner settings.
+    /// The robot, walker and learner settings (`settings.scale` is the protocols' length
+    /// fraction: 1 the paper's, 0.1 `--quick`).
     pub settings: &'a Settings,
-    /// Every experiment's protocol (each reads its own).
+    /// The paper's protocols (each built-in experiment reads its own).
     pub protocols: &'a Protocols,
     /// The run's seed.
     pub seed: u64,
+    /// The approximator's registered name.
+    pub approx: &'a str,
+    /// The rule's registered name.
+    pub rule: &'a str,
     /// Builds a fresh, untrained learner of the run's approximator and rule with `config`.
-    pub learner: &'a (dyn Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync),
+    pub learner: &'a LearnerBuilder<'a>,
 }
 
 impl RunContext<'_> {
     /// A fresh learner with the settings' learner config.
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
         (self.learner)(self.settings.learner)
+    }
+}
+
+/// A figure of an experiment over seeds, for the leaderboard: its name (with its unit) and
+/// its mean over the seeds that have it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Headline {
+    /// What it is, with its unit, e.g. `"I50 learned (Ns)"`.
+    pub name: String,
+    /// Mean over seeds (NaN where no seed has it; written as `null`).
+    pub mean: f64,
+}
+
+impl Headline {
+    /// The mean of the finite `values` as the figure `name`.
+    pub fn mean_of(name: &str, values: impl IntoIterator<Item = f64>) -> Self {
+        let s = crate::stats::MeanStd::of(values.into_iter().filter(|v| v.is_finite()));
+        Headline {
+            name: name.to_string(),
+            mean: if s.count() == 0 { f64::NAN } else { s.mean() },
+        }
     }
 }
 
@@ -51,7 +80,7 @@ pub struct PushOptions {
 
 impl PushOptions {
     /// The single impulse of an experiment that pushes with one impulse (`A,A`), if given.
-    pub fn single_impulse(&self, kind: ExperimentKind) -> Result<Option<f64>, String> {
+    pub fn single_impulse(&self, kind: &str) -> Result<Option<f64>, String> {
         match self.impulse_range {
             Some((a, b)) if a != b => Err(format!(
                 "{kind} pushes with one impulse: give --impulse-range A,A (got {a},{b})"
@@ -65,7 +94,7 @@ impl PushOptions {
     /// pushes with one impulse, where the options give them.
     pub fn apply_single(
         &self,
-        kind: ExperimentKind,
+        kind: &str,
         pushes: &mut usize,
         impulse: &mut f64,
         direction: &mut [f64; 3],
@@ -78,54 +107,56 @@ impl PushOptions {
     }
 }
 
-/// One experiment of the paper (or a user's).
-pub trait Experiment: Sync {
-    /// Its name on the command line, in run ids and in `summary.json`.
-    fn kind(&self) -> ExperimentKind;
+impl PushOptions {
+    /// Whether no option is given.
+    pub fn is_empty(&self) -> bool {
+        self.pushes.is_none() && self.impulse_range.is_none() && self.direction.is_none()
+    }
+}
 
-    /// Applies the command line's push options to its protocol in `protocols`; an error if
-    /// they do not apply (an experiment without pushes, one impulse given as a range).
+/// One experiment: the paper's or a user's.
+///
+/// A user's experiment builds its walkers with the public harness
+/// ([`crate::experiments::settings::Settings::trial`], [`crate::experiments::trial`]), its
+/// learners with [`RunContext::make_learner`], and reports a
+/// [`crate::experiments::summary::CustomResult`].
+pub trait Experiment: Send + Sync {
+    /// Its name on the command line, in run ids and in `summary.json` (lowercase letters,
+    /// digits and `-`).
+    fn name(&self) -> &str;
+
+    /// What it measures, in one line.
+    fn description(&self) -> &str {
+        ""
+    }
+
+    /// Applies the command line's push options to its protocol; an error if they do not apply
+    /// (by default: an experiment that takes none).
     fn apply_push_options(
         &self,
         protocols: &mut Protocols,
         options: &PushOptions,
-    ) -> Result<(), String>;
-
-    /// Runs it, writes its CSV and figures into `dir` and returns its summary result.
-    fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError>;
-}
-
-/// Every experiment, in the paper's order (A-D).
-pub fn registry() -> [&'static dyn Experiment; 4] {
-    [
-        &super::tracking::Tracking,
-        &super::disturbance::Disturbance,
-        &super::stability::Stability,
-        &super::robustness::Robustness,
-    ]
-}
-
-impl ExperimentKind {
-    /// The registered experiment of this name.
-    pub fn experiment(self) -> &'static dyn Experiment {
-        registry()
-            .into_iter()
-            .find(|e| e.kind() == self)
-            .expect("every ExperimentKind is registered (tested)")
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use strum::VariantArray;
-
-    #[test]
-    fn every_kind_is_registered_once_in_order() {
-        let kinds: Vec<ExperimentKind> = registry().iter().map(|e| e.kind()).collect();
-        assert_eq!(kinds, ExperimentKind::VARIANTS.to_vec());
-        for &k in ExperimentKind::VARIANTS {
-            assert_eq!(k.experiment().kind(), k);
+    ) -> Result<(), String> {
+        let _ = protocols;
+        if options.is_empty() {
+            Ok(())
+        } else {
+            Err(format!("{} takes no push options", self.name()))
         }
+    }
+
+    /// Runs it, writes its CSV and figures into `dir` and returns its summary result. It must
+    /// depend only on the context (the seed included), never on timing or thread count.
+    fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError>;
+
+    /// The learned walker against the model, paired by seed over `runs` (this experiment's
+    /// summaries of one approximator and rule, in seed order): the leaderboard's verdicts.
+    fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired>;
+
+    /// Its headline figures over `runs` (as for [`Experiment::versus_model`]), for the
+    /// leaderboard's columns.
+    fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
+        let _ = runs;
+        Vec::new()
     }
 }

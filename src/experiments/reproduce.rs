@@ -1,5 +1,6 @@
-//! The main job: the paper's four experiments with LWPR and the pendulum-cart rule over several
-//! seeds, and a report of whether each of the paper's four claims holds, seed by seed.
+//! The main job: the paper's four experiments with one approximator and rule (by default LWPR
+//! and the pendulum-cart rule) over several seeds, and a report of whether each of the paper's
+//! four claims holds, seed by seed and paired over seeds.
 //!
 //! The runs go through the sweep machinery ([`super::sweep::run_sweep`]): one directory per
 //! run with its CSV, SVG and `summary.json`, finished runs reused. [`Claims::from_summaries`]
@@ -10,23 +11,18 @@ use super::error::ExperimentError;
 use super::paired::{Direction, Paired};
 use super::sweep::{SUMMARY_FILE, SweepGrid};
 use crate::Named;
-use crate::approx::ApproxKind;
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{ReportError, write_atomic};
-use crate::rules::RuleKind;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use strum::VariantArray;
 
-/// The runs of a reproduction: every experiment, LWPR + pendulum-cart, seeds `0..seeds`.
-pub fn grid(seeds: u64) -> SweepGrid {
-    SweepGrid {
-        experiments: ExperimentKind::VARIANTS.to_vec(),
-        approx: vec![ApproxKind::Lwpr.name().to_string()],
-        rules: vec![RuleKind::PendulumCart],
-        seeds: (0..seeds).collect(),
-    }
+/// The runs of a reproduction: the paper's four experiments with `approx` and `rule`, seeds
+/// `0..seeds`.
+pub fn grid(approx: &str, rule: &str, seeds: u64) -> SweepGrid {
+    let experiments: Vec<&str> = ExperimentKind::VARIANTS.iter().map(|k| k.name()).collect();
+    SweepGrid::new(&experiments, &[approx], &[rule], seeds)
 }
 
 /// One claim's verdict per seed and overall.
@@ -99,7 +95,7 @@ impl Claims {
         let mut absorbed_diff = Vec::new();
         let mut bin_s_all = f64::NAN;
         let mut sorted: Vec<&Summary> = summaries.iter().collect();
-        sorted.sort_by_key(|s| (s.experiment(), s.seed));
+        sorted.sort_by(|a, b| (a.experiment(), a.seed).cmp(&(b.experiment(), b.seed)));
         for s in sorted {
             match &s.result {
                 ExperimentResult::Tracking {
@@ -282,6 +278,7 @@ impl Claims {
                     };
                     robustness.push((s.seed, early && more, format!("{first}; {baseline}")));
                 }
+                ExperimentResult::Custom(_) => {}
             }
         }
         let tracking_std_mean = if std_n == 0 {
@@ -396,10 +393,10 @@ impl Claims {
         ]
     }
 
-    /// A Markdown report: one section per claim with its verdict and per-seed figures.
-    pub fn to_markdown(&self) -> String {
-        let mut md =
-            String::from("# Reproduction of the paper's claims (LWPR + pendulum-cart)\n\n");
+    /// A Markdown report of the claims checked with approximator `approx` and rule `rule`: one
+    /// section per claim with its verdict and per-seed figures.
+    pub fn to_markdown(&self, approx: &str, rule: &str) -> String {
+        let mut md = format!("# Reproduction of the paper's claims ({approx} + {rule})\n\n");
         for c in self.all() {
             let k = c.seeds.iter().filter(|s| s.1).count();
             md.push_str(&format!(
@@ -443,10 +440,14 @@ impl Claims {
         md
     }
 
-    /// Writes `claims.md`, `claims.json` and `tracking_std_over_seeds.svg` into `dir`.
-    pub fn write(&self, dir: &Path) -> Result<(), ExperimentError> {
+    /// Writes `claims.md` (titled with `approx` and `rule`), `claims.json` and
+    /// `tracking_std_over_seeds.svg` into `dir`.
+    pub fn write(&self, dir: &Path, approx: &str, rule: &str) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
-        write_atomic(&dir.join("claims.md"), self.to_markdown().as_bytes())?;
+        write_atomic(
+            &dir.join("claims.md"),
+            self.to_markdown(approx, rule).as_bytes(),
+        )?;
         let json =
             serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))?;
         write_atomic(&dir.join("claims.json"), json.as_bytes())?;
@@ -514,7 +515,7 @@ mod tests {
     fn summary(seed: u64, result: ExperimentResult) -> Summary {
         Summary {
             approx: "lwpr".into(),
-            rule: RuleKind::PendulumCart,
+            rule: "pendulum-cart".into(),
             seed,
             result,
         }
@@ -764,7 +765,8 @@ mod tests {
         assert_eq!(c.tracking_std_mean.len(), 3);
         assert!((c.tracking_std_mean[1].2 - 0.02).abs() < 1e-12);
         assert!((c.tracking_std_mean[0].0 - 0.25).abs() < 1e-12);
-        let md = c.to_markdown();
+        let md = c.to_markdown("lwpr", "pendulum-cart");
+        assert!(md.starts_with("# Reproduction of the paper's claims (lwpr + pendulum-cart)"));
         assert!(md.contains("**not reproduced** (1 of 2 seeds)"), "{md}");
         assert!(md.contains("**not reproduced** (2 of 3 seeds)"), "{md}");
         assert!(md.contains("**not reproduced** (2 of 5 seeds)"), "{md}");

@@ -13,11 +13,13 @@
 
 use super::error::ExperimentError;
 use super::schedule::{Push, ReferenceSchedule};
-use super::settings::{LearnerFactory, Settings};
+use super::settings::Settings;
 use super::trial::{StepCells, StepRecord, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
-use crate::control::learner::{InputGrid, MapSpec, OffsetMap};
+use crate::control::learner::{
+    FootstepLearner, InputGrid, LearnerConfig, LearnerError, MapSpec, OffsetMap, Prior,
+};
 use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, NoLearning};
 use crate::report::ReportError;
@@ -202,12 +204,14 @@ impl RobustnessResult {
     }
 }
 
-/// Runs experiment D with one learner that learns through all episodes.
+/// Runs experiment D with one learner that learns through all episodes. `learner` builds a
+/// learner from a config: it is given the settings' learner config, without its dF = 0 prior
+/// unless `protocol.learner_prior` (D's learner is not initialised).
 pub fn run<A, R>(
     settings: &Settings,
     protocol: &RobustnessProtocol,
     seed: u64,
-    learner: &(impl LearnerFactory<A, R> + Sync),
+    learner: &(dyn Fn(LearnerConfig) -> Result<FootstepLearner<A, R>, LearnerError> + Sync),
 ) -> Result<RobustnessResult, ExperimentError>
 where
     A: FunctionApproximator + Clone,
@@ -244,7 +248,7 @@ where
     // the episode counts as a fall.
     let fell = |log: &super::trial::TrialLog| log.pushes.first().is_none_or(|p| p.fell);
     let learned = || -> Result<(f64, Vec<Episode>), ExperimentError> {
-        let mut learner = learner.make()?;
+        let mut learner = learner(learner_config(settings, protocol))?;
         let initial_metric = learner.learning_metric(&protocol.metric_grid)?;
         let mut episodes = Vec::new();
         for (i, &push_time) in push_times.iter().enumerate() {
@@ -384,13 +388,71 @@ impl RobustnessResult {
     }
 }
 
+/// The learner config of experiment D: the settings' without the dF = 0 prior unless the
+/// protocol asks for it (not initialised).
+pub fn learner_config(settings: &Settings, protocol: &RobustnessProtocol) -> LearnerConfig {
+    if protocol.learner_prior {
+        settings.learner
+    } else {
+        LearnerConfig {
+            prior: Prior::none(),
+            ..settings.learner
+        }
+    }
+}
+
 /// Experiment D as a registered [`super::experiment::Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Robustness;
 
 impl super::experiment::Experiment for Robustness {
-    fn kind(&self) -> super::ExperimentKind {
-        super::ExperimentKind::Robustness
+    fn name(&self) -> &str {
+        super::ExperimentKind::Robustness.into()
+    }
+
+    fn description(&self) -> &str {
+        "D (Fig. 7): robustness; learning from scratch without the analytic footstep"
+    }
+
+    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
+        // The paired comparisons of the paper's claim (one definition, shared with
+        // `reproduce`); the rule's TDA tolerance does not enter them.
+        let runs: Vec<super::summary::Summary> = runs.iter().map(|s| (*s).clone()).collect();
+        super::reproduce::Claims::from_summaries(&runs, 0.0)
+            .robustness
+            .over_seeds
+    }
+
+    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
+        use super::experiment::Headline;
+        let mut h: [Vec<f64>; 4] = Default::default();
+        for s in runs {
+            if let ExperimentResult::Robustness {
+                pushes_until_first_absorbed,
+                absorbed_by_push,
+                no_learning,
+                falls,
+                ..
+            } = &s.result
+            {
+                let count = |v: &[bool]| v.iter().filter(|&&a| a).count() as f64;
+                h[0].push(pushes_until_first_absorbed.map_or(f64::NAN, f64::from));
+                h[1].push(count(absorbed_by_push));
+                h[2].push(
+                    no_learning
+                        .as_ref()
+                        .map_or(f64::NAN, |b| count(&b.absorbed_by_push)),
+                );
+                h[3].push(f64::from(*falls));
+            }
+        }
+        let [a, b, c, d] = h;
+        vec![
+            Headline::mean_of("pushes until the first absorbed", a),
+            Headline::mean_of("pushes absorbed, learned", b),
+            Headline::mean_of("pushes absorbed, without learning", c),
+            Headline::mean_of("falls, learned", d),
+        ]
     }
 
     fn apply_push_options(
@@ -399,7 +461,7 @@ impl super::experiment::Experiment for Robustness {
         options: &super::experiment::PushOptions,
     ) -> Result<(), String> {
         let p = &mut protocols.robustness;
-        options.apply_single(self.kind(), &mut p.pushes, &mut p.impulse, &mut p.direction)
+        options.apply_single(self.name(), &mut p.pushes, &mut p.impulse, &mut p.direction)
     }
 
     fn run(
@@ -407,17 +469,8 @@ impl super::experiment::Experiment for Robustness {
         ctx: &super::experiment::RunContext<'_>,
         dir: &Path,
     ) -> Result<ExperimentResult, ExperimentError> {
-        // Not initialised: without the dF = 0 prior unless the protocol asks for it.
         let p = &ctx.protocols.robustness;
-        let config = if p.learner_prior {
-            ctx.settings.learner
-        } else {
-            crate::control::learner::LearnerConfig {
-                prior: crate::control::learner::Prior::none(),
-                ..ctx.settings.learner
-            }
-        };
-        let r = run(ctx.settings, p, ctx.seed, &|| (ctx.learner)(config))?;
+        let r = run(ctx.settings, p, ctx.seed, ctx.learner)?;
         r.write(dir)?;
         Ok(r.summary_result())
     }

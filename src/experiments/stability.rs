@@ -253,8 +253,41 @@ pub fn direction_name(d: [f64; 3]) -> String {
 pub struct Stability;
 
 impl super::experiment::Experiment for Stability {
-    fn kind(&self) -> super::ExperimentKind {
-        super::ExperimentKind::Stability
+    fn name(&self) -> &str {
+        super::ExperimentKind::Stability.into()
+    }
+
+    fn description(&self) -> &str {
+        "C (Fig. 6): stability; impulse at 50% falls stepping in place"
+    }
+
+    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
+        // The paired comparisons of the paper's claim (one definition, shared with
+        // `reproduce`); the rule's TDA tolerance does not enter them.
+        let runs: Vec<super::summary::Summary> = runs.iter().map(|s| (*s).clone()).collect();
+        super::reproduce::Claims::from_summaries(&runs, 0.0)
+            .stability
+            .over_seeds
+    }
+
+    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
+        use super::experiment::Headline;
+        let mut h: [Vec<f64>; 4] = Default::default();
+        for s in runs {
+            if let ExperimentResult::Stability { controllers: c, .. } = &s.result {
+                h[0].push(c.open_loop.impulse_at_50pct_fall_ns);
+                h[1].push(c.model.impulse_at_50pct_fall_ns);
+                h[2].push(c.learned.impulse_at_50pct_fall_ns);
+                h[3].push(f64::from(c.learned.falls) / f64::from(c.learned.pushes));
+            }
+        }
+        let [a, b, c, d] = h;
+        vec![
+            Headline::mean_of("I50 open-loop (Ns)", a),
+            Headline::mean_of("I50 model (Ns)", b),
+            Headline::mean_of("I50 learned (Ns)", c),
+            Headline::mean_of("falls per push, learned", d),
+        ]
     }
 
     fn apply_push_options(

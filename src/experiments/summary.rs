@@ -9,9 +9,9 @@
 
 use super::ExperimentKind;
 use super::fall_causes::FallCause;
+use crate::Named;
 use crate::report::{ReportError, write_atomic};
-use crate::rules::RuleKind;
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -152,32 +152,168 @@ pub enum ExperimentResult {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         no_learning: Option<NoLearning>,
     },
+    /// A user's experiment: its name and its own fields.
+    #[serde(skip)]
+    Custom(CustomResult),
+}
+
+/// The result of an experiment outside the paper's four: its name and whatever fields it
+/// reports (numbers, lists, objects), written flat into `summary.json` beside the common
+/// fields.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CustomResult {
+    /// The experiment's registered name.
+    pub experiment: String,
+    /// Its fields.
+    pub fields: serde_json::Map<String, serde_json::Value>,
+}
+
+impl CustomResult {
+    /// The result of experiment `name` with the fields of `value` (a struct or map that
+    /// serializes to a JSON object).
+    pub fn new(name: &str, value: &impl Serialize) -> Result<Self, ReportError> {
+        match serde_json::to_value(value) {
+            Ok(serde_json::Value::Object(fields)) => Ok(CustomResult {
+                experiment: name.to_string(),
+                fields,
+            }),
+            Ok(other) => Err(ReportError::invalid(format!(
+                "the result of {name} must serialize to a JSON object, got {other}"
+            ))),
+            Err(e) => Err(ReportError::invalid(e.to_string())),
+        }
+    }
+
+    /// Its fields read back as `T`.
+    pub fn parse<T: serde::de::DeserializeOwned>(&self) -> Result<T, ReportError> {
+        serde_json::from_value(serde_json::Value::Object(self.fields.clone()))
+            .map_err(|e| ReportError::invalid(format!("the result of {}: {e}", self.experiment)))
+    }
 }
 
 impl ExperimentResult {
-    /// Which experiment this is.
-    pub fn kind(&self) -> ExperimentKind {
+    /// The experiment's name, as in `summary.json`.
+    pub fn name(&self) -> &str {
         match self {
-            ExperimentResult::Tracking { .. } => ExperimentKind::Tracking,
-            ExperimentResult::Disturbance { .. } => ExperimentKind::Disturbance,
-            ExperimentResult::Stability { .. } => ExperimentKind::Stability,
-            ExperimentResult::Robustness { .. } => ExperimentKind::Robustness,
+            ExperimentResult::Tracking { .. } => ExperimentKind::Tracking.name(),
+            ExperimentResult::Disturbance { .. } => ExperimentKind::Disturbance.name(),
+            ExperimentResult::Stability { .. } => ExperimentKind::Stability.name(),
+            ExperimentResult::Robustness { .. } => ExperimentKind::Robustness.name(),
+            ExperimentResult::Custom(c) => &c.experiment,
         }
     }
 }
 
-/// The content of `summary.json`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The content of `summary.json`: the common fields, then `"experiment"` and the experiment's
+/// own fields.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
-    /// Approximator name (`lwpr`, `rbf`, `grid`, `kernel-ridge`, ...).
+    /// Approximator name (`lwpr`, `rbf`, `grid`, `kernel-ridge`, or a user's).
     pub approx: String,
-    /// Learning rule.
-    pub rule: RuleKind,
+    /// Learning rule name (`pendulum-cart`, ..., or a user's).
+    pub rule: String,
     /// Seed of the run.
     pub seed: u64,
     /// `"experiment"` and the experiment's fields.
-    #[serde(flatten)]
     pub result: ExperimentResult,
+}
+
+/// The fields every summary has.
+const COMMON_FIELDS: [&str; 4] = ["approx", "rule", "seed", "experiment"];
+
+#[derive(Serialize)]
+struct BuiltinOut<'a> {
+    approx: &'a str,
+    rule: &'a str,
+    seed: u64,
+    #[serde(flatten)]
+    result: &'a ExperimentResult,
+}
+
+#[derive(Serialize)]
+struct CustomOut<'a> {
+    approx: &'a str,
+    rule: &'a str,
+    seed: u64,
+    experiment: &'a str,
+    #[serde(flatten)]
+    fields: &'a serde_json::Map<String, serde_json::Value>,
+}
+
+#[derive(Deserialize)]
+struct SummaryIn {
+    approx: String,
+    rule: String,
+    seed: u64,
+    experiment: String,
+    #[serde(flatten)]
+    fields: serde_json::Map<String, serde_json::Value>,
+}
+
+impl Serialize for Summary {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match &self.result {
+            ExperimentResult::Custom(c) => CustomOut {
+                approx: &self.approx,
+                rule: &self.rule,
+                seed: self.seed,
+                experiment: &c.experiment,
+                fields: &c.fields,
+            }
+            .serialize(serializer),
+            result => BuiltinOut {
+                approx: &self.approx,
+                rule: &self.rule,
+                seed: self.seed,
+                result,
+            }
+            .serialize(serializer),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Summary {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let SummaryIn {
+            approx,
+            rule,
+            seed,
+            experiment,
+            mut fields,
+        } = SummaryIn::deserialize(deserializer)?;
+        let result = if ExperimentKind::from_name(&experiment).is_some() {
+            fields.insert(
+                "experiment".into(),
+                serde_json::Value::String(experiment.clone()),
+            );
+            serde_json::from_value(serde_json::Value::Object(fields))
+                .map_err(serde::de::Error::custom)?
+        } else {
+            ExperimentResult::Custom(CustomResult { experiment, fields })
+        };
+        Ok(Summary {
+            approx,
+            rule,
+            seed,
+            result,
+        })
+    }
+}
+
+/// Checks a registered name (approximator, rule or experiment): non-empty lowercase ASCII
+/// letters, digits and `-`, so that it is safe in run ids and paths.
+pub fn check_name(what: &str, name: &str) -> Result<(), String> {
+    let ok = !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what} name {name:?} must be non-empty lowercase letters, digits or '-'"
+        ))
+    }
 }
 
 /// Checks one controller's falls per cause: known causes only, and (where any are recorded)
@@ -229,18 +365,32 @@ impl ControllerFalls {
 
 impl Summary {
     /// Which experiment this is.
-    pub fn experiment(&self) -> ExperimentKind {
-        self.result.kind()
+    pub fn experiment(&self) -> &str {
+        self.result.name()
     }
 
     /// Checks what JSON cannot: a non-empty approximator name and finite, non-negative
     /// numbers (serde_json would write NaN as `null` and fail to read it back), falls <= pushes,
     /// equal-length model/learned series and a positive bin width.
     pub fn validate(&self) -> Result<(), ReportError> {
-        if self.approx.trim().is_empty() {
-            return Err(ReportError::invalid("approx name is empty"));
-        }
+        check_name("approximator", &self.approx).map_err(ReportError::invalid)?;
+        check_name("rule", &self.rule).map_err(ReportError::invalid)?;
         match &self.result {
+            ExperimentResult::Custom(c) => {
+                check_name("experiment", &c.experiment).map_err(ReportError::invalid)?;
+                if ExperimentKind::from_name(&c.experiment).is_some() {
+                    return Err(ReportError::invalid(format!(
+                        "{} is a built-in experiment; its result cannot be custom",
+                        c.experiment
+                    )));
+                }
+                if let Some(k) = COMMON_FIELDS.iter().find(|k| c.fields.contains_key(**k)) {
+                    return Err(ReportError::invalid(format!(
+                        "the result of {} has a field {k:?}, which every summary has already",
+                        c.experiment
+                    )));
+                }
+            }
             ExperimentResult::Tracking {
                 step_error_std_m,
                 bin_s,
@@ -408,7 +558,6 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Named;
 
     fn falls(pushes: u32, falls: u32, x: f64) -> ControllerFalls {
         ControllerFalls {
@@ -430,7 +579,7 @@ mod tests {
     fn stability() -> Summary {
         Summary {
             approx: "lwpr".into(),
-            rule: RuleKind::PendulumCart,
+            rule: "pendulum-cart".into(),
             seed: 3,
             result: ExperimentResult::Stability {
                 controllers: Controllers {
@@ -564,7 +713,7 @@ mod tests {
             want.extend(fields);
             want.sort();
             assert_eq!(keys, want);
-            assert_eq!(v["experiment"], s.experiment().name());
+            assert_eq!(v["experiment"], s.experiment());
             assert_eq!(Summary::from_json(&s.to_json().unwrap()).unwrap(), s);
         }
     }

@@ -13,18 +13,15 @@
 //! On a cluster, run shard `I` of `N` as one task (`--shard I/N`, 0-based, e.g. a Slurm array
 //! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call [`merge`] when all are done.
 
-use crate::experiments::ExperimentKind;
-use crate::experiments::summary::{ExperimentResult, Summary};
+use crate::experiments::summary::{ExperimentResult, Summary, check_name};
 use crate::report::{ReportError, write_atomic};
 use crate::report::{Shortest, write_rows};
-use crate::rules::RuleKind;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use strum::VariantArray;
 use thiserror::Error;
 
 /// Name of the result file of a run (its presence marks the run as finished).
@@ -61,12 +58,12 @@ pub enum SweepError {
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSpec {
-    /// The experiment.
-    pub experiment: ExperimentKind,
+    /// Experiment name (lowercase letters, digits and `-`).
+    pub experiment: String,
     /// Approximator name (lowercase letters, digits and `-`).
     pub approx: String,
-    /// The learning rule.
-    pub rule: RuleKind,
+    /// Learning rule name (lowercase letters, digits and `-`).
+    pub rule: String,
     /// The seed.
     pub seed: u64,
 }
@@ -90,43 +87,28 @@ impl RunSpec {
     }
 }
 
-/// Checks an approximator name for use in ids and paths.
-fn check_approx_name(name: &str) -> Result<(), SweepError> {
-    let ok = !name.is_empty()
-        && name
-            .chars()
-            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
-    if ok {
-        Ok(())
-    } else {
-        Err(SweepError::InvalidGrid(format!(
-            "approximator name {name:?} must be non-empty lowercase letters, digits or '-'"
-        )))
-    }
-}
-
 /// The grid of runs: the product of its four lists.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepGrid {
-    /// Experiments.
-    pub experiments: Vec<ExperimentKind>,
+    /// Experiment names.
+    pub experiments: Vec<String>,
     /// Approximator names.
     pub approx: Vec<String>,
-    /// Rules.
-    pub rules: Vec<RuleKind>,
+    /// Rule names.
+    pub rules: Vec<String>,
     /// Seeds.
     pub seeds: Vec<u64>,
 }
 
 impl SweepGrid {
-    /// The full ablation: all four experiments, every rule, the given approximators, seeds
-    /// `0..n_seeds`.
-    pub fn full(approx: &[&str], n_seeds: u64) -> Self {
+    /// The product of the given names with seeds `0..n_seeds`.
+    pub fn new(experiments: &[&str], approx: &[&str], rules: &[&str], n_seeds: u64) -> Self {
+        let owned = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
         SweepGrid {
-            experiments: ExperimentKind::VARIANTS.to_vec(),
-            approx: approx.iter().map(|s| s.to_string()).collect(),
-            rules: RuleKind::VARIANTS.to_vec(),
+            experiments: owned(experiments),
+            approx: owned(approx),
+            rules: owned(rules),
             seeds: (0..n_seeds).collect(),
         }
     }
@@ -144,18 +126,24 @@ impl SweepGrid {
                 return Err(SweepError::InvalidGrid(format!("{what} is empty")));
             }
         }
-        for a in &self.approx {
-            check_approx_name(a)?;
+        for (what, names) in [
+            ("experiment", &self.experiments),
+            ("approximator", &self.approx),
+            ("rule", &self.rules),
+        ] {
+            for n in names {
+                check_name(what, n).map_err(SweepError::InvalidGrid)?;
+            }
         }
         let mut runs = Vec::new();
-        for &experiment in &self.experiments {
+        for experiment in &self.experiments {
             for approx in &self.approx {
-                for &rule in &self.rules {
+                for rule in &self.rules {
                     for &seed in &self.seeds {
                         runs.push(RunSpec {
-                            experiment,
+                            experiment: experiment.clone(),
                             approx: approx.clone(),
-                            rule,
+                            rule: rule.clone(),
                             seed,
                         });
                     }
@@ -656,7 +644,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
         .collect();
     run_dirs.sort();
     let mut merged = Merged::default();
-    let mut groups: BTreeMap<(String, RuleKind), Collected> = BTreeMap::new();
+    let mut groups: BTreeMap<(String, String), Collected> = BTreeMap::new();
     for run_dir in run_dirs {
         let summary_path = run_dir.join(SUMMARY_FILE);
         if !summary_path.exists() {
@@ -675,7 +663,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
         };
         merged.runs_read += 1;
         let group = groups
-            .entry((summary.approx.clone(), summary.rule))
+            .entry((summary.approx.clone(), summary.rule.clone()))
             .or_default();
         let record_path = run_dir.join(RECORD_FILE);
         if record_path.exists() {
@@ -730,14 +718,16 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
                     group.absorbed_within_3 += usize::from(n <= 3);
                 }
             }
-            ExperimentResult::Tracking { .. } | ExperimentResult::Disturbance { .. } => {}
+            ExperimentResult::Tracking { .. }
+            | ExperimentResult::Disturbance { .. }
+            | ExperimentResult::Custom(_) => {}
         }
     }
     merged.rows = groups
         .into_iter()
         .map(|((approx, rule), c)| AblationRow {
             approx,
-            rule: rule.to_string(),
+            rule,
             i50_open_loop: Stat::of(&c.i50[0]),
             i50_model: Stat::of(&c.i50[1]),
             i50_learned: Stat::of(&c.i50[2]),
@@ -776,8 +766,10 @@ mod tests {
 
     #[test]
     fn shards_partition_the_grid() {
-        let runs = SweepGrid::full(&["lwpr", "rbf"], 3).runs().unwrap();
-        assert_eq!(runs.len(), 4 * 2 * 5 * 3);
+        let runs = SweepGrid::new(&["a", "b", "c", "d"], &["lwpr", "rbf"], &["r1", "r2"], 3)
+            .runs()
+            .unwrap();
+        assert_eq!(runs.len(), 4 * 2 * 2 * 3);
         for n in [1, 2, 7, 200] {
             let mut all: Vec<RunSpec> = (0..n)
                 .flat_map(|i| Shard::new(i, n).unwrap().select(&runs))
@@ -792,13 +784,13 @@ mod tests {
     #[test]
     fn ids_are_stable_and_grids_validated() {
         let spec = RunSpec {
-            experiment: ExperimentKind::Stability,
+            experiment: "stability".into(),
             approx: "kernel-ridge".into(),
-            rule: RuleKind::RateDamped,
+            rule: "rate-damped".into(),
             seed: 42,
         };
         assert_eq!(spec.id(), "stability__kernel-ridge__rate-damped__s42");
-        let mut grid = SweepGrid::full(&["lwpr"], 1);
+        let mut grid = SweepGrid::new(&["stability"], &["lwpr"], &["pendulum-cart"], 1);
         grid.approx.push("Bad_Name".into());
         assert!(matches!(grid.runs(), Err(SweepError::InvalidGrid(_))));
         grid.approx = vec!["lwpr".into(), "lwpr".into()];

@@ -246,8 +246,64 @@ impl TrackingResult {
 pub struct Tracking;
 
 impl super::experiment::Experiment for Tracking {
-    fn kind(&self) -> super::ExperimentKind {
-        super::ExperimentKind::Tracking
+    fn name(&self) -> &str {
+        super::ExperimentKind::Tracking.into()
+    }
+
+    fn description(&self) -> &str {
+        "A (Fig. 4): reference tracking; std of the step error after a reference change"
+    }
+
+    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
+        // The paired comparisons of the paper's claim (one definition, shared with
+        // `reproduce`); the rule's TDA tolerance does not enter them.
+        let mut mean_diff = Vec::new();
+        for s in runs {
+            if let ExperimentResult::Tracking {
+                step_error_std_m, ..
+            } = &s.result
+            {
+                let d = step_error_std_m
+                    .model
+                    .iter()
+                    .zip(&step_error_std_m.learned)
+                    .filter_map(|(m, l)| Some(100.0 * (l.as_ref()? - m.as_ref()?)));
+                let d = crate::stats::MeanStd::of(d);
+                mean_diff.push(if d.count() == 0 { f64::NAN } else { d.mean() });
+            }
+        }
+        let owned: Vec<super::summary::Summary> = runs.iter().map(|s| (*s).clone()).collect();
+        let mut out = vec![super::paired::Paired::new(
+            "std of F_E averaged over the bins after a change, learned - model (cm)",
+            &mean_diff,
+            0.0,
+            super::paired::Direction::LowerIsBetter,
+        )];
+        out.extend(
+            super::reproduce::Claims::from_summaries(&owned, 0.0)
+                .tracking
+                .over_seeds,
+        );
+        out
+    }
+
+    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
+        use super::experiment::Headline;
+        let mut model = Vec::new();
+        let mut learned = Vec::new();
+        for s in runs {
+            if let ExperimentResult::Tracking {
+                step_error_std_m, ..
+            } = &s.result
+            {
+                model.extend(step_error_std_m.model.iter().flatten().map(|v| 100.0 * v));
+                learned.extend(step_error_std_m.learned.iter().flatten().map(|v| 100.0 * v));
+            }
+        }
+        vec![
+            Headline::mean_of("std of F_E, model (cm)", model),
+            Headline::mean_of("std of F_E, learned (cm)", learned),
+        ]
     }
 
     fn apply_push_options(
@@ -255,10 +311,7 @@ impl super::experiment::Experiment for Tracking {
         _protocols: &mut super::run::Protocols,
         options: &super::experiment::PushOptions,
     ) -> Result<(), String> {
-        if options.pushes.is_some()
-            || options.impulse_range.is_some()
-            || options.direction.is_some()
-        {
+        if !options.is_empty() {
             return Err("the tracking experiment has no pushes".into());
         }
         Ok(())

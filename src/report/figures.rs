@@ -155,7 +155,7 @@ pub fn series_colour(name: &str, i: usize) -> RGBColor {
     }
 }
 
-fn plot_err<E: std::fmt::Display>(e: E) -> ReportError {
+pub(crate) fn plot_err<E: std::fmt::Display>(e: E) -> ReportError {
     ReportError::Plot(e.to_string())
 }
 
@@ -233,7 +233,7 @@ fn series_bounds(series: &[Series]) -> Result<(Range<f64>, Range<f64>), ReportEr
 }
 
 /// Renders into an in-memory SVG, then writes it atomically.
-fn render(
+pub(crate) fn render(
     path: &Path,
     size: (u32, u32),
     draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> Result<(), ReportError>,

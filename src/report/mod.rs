@@ -7,6 +7,7 @@ mod csv_file;
 mod error;
 pub mod fall_rate;
 pub mod figures;
+pub mod forest;
 pub mod html;
 
 pub use atomic::write_atomic;

@@ -194,7 +194,17 @@ fn robustness_learns_from_scratch_and_keeps_what_it_learned() {
         },
         ..RobustnessProtocol::default()
     };
-    let r = robustness::run(&settings, &p, 2, &learner).unwrap();
+    // The run gives the learner its config (without the dF = 0 prior: not initialised).
+    let learner_with = |config: LearnerConfig| {
+        assert_eq!(config.prior.samples, 0, "experiment D strips the prior");
+        let bounds = InputGrid::default().input_box().unwrap();
+        FootstepLearner::new(
+            ApproxKind::Lwpr.build(&bounds).unwrap(),
+            PendulumCart::default(),
+            config,
+        )
+    };
+    let r = robustness::run(&settings, &p, 2, &learner_with).unwrap();
     assert_eq!(r.initial_metric, 0.0, "an untrained learner outputs zero");
     assert_eq!(r.episodes.len(), 3);
     for (i, e) in r.episodes.iter().enumerate() {

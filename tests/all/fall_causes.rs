@@ -2,19 +2,19 @@
 //! sees every fall and touch-down of a real trial, the causes account for every fall, and both
 //! summaries carry their new fields with consistent sizes.
 
+use steplearn::bench::Registry;
 use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::fall_causes::{
     FallCause, FallCauseObserver, FallEvent, StepLimits, classify,
 };
-use steplearn::experiments::run::{Protocols, run_spec};
+use steplearn::experiments::run::Protocols;
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::StabilityProtocol;
 use steplearn::experiments::summary::ExperimentResult;
 use steplearn::experiments::sweep::RunSpec;
 use steplearn::experiments::trial::run_trial;
-use steplearn::rules::RuleKind;
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("steplearn-{name}-{}", std::process::id()))
@@ -22,9 +22,9 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 
 fn spec(experiment: ExperimentKind, seed: u64) -> RunSpec {
     RunSpec {
-        experiment,
+        experiment: experiment.to_string(),
         approx: "lwpr".into(),
-        rule: RuleKind::PendulumCart,
+        rule: "pendulum-cart".into(),
         seed,
     }
 }
@@ -91,13 +91,14 @@ fn stability_summary_counts_every_fall_by_cause() {
         ..Protocols::default()
     };
     let dir = temp_dir("fall-causes-c");
-    let s = run_spec(
-        &spec(ExperimentKind::Stability, 4),
-        &dir,
-        &settings,
-        &protocols,
-    )
-    .unwrap();
+    let s = Registry::builtin()
+        .run_spec(
+            &spec(ExperimentKind::Stability, 4),
+            &dir,
+            &settings,
+            &protocols,
+        )
+        .unwrap();
     s.validate().unwrap();
     let ExperimentResult::Stability {
         controllers,
@@ -158,13 +159,14 @@ fn robustness_summary_carries_the_baseline_on_the_same_pushes() {
     };
     let protocols = Protocols::default();
     let dir = temp_dir("fall-causes-d");
-    let s = run_spec(
-        &spec(ExperimentKind::Robustness, 1),
-        &dir,
-        &settings,
-        &protocols,
-    )
-    .unwrap();
+    let s = Registry::builtin()
+        .run_spec(
+            &spec(ExperimentKind::Robustness, 1),
+            &dir,
+            &settings,
+            &protocols,
+        )
+        .unwrap();
     s.validate().unwrap();
     let ExperimentResult::Robustness {
         pushes_until_first_absorbed,
@@ -172,22 +174,22 @@ fn robustness_summary_carries_the_baseline_on_the_same_pushes() {
         impulse_ns,
         absorbed_by_push,
         no_learning,
-    } = &s.result
+    } = s.result.clone()
     else {
         panic!("{:?}", s.result)
     };
-    assert_eq!(*impulse_ns, Some(protocols.robustness.impulse));
+    assert_eq!(impulse_ns, Some(protocols.robustness.impulse));
     assert_eq!(absorbed_by_push.len(), 3);
     let b = no_learning.as_ref().expect("baseline");
     assert_eq!(b.absorbed_by_push.len(), absorbed_by_push.len());
     assert_eq!(
-        *pushes_until_first_absorbed,
+        pushes_until_first_absorbed,
         absorbed_by_push
             .iter()
             .position(|&a| a)
             .map(|i| i as u32 + 1)
     );
-    assert!(*falls as usize >= absorbed_by_push.iter().filter(|&&a| !a).count());
+    assert!(falls as usize >= absorbed_by_push.iter().filter(|&&a| !a).count());
     assert!(b.falls as usize >= b.absorbed_by_push.iter().filter(|&&a| !a).count());
     let json: serde_json::Value = serde_json::from_str(&s.to_json().unwrap()).unwrap();
     assert_eq!(json["absorbed_by_push"].as_array().unwrap().len(), 3);

@@ -7,7 +7,6 @@ use rand::{RngExt, SeedableRng};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::summary::{
     ControllerFalls, Controllers, ExperimentResult, ModelLearned, NoLearning, Summary,
 };
@@ -15,8 +14,6 @@ use steplearn::experiments::sweep::{
     AblationCsvRow, RunError, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
 };
 use steplearn::report::Shortest;
-use steplearn::rules::RuleKind;
-use strum::VariantArray;
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("steplearn-sweep-{name}-{}", std::process::id()));
@@ -41,8 +38,8 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
         falls: rng.random_range(0..=pushes),
         impulse_at_50pct_fall_ns: rng.random_range(2.0..15.0),
     };
-    let result = match spec.experiment {
-        ExperimentKind::Stability => ExperimentResult::Stability {
+    let result = match spec.experiment.as_str() {
+        "stability" => ExperimentResult::Stability {
             controllers: Controllers {
                 open_loop: controller(40),
                 model: controller(40),
@@ -50,7 +47,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
             },
             fall_causes: Default::default(),
         },
-        ExperimentKind::Robustness => {
+        "robustness" => {
             let first = rng.random_range(1..=6u32);
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed: (first < 6).then_some(first),
@@ -64,14 +61,14 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 }),
             }
         }
-        ExperimentKind::Tracking => ExperimentResult::Tracking {
+        "tracking" => ExperimentResult::Tracking {
             step_error_std_m: ModelLearned {
                 model: vec![Some(rng.random_range(0.0..0.1)); 4],
                 learned: vec![Some(rng.random_range(0.0..0.1)); 4],
             },
             bin_s: 0.5,
         },
-        ExperimentKind::Disturbance => ExperimentResult::Disturbance {
+        "disturbance" => ExperimentResult::Disturbance {
             return_time_s: ModelLearned {
                 model: rng.random_range(0.0..5.0),
                 learned: rng.random_range(0.0..5.0),
@@ -84,22 +81,23 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
             },
             falls: None,
         },
+        other => return Err(format!("no fake {other}").into()),
     };
     Ok(Summary {
         approx: spec.approx.clone(),
-        rule: spec.rule,
+        rule: spec.rule.clone(),
         seed: spec.seed,
         result,
     })
 }
 
 fn grid() -> Vec<RunSpec> {
-    SweepGrid {
-        experiments: ExperimentKind::VARIANTS.to_vec(),
-        approx: vec!["lwpr".into(), "grid".into()],
-        rules: vec![RuleKind::PendulumCart, RuleKind::BalanceOnly],
-        seeds: vec![0, 1, 2],
-    }
+    SweepGrid::new(
+        &["tracking", "disturbance", "stability", "robustness"],
+        &["lwpr", "grid"],
+        &["pendulum-cart", "balance-only"],
+        3,
+    )
     .runs()
     .unwrap()
 }
@@ -178,7 +176,7 @@ fn resumption_skips_finished_runs_and_retries_failed_ones() {
     // first attempt: robustness runs fail, one stability run panics
     let flaky = |spec: &RunSpec, d: &Path| -> Result<Summary, RunError> {
         calls.fetch_add(1, Ordering::Relaxed);
-        if spec.experiment == ExperimentKind::Robustness {
+        if spec.experiment == "robustness" {
             return Err("simulator exploded".into());
         }
         if spec.id() == "stability__grid__balance-only__s1" {
@@ -318,25 +316,17 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
     let mut absorbed_within_3 = 0;
     let mut absorbed = (0, 0);
     for seed in 0..3 {
-        let spec = |experiment| RunSpec {
-            experiment,
+        let spec = |experiment: &str| RunSpec {
+            experiment: experiment.into(),
             approx: "lwpr".into(),
-            rule: RuleKind::PendulumCart,
+            rule: "pendulum-cart".into(),
             seed,
         };
-        let s = fake(
-            &spec(ExperimentKind::Stability),
-            &dir.join(spec(ExperimentKind::Stability).id()),
-        )
-        .unwrap();
+        let s = fake(&spec("stability"), &dir.join(spec("stability").id())).unwrap();
         if let ExperimentResult::Stability { controllers, .. } = s.result {
             learned.push(controllers.learned.impulse_at_50pct_fall_ns);
         }
-        let s = fake(
-            &spec(ExperimentKind::Robustness),
-            &dir.join(spec(ExperimentKind::Robustness).id()),
-        )
-        .unwrap();
+        let s = fake(&spec("robustness"), &dir.join(spec("robustness").id())).unwrap();
         if let ExperimentResult::Robustness {
             pushes_until_first_absorbed,
             absorbed_by_push,
@@ -395,23 +385,37 @@ fn all_files(dir: &Path) -> Vec<(String, Vec<u8>)> {
 
 #[test]
 fn real_experiments_are_byte_identical_under_1_and_4_threads() {
-    use steplearn::experiments::run::{Protocols, run_spec};
+    use steplearn::bench::Registry;
+    use steplearn::experiments::run::Protocols;
     use steplearn::experiments::settings::Settings;
     let settings = Settings {
         scale: 0.02,
         ..Settings::default()
     };
     let protocols = Protocols::default();
-    let runs = SweepGrid {
-        experiments: vec![ExperimentKind::Stability, ExperimentKind::Robustness],
-        approx: vec!["lwpr".into(), "grid".into()],
-        rules: vec![RuleKind::PendulumCart],
-        seeds: vec![3],
-    }
+    let mut runs = SweepGrid::new(
+        &["tracking", "disturbance", "stability", "robustness"],
+        &["lwpr"],
+        &["pendulum-cart"],
+        1,
+    )
     .runs()
     .unwrap();
+    runs.extend(
+        SweepGrid::new(
+            &["stability", "robustness"],
+            &["grid"],
+            &["balance-only"],
+            1,
+        )
+        .runs()
+        .unwrap(),
+    );
+    let registry = Registry::builtin();
     let runner = |spec: &RunSpec, dir: &Path| -> Result<Summary, RunError> {
-        run_spec(spec, dir, &settings, &protocols).map_err(|e| e.into())
+        registry
+            .run_spec(spec, dir, &settings, &protocols)
+            .map_err(|e| e.into())
     };
     let mut results = Vec::new();
     for threads in [1, 4] {
@@ -437,9 +441,11 @@ fn real_experiments_are_byte_identical_under_1_and_4_threads() {
     }
     // every run wrote its summary and its pushes
     for run in &runs {
-        let pushes = match run.experiment {
-            ExperimentKind::Stability => "pushes.csv",
-            _ => "robustness_pushes.csv",
+        let pushes = match run.experiment.as_str() {
+            "stability" => "pushes.csv",
+            "robustness" => "robustness_pushes.csv",
+            "tracking" => "tracking_steps.csv",
+            _ => "disturbance_pushes.csv",
         };
         for file in ["summary.json", pushes] {
             let want = format!("{}/{file}", run.id());

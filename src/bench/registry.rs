@@ -1,0 +1,300 @@
+//! [`Registry`]: approximators, learning rules and experiments by name, built-ins first, a
+//! user's own added with one call each.
+
+use super::BenchError;
+use crate::Named;
+use crate::approx::{
+    ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist,
+};
+use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use crate::experiments::ExperimentError;
+use crate::experiments::disturbance::Disturbance;
+use crate::experiments::experiment::{Experiment, RunContext, RunLearner};
+use crate::experiments::robustness::Robustness;
+use crate::experiments::run::Protocols;
+use crate::experiments::settings::Settings;
+use crate::experiments::stability::Stability;
+use crate::experiments::summary::{Summary, check_name};
+use crate::experiments::sweep::RunSpec;
+use crate::experiments::tracking::Tracking;
+use crate::rules::{BalanceOnly, LearningRule, Linear, PendulumCart, RateDamped, TrackingOnly};
+use std::path::Path;
+use std::sync::Arc;
+
+type ApproxFactory = Arc<dyn Fn(&InputBox) -> Result<BoxedApproximator, ApproxError> + Send + Sync>;
+type RuleFactory = Arc<dyn Fn() -> Box<dyn LearningRule> + Send + Sync>;
+
+/// Approximators, rules and experiments by name: what the bench and the command line choose
+/// from.
+///
+/// Registering a name twice, or a name that is not lowercase letters, digits and `-`, is
+/// recorded and reported as a [`BenchError`] when the registry is used ([`Registry::check`]),
+/// never a panic.
+///
+/// ```
+/// use steplearn::approx::{Grid, GridConfig, InputBox};
+/// use steplearn::bench::Registry;
+/// use steplearn::rules::BalanceOnly;
+///
+/// let registry = Registry::builtin()
+///     .approximator("coarse-grid", |bounds: &InputBox| {
+///         Grid::new(GridConfig::new(bounds.clone(), vec![3, 3, 3], 1))
+///     })
+///     .rule("my-balance", || BalanceOnly);
+/// registry.check()?;
+/// assert!(registry.approximator_names().contains(&"coarse-grid"));
+/// assert!(Registry::builtin().rule("lwpr", || BalanceOnly).check().is_ok());
+/// assert!(Registry::builtin().rule("pendulum-cart", || BalanceOnly).check().is_err());
+/// # Ok::<(), steplearn::bench::BenchError>(())
+/// ```
+#[derive(Clone, Default)]
+pub struct Registry {
+    approximators: Vec<(String, ApproxFactory)>,
+    rules: Vec<(String, RuleFactory)>,
+    experiments: Vec<Arc<dyn Experiment>>,
+    problems: Vec<String>,
+}
+
+impl std::fmt::Debug for Registry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Registry")
+            .field("approximators", &self.approximator_names())
+            .field("rules", &self.rule_names())
+            .field("experiments", &self.experiment_names())
+            .field("problems", &self.problems)
+            .finish()
+    }
+}
+
+fn owned(names: Vec<&str>) -> Vec<String> {
+    names.into_iter().map(str::to_string).collect()
+}
+
+impl Registry {
+    /// An empty registry.
+    pub fn new() -> Self {
+        Registry::default()
+    }
+
+    /// The built-ins: the approximators `lwpr`, `rbf`, `grid`, `kernel-ridge`; the rules
+    /// `pendulum-cart`, `balance-only`, `tracking-only`, `linear`, `rate-damped` (each with
+    /// its default parameters); the experiments `tracking`, `disturbance`, `stability`,
+    /// `robustness` (A-D, in the paper's order).
+    pub fn builtin() -> Self {
+        let mut r = Registry::new();
+        for &kind in <ApproxKind as strum::VariantArray>::VARIANTS {
+            r.add_approximator(
+                kind.name(),
+                Arc::new(move |b: &InputBox| kind.build(b).map(BoxedApproximator::new)),
+            );
+        }
+        r.rule("pendulum-cart", PendulumCart::default)
+            .rule("balance-only", || BalanceOnly)
+            .rule("tracking-only", TrackingOnly::default)
+            .rule("linear", Linear::default)
+            .rule("rate-damped", RateDamped::default)
+            .experiment(Tracking)
+            .experiment(Disturbance)
+            .experiment(Stability)
+            .experiment(Robustness)
+    }
+
+    /// Records why `name` cannot be registered as a `what`, if it cannot (malformed, or in
+    /// `names` already); true if so.
+    fn taken(&mut self, what: &str, name: &str, names: Vec<String>) -> bool {
+        let problem = match check_name(what, name) {
+            Err(e) => Some(e),
+            Ok(()) if names.iter().any(|n| n == name) => {
+                Some(format!("{what} {name:?} is registered twice"))
+            }
+            Ok(()) => None,
+        };
+        let taken = problem.is_some();
+        self.problems.extend(problem);
+        taken
+    }
+
+    fn add_approximator(&mut self, name: &str, factory: ApproxFactory) {
+        if !self.taken("approximator", name, owned(self.approximator_names())) {
+            self.approximators.push((name.to_string(), factory));
+        }
+    }
+
+    /// Registers approximator `name`: `factory` builds a fresh, untrained one over the
+    /// learner's input box (theta_E, theta_E_dot, F_R) for every learner of a run.
+    pub fn approximator<A, F>(mut self, name: &str, factory: F) -> Self
+    where
+        A: FunctionApproximator + Clone + Persist + 'static,
+        F: Fn(&InputBox) -> Result<A, ApproxError> + Send + Sync + 'static,
+    {
+        self.add_approximator(
+            name,
+            Arc::new(move |b: &InputBox| factory(b).map(BoxedApproximator::new)),
+        );
+        self
+    }
+
+    /// Registers learning rule `name`: `factory` builds it for every learner of a run.
+    pub fn rule<R, F>(mut self, name: &str, factory: F) -> Self
+    where
+        R: LearningRule + 'static,
+        F: Fn() -> R + Send + Sync + 'static,
+    {
+        if !self.taken("rule", name, owned(self.rule_names())) {
+            let boxed: RuleFactory = Arc::new(move || Box::new(factory()));
+            self.rules.push((name.to_string(), boxed));
+        }
+        self
+    }
+
+    /// Registers an experiment under its [`Experiment::name`].
+    pub fn experiment(mut self, experiment: impl Experiment + 'static) -> Self {
+        let name = experiment.name().to_string();
+        if !self.taken("experiment", &name, owned(self.experiment_names())) {
+            self.experiments.push(Arc::new(experiment));
+        }
+        self
+    }
+
+    /// Every problem of the registrations (a name taken twice, a malformed name), as one error.
+    pub fn check(&self) -> Result<(), BenchError> {
+        if self.problems.is_empty() {
+            Ok(())
+        } else {
+            Err(BenchError::Registry(self.problems.join("; ")))
+        }
+    }
+
+    /// The approximators' names, in registration order.
+    pub fn approximator_names(&self) -> Vec<&str> {
+        self.approximators.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// The rules' names, in registration order.
+    pub fn rule_names(&self) -> Vec<&str> {
+        self.rules.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// The experiments' names, in registration order.
+    pub fn experiment_names(&self) -> Vec<&str> {
+        self.experiments.iter().map(|e| e.name()).collect()
+    }
+
+    /// The experiment called `name`.
+    pub fn find_experiment(&self, name: &str) -> Result<&dyn Experiment, BenchError> {
+        self.experiments
+            .iter()
+            .find(|e| e.name() == name)
+            .map(|e| &**e)
+            .ok_or_else(|| BenchError::unknown("experiment", name, &self.experiment_names()))
+    }
+
+    fn find_approximator(&self, name: &str) -> Result<&ApproxFactory, BenchError> {
+        self.approximators
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, f)| f)
+            .ok_or_else(|| BenchError::unknown("approximator", name, &self.approximator_names()))
+    }
+
+    fn find_rule(&self, name: &str) -> Result<&RuleFactory, BenchError> {
+        self.rules
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, f)| f)
+            .ok_or_else(|| BenchError::unknown("rule", name, &self.rule_names()))
+    }
+
+    /// Checks that each of `names` is registered as a `what` (`"approximator"`, `"rule"` or
+    /// `"experiment"`) and appears once.
+    pub fn check_selection(&self, what: &str, names: &[String]) -> Result<(), BenchError> {
+        let known = match what {
+            "approximator" => self.approximator_names(),
+            "rule" => self.rule_names(),
+            _ => self.experiment_names(),
+        };
+        if names.is_empty() {
+            return Err(BenchError::Selection(format!("no {what} selected")));
+        }
+        for (i, n) in names.iter().enumerate() {
+            if !known.contains(&n.as_str()) {
+                return Err(BenchError::unknown(what, n, &known));
+            }
+            if names[..i].contains(n) {
+                return Err(BenchError::Selection(format!(
+                    "{what} {n:?} selected twice"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks that `approx` and `rule` are registered and that the approximator builds.
+    pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
+        self.learner_builder(approx, rule).map(|_| ())
+    }
+
+    /// A learner builder of approximator `approx` and rule `rule`: each call gives a fresh,
+    /// untrained learner with the config it is given.
+    pub fn learner_builder(
+        &self,
+        approx: &str,
+        rule: &str,
+    ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
+    {
+        let make_approx = self.find_approximator(approx)?;
+        let make_rule = self.find_rule(rule)?;
+        let bounds = InputGrid::default()
+            .input_box()
+            .map_err(|e| BenchError::Selection(e.to_string()))?;
+        // Built once here, so that a factory that cannot build is an error before any run.
+        make_approx(&bounds).map_err(|e| {
+            BenchError::Selection(format!("approximator {approx:?} cannot be built: {e}"))
+        })?;
+        Ok(
+            move |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
+                let a = make_approx(&bounds)
+                    .map_err(|source| LearnerError::Approx { applied: 0, source })?;
+                FootstepLearner::new(a, make_rule(), config)
+            },
+        )
+    }
+
+    /// Runs `spec` with `settings` and `protocols`: writes its figures and CSV into `dir` and
+    /// returns its summary (the caller writes `summary.json`).
+    pub fn run_spec(
+        &self,
+        spec: &RunSpec,
+        dir: &Path,
+        settings: &Settings,
+        protocols: &Protocols,
+    ) -> Result<Summary, ExperimentError> {
+        let invalid = |e: BenchError| ExperimentError::Invalid(e.to_string());
+        let experiment = self.find_experiment(&spec.experiment).map_err(invalid)?;
+        let build = self
+            .learner_builder(&spec.approx, &spec.rule)
+            .map_err(invalid)?;
+        let ctx = RunContext {
+            settings,
+            protocols,
+            seed: spec.seed,
+            approx: &spec.approx,
+            rule: &spec.rule,
+            learner: &build,
+        };
+        let result = experiment.run(&ctx, dir)?;
+        if result.name() != spec.experiment {
+            return Err(ExperimentError::Invalid(format!(
+                "experiment {} returned the result of {}",
+                spec.experiment,
+                result.name()
+            )));
+        }
+        Ok(Summary {
+            approx: spec.approx.clone(),
+            rule: spec.rule.clone(),
+            seed: spec.seed,
+            result,
+        })
+    }
+}

@@ -1,0 +1,284 @@
+//! [`Bench`]: a selection of registered names, run and reported.
+
+use super::leaderboard::Leaderboard;
+use super::{BenchError, Registry};
+use crate::experiments::config_file::ConfigFile;
+use crate::experiments::sweep::{
+    RunOutcome, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, run_sweep,
+};
+use crate::report::write_atomic;
+use std::path::{Path, PathBuf};
+
+/// The file in a bench's output directory that records the configuration its runs used.
+pub const CONFIG_RECORD: &str = "bench-config.toml";
+
+/// The default baseline combination of the leaderboard: the paper's learner.
+pub const DEFAULT_BASELINE: (&str, &str) = ("lwpr", "pendulum-cart");
+
+/// A benchmark: approximators x rules x experiments x seeds from a [`Registry`], run into one
+/// directory (one sub-directory per run, finished runs reused) and reported as a
+/// [`Leaderboard`] (`leaderboard.json`, `.md`, `.csv`, `forest.svg`, `index.html`).
+///
+/// Unset selections take every registered name; seeds default to 5, the scale to the
+/// configuration's (1 = the paper's protocols), the output to `results/bench`.
+pub struct Bench<'r> {
+    registry: &'r Registry,
+    approximators: Option<Vec<String>>,
+    rules: Option<Vec<String>>,
+    experiments: Option<Vec<String>>,
+    seeds: u64,
+    scale: Option<f64>,
+    out: PathBuf,
+    config: ConfigFile,
+    shard: Shard,
+    threads: Option<usize>,
+    baseline: Option<(String, String)>,
+    command: String,
+    on_run: Option<Box<dyn Fn(&RunOutcome) + Sync + 'r>>,
+}
+
+/// What a bench did: every run's outcome and the leaderboard over the runs finished in its
+/// directory.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The runs of this call (its shard), in grid order.
+    pub outcomes: Vec<RunOutcome>,
+    /// The leaderboard of the whole selection (runs of other shards included once finished).
+    pub leaderboard: Leaderboard,
+    /// The output directory.
+    pub out: PathBuf,
+}
+
+fn owned<I: IntoIterator<Item = S>, S: AsRef<str>>(names: I) -> Vec<String> {
+    names.into_iter().map(|s| s.as_ref().to_string()).collect()
+}
+
+impl<'r> Bench<'r> {
+    /// A bench over `registry` with the defaults.
+    pub fn new(registry: &'r Registry) -> Self {
+        Bench {
+            registry,
+            approximators: None,
+            rules: None,
+            experiments: None,
+            seeds: 5,
+            scale: None,
+            out: PathBuf::from("results/bench"),
+            config: ConfigFile::default(),
+            shard: Shard::ALL,
+            threads: None,
+            baseline: None,
+            command: String::new(),
+            on_run: None,
+        }
+    }
+
+    /// The approximators to run, by registered name.
+    pub fn approximators<I: IntoIterator<Item = S>, S: AsRef<str>>(mut self, names: I) -> Self {
+        self.approximators = Some(owned(names));
+        self
+    }
+
+    /// The rules to run, by registered name.
+    pub fn rules<I: IntoIterator<Item = S>, S: AsRef<str>>(mut self, names: I) -> Self {
+        self.rules = Some(owned(names));
+        self
+    }
+
+    /// The experiments to run, by registered name.
+    pub fn experiments<I: IntoIterator<Item = S>, S: AsRef<str>>(mut self, names: I) -> Self {
+        self.experiments = Some(owned(names));
+        self
+    }
+
+    /// Seeds `0..n` (at least 1).
+    pub fn seeds(mut self, n: u64) -> Self {
+        self.seeds = n;
+        self
+    }
+
+    /// The protocols' length as a fraction of the paper's, in (0, 1] (`--quick` is 0.1).
+    pub fn scale(mut self, scale: f64) -> Self {
+        self.scale = Some(scale);
+        self
+    }
+
+    /// The output directory.
+    pub fn out(mut self, dir: impl AsRef<Path>) -> Self {
+        self.out = dir.as_ref().to_path_buf();
+        self
+    }
+
+    /// Settings and protocols (`steplearn config` format); the scale set by
+    /// [`Bench::scale`] takes precedence over the file's.
+    pub fn config(mut self, config: ConfigFile) -> Self {
+        self.config = config;
+        self
+    }
+
+    /// Runs only shard `shard` of the grid (the leaderboard covers every finished run).
+    pub fn shard(mut self, shard: Shard) -> Self {
+        self.shard = shard;
+        self
+    }
+
+    /// Worker threads (default: rayon's global pool). Results do not depend on it.
+    pub fn threads(mut self, n: usize) -> Self {
+        self.threads = Some(n);
+        self
+    }
+
+    /// The combination every other is compared with (default `lwpr` + `pendulum-cart` when
+    /// both are selected, else the first approximator and rule selected).
+    pub fn baseline(mut self, approx: &str, rule: &str) -> Self {
+        self.baseline = Some((approx.to_string(), rule.to_string()));
+        self
+    }
+
+    /// The command line shown on `index.html`.
+    pub fn command(mut self, command: &str) -> Self {
+        self.command = command.to_string();
+        self
+    }
+
+    /// Called as each run ends (from worker threads), e.g. to advance a progress bar.
+    pub fn on_run(mut self, f: impl Fn(&RunOutcome) + Sync + 'r) -> Self {
+        self.on_run = Some(Box::new(f));
+        self
+    }
+
+    /// The selection with defaults filled in and checked: (approximators, rules, experiments).
+    fn selection(&self) -> Result<(Vec<String>, Vec<String>, Vec<String>), BenchError> {
+        let r = self.registry;
+        r.check()?;
+        let pick = |given: &Option<Vec<String>>, all: Vec<&str>| {
+            given.clone().unwrap_or_else(|| owned(all))
+        };
+        let approx = pick(&self.approximators, r.approximator_names());
+        let rules = pick(&self.rules, r.rule_names());
+        let experiments = pick(&self.experiments, r.experiment_names());
+        r.check_selection("approximator", &approx)?;
+        r.check_selection("rule", &rules)?;
+        r.check_selection("experiment", &experiments)?;
+        Ok((approx, rules, experiments))
+    }
+
+    /// The grid of runs this bench covers (every shard).
+    pub fn grid(&self) -> Result<SweepGrid, BenchError> {
+        let (approx, rules, experiments) = self.selection()?;
+        if self.seeds == 0 {
+            return Err(BenchError::Selection("seeds must be at least 1".into()));
+        }
+        Ok(SweepGrid {
+            experiments,
+            approx,
+            rules,
+            seeds: (0..self.seeds).collect(),
+        })
+    }
+
+    fn resolved_config(&self) -> Result<ConfigFile, BenchError> {
+        let mut config = self.config.clone();
+        if let Some(scale) = self.scale {
+            config.settings.scale = scale;
+        }
+        config
+            .validate()
+            .map_err(|e| BenchError::Selection(e.to_string()))?;
+        Ok(config)
+    }
+
+    fn baseline_of(&self, grid: &SweepGrid) -> Result<(String, String), BenchError> {
+        let default = (
+            DEFAULT_BASELINE.0.to_string(),
+            DEFAULT_BASELINE.1.to_string(),
+        );
+        let chosen = self.baseline.clone().unwrap_or_else(|| {
+            if grid.approx.contains(&default.0) && grid.rules.contains(&default.1) {
+                default
+            } else {
+                (grid.approx[0].clone(), grid.rules[0].clone())
+            }
+        });
+        if !grid.approx.contains(&chosen.0) || !grid.rules.contains(&chosen.1) {
+            return Err(BenchError::Selection(format!(
+                "baseline {} + {} is not among the selected approximators and rules",
+                chosen.0, chosen.1
+            )));
+        }
+        Ok(chosen)
+    }
+
+    /// Refuses a directory whose runs used another configuration; records this one otherwise.
+    fn guard_config(&self, config_toml: &str) -> Result<(), BenchError> {
+        let path = self.out.join(CONFIG_RECORD);
+        match std::fs::read_to_string(&path) {
+            Ok(existing) if existing != config_toml => Err(BenchError::ConfigChanged(format!(
+                "{} holds runs of another configuration ({} differs from this run's settings \
+                 and protocols); choose another --out, or delete the directory to start over",
+                self.out.display(),
+                path.display()
+            ))),
+            Ok(_) => Ok(()),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                std::fs::create_dir_all(&self.out)
+                    .map_err(|e| crate::report::ReportError::io(&self.out, e))?;
+                write_atomic(&path, config_toml.as_bytes())?;
+                Ok(())
+            }
+            Err(e) => Err(crate::report::ReportError::io(&path, e).into()),
+        }
+    }
+
+    /// Runs the selection (this shard of it), then writes the leaderboard of every finished
+    /// run of the selection into the output directory. Errors before any run on a bad
+    /// selection or configuration; [`BenchError::RunsFailed`] after writing the leaderboard
+    /// if some runs failed.
+    pub fn run(&self) -> Result<Report, BenchError> {
+        let grid = self.grid()?;
+        let baseline = self.baseline_of(&grid)?;
+        let config = self.resolved_config()?;
+        let config_toml = config
+            .to_toml()
+            .map_err(|e| BenchError::Selection(e.to_string()))?;
+        let runs = self.shard.select(&grid.runs()?);
+        self.guard_config(&config_toml)?;
+        let runner = |spec: &RunSpec, dir: &Path| {
+            self.registry
+                .run_spec(spec, dir, &config.settings, &config.protocols)
+                .map_err(|e| e.into())
+        };
+        let options = SweepOptions {
+            threads: self.threads,
+        };
+        let noop = |_: &RunOutcome| {};
+        let on_run: &(dyn Fn(&RunOutcome) + Sync) = match &self.on_run {
+            Some(f) => f.as_ref(),
+            None => &noop,
+        };
+        let outcomes = run_sweep(&runs, &self.out, &runner, &options, on_run)?;
+        let leaderboard = Leaderboard::collect(
+            self.registry,
+            &grid,
+            &self.out,
+            &baseline,
+            config.settings.scale,
+        )?;
+        leaderboard.write(&self.out, &self.command, &config_toml)?;
+        let failed: Vec<(String, String)> = outcomes
+            .iter()
+            .filter_map(|o| match &o.status {
+                RunStatus::Failed(m) => Some((o.spec.id(), m.clone())),
+                _ => None,
+            })
+            .collect();
+        if !failed.is_empty() {
+            return Err(BenchError::RunsFailed(failed));
+        }
+        Ok(Report {
+            outcomes,
+            leaderboard,
+            out: self.out.clone(),
+        })
+    }
+}

@@ -1,0 +1,635 @@
+//! The `steplearn` command line over any [`Registry`]: reproduce the paper (all four
+//! experiments over several seeds, with a per-claim report), benchmark approximators x rules x
+//! experiments into a leaderboard, run one experiment, sweep the ablation grid (sharded for
+//! clusters), merge the results. It only parses arguments and calls the library.
+//!
+//! A user's own binary gets the whole command line with their names:
+//!
+//! ```no_run
+//! use steplearn::bench::Registry;
+//! use steplearn::rules::BalanceOnly;
+//! fn main() -> std::process::ExitCode {
+//!     steplearn::cli::main_with(Registry::builtin().rule("my-balance", || BalanceOnly))
+//! }
+//! ```
+
+use crate::bench::{Bench, BenchError, Registry};
+use crate::experiments::config_file::ConfigFile;
+use crate::experiments::experiment::PushOptions;
+use crate::experiments::index_page::{command_line, write_index};
+use crate::experiments::reproduce::{self, Claims};
+use crate::experiments::run::Protocols;
+use crate::experiments::settings::Settings;
+use crate::experiments::sweep::{
+    RunOutcome, RunSpec, RunStatus, SUMMARY_FILE, Shard, SweepGrid, SweepOptions, merge, run_sweep,
+};
+use crate::rules::PendulumCart;
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "steplearn",
+    version,
+    about = "Online learning of foot placement: the paper's experiments"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The main job: all four experiments with one approximator and rule (default LWPR +
+    /// pendulum-cart) over several seeds; writes one directory per run (CSV, SVG, summary.json)
+    /// and DIR/claims.{md,json}, whether each of the paper's claims holds. Finished runs in DIR
+    /// are reused.
+    Reproduce {
+        /// The approximator (any registered name).
+        #[arg(long, default_value = "lwpr")]
+        approx: String,
+        /// The learning rule (any registered name).
+        #[arg(long, default_value = "pendulum-cart")]
+        rule: String,
+        /// Output directory [default: results/paper, or results/quick with --quick].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Seeds 0..N [default: 5, or 2 with --quick].
+        #[arg(long)]
+        seeds: Option<u64>,
+        /// A fast look: every experiment at a tenth of its length.
+        #[arg(long)]
+        quick: bool,
+        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+        #[arg(long)]
+        config: Option<PathBuf>,
+    },
+    /// Runs one experiment; writes CSV, SVG and DIR/summary.json.
+    Experiment {
+        /// Which experiment (any registered name).
+        experiment: String,
+        /// The approximator (any registered name).
+        #[arg(long, default_value = "lwpr")]
+        approx: String,
+        /// The learning rule (any registered name).
+        #[arg(long, default_value = "pendulum-cart")]
+        rule: String,
+        /// Seed of every random choice.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Number of pushes (default: the protocol's; not for tracking).
+        #[arg(long)]
+        pushes: Option<usize>,
+        /// Push impulse range in Ns, "A,B" (disturbance and robustness use one impulse: A,A).
+        #[arg(long, value_parser = parse_range)]
+        impulse_range: Option<(f64, f64)>,
+        /// Direction of the pushes (default: the protocol's, forward unless a config file
+        /// sets `direction`).
+        #[arg(long, value_enum)]
+        push_direction: Option<Direction>,
+        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Benchmarks approximators x rules x experiments x seeds: one directory per run (finished
+    /// runs reused, shardable), then DIR/leaderboard.{json,md,csv}, forest.svg and index.html
+    /// with paired verdicts against the model and the baseline.
+    Bench {
+        /// Approximators, comma-separated [default: every registered one].
+        #[arg(long, value_delimiter = ',')]
+        approx: Vec<String>,
+        /// Rules, comma-separated [default: every registered one].
+        #[arg(long, value_delimiter = ',')]
+        rule: Vec<String>,
+        /// Experiments, comma-separated [default: every registered one].
+        #[arg(long, value_delimiter = ',')]
+        experiments: Vec<String>,
+        /// Seeds 0..N.
+        #[arg(long, default_value_t = 5)]
+        seeds: u64,
+        /// Protocol length as a fraction of the paper's, in (0, 1] [default: the config's, 1].
+        #[arg(long)]
+        scale: Option<f64>,
+        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// The combination every other is compared with, APPROX+RULE [default:
+        /// lwpr+pendulum-cart when selected].
+        #[arg(long, value_parser = parse_baseline)]
+        baseline: Option<(String, String)>,
+        /// Run only shard I of N (0-based), e.g. 3/50.
+        #[arg(long)]
+        shard: Option<Shard>,
+        /// Worker threads [default: one per core]; results do not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Output directory (one sub-directory per run).
+        #[arg(long, default_value = "results/bench")]
+        out: PathBuf,
+    },
+    /// Lists the registered approximators, rules and experiments.
+    List,
+    /// Runs the ablation grid (every registered approximator x rule x seed on experiments C
+    /// and D), skipping runs whose summary.json exists.
+    Sweep {
+        /// Run only shard I of N (0-based), e.g. 3/50.
+        #[arg(long)]
+        shard: Option<Shard>,
+        /// Seeds per configuration.
+        #[arg(long, default_value_t = 5)]
+        seeds: u64,
+        /// Pushes per controller in experiment C (default: the protocol's 400).
+        #[arg(long)]
+        pushes: Option<usize>,
+        /// Output directory (one sub-directory per run).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Prints the complete default configuration (every section and key) as TOML, a
+    /// starting point for `--config`; with --check, validates a config file instead.
+    Config {
+        /// Check FILE (TOML, or JSON if it ends in .json): prints `ok`, or what is wrong and
+        /// exits with an error.
+        #[arg(long, value_name = "FILE")]
+        check: Option<PathBuf>,
+    },
+    /// Builds ablation.md and ablation.csv from a sweep's directory.
+    Merge {
+        /// The sweep's output directory.
+        dir: PathBuf,
+    },
+}
+
+/// A push direction on the command line.
+#[derive(Clone, Copy, ValueEnum)]
+enum Direction {
+    Forward,
+    Backward,
+    Left,
+    Right,
+}
+
+impl Direction {
+    fn unit(self) -> [f64; 3] {
+        match self {
+            Direction::Forward => [1.0, 0.0, 0.0],
+            Direction::Backward => [-1.0, 0.0, 0.0],
+            Direction::Left => [0.0, 1.0, 0.0],
+            Direction::Right => [0.0, -1.0, 0.0],
+        }
+    }
+}
+
+fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected A,B, got '{s}'"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("'{v}' is not a number: {e}"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    if !(a.is_finite() && b.is_finite() && 0.0 <= a && a <= b) {
+        return Err(format!("need 0 <= A <= B, got {a},{b}"));
+    }
+    Ok((a, b))
+}
+
+fn parse_baseline(s: &str) -> Result<(String, String), String> {
+    let (a, r) = s
+        .split_once('+')
+        .ok_or_else(|| format!("expected APPROX+RULE, got '{s}'"))?;
+    Ok((a.trim().to_string(), r.trim().to_string()))
+}
+
+/// The whole `steplearn` command line over `registry`: parses the process's arguments, runs
+/// the command, prints errors, and returns the exit status. A registry with a duplicate or
+/// malformed name is an error here, before any command runs.
+pub fn main_with(registry: Registry) -> ExitCode {
+    main_from(registry, std::env::args_os())
+}
+
+/// [`main_with`] on the given arguments (the first is the program name).
+pub fn main_from<I, T>(registry: Registry, args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Help and version go to stdout with success; usage errors to stderr.
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    match registry
+        .check()
+        .map_err(|e| e.to_string())
+        .and_then(|()| run(&registry, cli))
+    {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn load_config(config: Option<PathBuf>) -> Result<ConfigFile, String> {
+    match config {
+        Some(path) => ConfigFile::load(&path),
+        None => Ok(ConfigFile::default()),
+    }
+}
+
+fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Reproduce {
+            approx,
+            rule,
+            out,
+            seeds,
+            quick,
+            config,
+        } => {
+            let mut config = load_config(config)?;
+            if quick {
+                config.settings.scale = 0.1;
+            }
+            let seeds = seeds.unwrap_or(if quick { 2 } else { 5 });
+            if seeds == 0 {
+                return Err("--seeds must be at least 1".into());
+            }
+            let out = out.unwrap_or_else(|| {
+                PathBuf::from(if quick {
+                    "results/quick"
+                } else {
+                    "results/paper"
+                })
+            });
+            let grid = reproduce::grid(&approx, &rule, seeds);
+            for e in &grid.experiments {
+                registry.find_experiment(e).map_err(|e| e.to_string())?;
+            }
+            registry
+                .check_combination(&approx, &rule)
+                .map_err(|e| e.to_string())?;
+            let runs = grid.runs().map_err(|e| e.to_string())?;
+            let started = std::time::Instant::now();
+            let failed =
+                sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
+            let (summaries, missing) =
+                reproduce::read_summaries(&grid, &out).map_err(|e| e.to_string())?;
+            let claims = Claims::from_summaries(&summaries, PendulumCart::default().p_theta);
+            claims
+                .write(&out, &approx, &rule)
+                .map_err(|e| e.to_string())?;
+            let config_toml = config.to_toml().map_err(|e| e.to_string())?;
+            write_index(
+                &out,
+                &format!("steplearn reproduce: the paper's claims ({approx} + {rule})"),
+                &["claims.md"],
+                &command_line(),
+                Some(&config_toml),
+            )
+            .map_err(|e| e.to_string())?;
+            for c in claims.all() {
+                let k = c.seeds.iter().filter(|s| s.1).count();
+                println!(
+                    "{} {} ({k}/{} seeds)",
+                    if c.holds {
+                        "REPRODUCED    "
+                    } else {
+                        "NOT REPRODUCED"
+                    },
+                    c.statement,
+                    c.seeds.len()
+                );
+                for p in &c.over_seeds {
+                    println!("    over seeds: {}", p.describe(3));
+                }
+            }
+            println!(
+                "{} runs in {} ({:.0} s); report: {}",
+                runs.len(),
+                out.display(),
+                started.elapsed().as_secs_f64(),
+                out.join("claims.md").display()
+            );
+            if failed > 0 || !missing.is_empty() {
+                return Err(format!(
+                    "{failed} runs failed; missing results: {}",
+                    missing.join(", ")
+                ));
+            }
+            Ok(())
+        }
+        Command::Experiment {
+            experiment,
+            approx,
+            rule,
+            seed,
+            pushes,
+            impulse_range,
+            push_direction,
+            config,
+            out,
+        } => {
+            let mut config = load_config(config)?;
+            registry
+                .check_combination(&approx, &rule)
+                .map_err(|e| e.to_string())?;
+            apply_push_options(
+                registry,
+                &mut config.protocols,
+                &experiment,
+                pushes,
+                impulse_range,
+                push_direction.map(Direction::unit),
+            )?;
+            let spec = RunSpec {
+                experiment: experiment.clone(),
+                approx: approx.clone(),
+                rule: rule.clone(),
+                seed,
+            };
+            std::fs::create_dir_all(&out)
+                .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+            let summary = registry
+                .run_spec(&spec, &out, &config.settings, &config.protocols)
+                .map_err(|e| e.to_string())?;
+            summary
+                .write(&out.join("summary.json"))
+                .map_err(|e| e.to_string())?;
+            let config_toml = config.to_toml().map_err(|e| e.to_string())?;
+            write_index(
+                &out,
+                &format!("steplearn experiment {experiment} ({approx}, {rule}, seed {seed})"),
+                &["summary.json"],
+                &command_line(),
+                Some(&config_toml),
+            )
+            .map_err(|e| e.to_string())?;
+            println!("{}", summary.to_json().map_err(|e| e.to_string())?);
+            Ok(())
+        }
+        Command::Bench {
+            approx,
+            rule,
+            experiments,
+            seeds,
+            scale,
+            config,
+            baseline,
+            shard,
+            threads,
+            out,
+        } => {
+            let config = load_config(config)?;
+            let mut bench = Bench::new(registry)
+                .seeds(seeds)
+                .config(config)
+                .out(&out)
+                .command(&command_line());
+            if !approx.is_empty() {
+                bench = bench.approximators(&approx);
+            }
+            if !rule.is_empty() {
+                bench = bench.rules(&rule);
+            }
+            if !experiments.is_empty() {
+                bench = bench.experiments(&experiments);
+            }
+            if let Some(s) = scale {
+                bench = bench.scale(s);
+            }
+            if let Some((a, r)) = &baseline {
+                bench = bench.baseline(a, r);
+            }
+            if let Some(s) = shard {
+                bench = bench.shard(s);
+            }
+            if let Some(n) = threads {
+                if n == 0 {
+                    return Err("--threads must be at least 1".into());
+                }
+                bench = bench.threads(n);
+            }
+            let grid = bench.grid().map_err(|e| e.to_string())?;
+            let total = shard.map_or(grid.runs().map_or(0, |r| r.len()), |s| {
+                grid.runs().map_or(0, |r| s.select(&r).len())
+            });
+            let bar = progress_bar(total)?;
+            let started = std::time::Instant::now();
+            let result = bench
+                .on_run(|o: &RunOutcome| {
+                    progress(&bar, o);
+                })
+                .run();
+            bar.finish_and_clear();
+            let report = match result {
+                Ok(r) => r,
+                Err(BenchError::RunsFailed(failed)) => {
+                    for (id, m) in &failed {
+                        eprintln!("failed: {id}: {m}");
+                    }
+                    return Err(format!(
+                        "{} runs failed; the leaderboard in {} covers the others",
+                        failed.len(),
+                        out.display()
+                    ));
+                }
+                Err(e) => return Err(e.to_string()),
+            };
+            print!("{}", report.leaderboard.to_markdown());
+            println!(
+                "{} runs ({} finished earlier) in {:.0} s; leaderboard: {}",
+                report.outcomes.len(),
+                report
+                    .outcomes
+                    .iter()
+                    .filter(|o| o.status == RunStatus::Skipped)
+                    .count(),
+                started.elapsed().as_secs_f64(),
+                out.join("index.html").display()
+            );
+            Ok(())
+        }
+        Command::List => {
+            println!(
+                "approximators: {}",
+                registry.approximator_names().join(", ")
+            );
+            println!("rules: {}", registry.rule_names().join(", "));
+            println!("experiments: {}", registry.experiment_names().join(", "));
+            Ok(())
+        }
+        Command::Sweep {
+            shard,
+            seeds,
+            pushes,
+            out,
+        } => {
+            let grid = SweepGrid::new(
+                &["stability", "robustness"],
+                &registry.approximator_names(),
+                &registry.rule_names(),
+                seeds,
+            );
+            let runs = grid.runs().map_err(|e| e.to_string())?;
+            let runs = match shard {
+                Some(s) => s.select(&runs),
+                None => runs,
+            };
+            let mut protocols = Protocols::default();
+            if let Some(n) = pushes {
+                protocols.stability.pushes = n;
+            }
+            protocols.validate().map_err(|e| format!("--pushes: {e}"))?;
+            let failed =
+                sweep_with_progress(registry, &runs, &out, &Settings::default(), &protocols)?;
+            println!("{} runs in {}", runs.len(), out.display());
+            if failed > 0 {
+                return Err(format!("{failed} runs failed"));
+            }
+            Ok(())
+        }
+        Command::Config { check: None } => {
+            print!("{}", ConfigFile::default_toml());
+            Ok(())
+        }
+        Command::Config { check: Some(path) } => {
+            ConfigFile::load(&path)?;
+            println!("ok");
+            Ok(())
+        }
+        Command::Merge { dir } => {
+            let merged = merge(&dir).map_err(|e| e.to_string())?;
+            for p in &merged.problems {
+                eprintln!("skipped {p}");
+            }
+            if merged.runs_read == 0 {
+                // Nothing to tabulate: an empty table would overwrite a real one.
+                return Err(format!(
+                    "no finished runs to merge in {} (a run is a directory with {SUMMARY_FILE}; {} unfinished, {} unreadable)",
+                    dir.display(),
+                    merged.unfinished.len(),
+                    merged.problems.len()
+                ));
+            }
+            merged.write(&dir).map_err(|e| e.to_string())?;
+            write_index(
+                &dir,
+                "steplearn merge: the ablation table",
+                &["ablation.md"],
+                &command_line(),
+                None,
+            )
+            .map_err(|e| e.to_string())?;
+            println!(
+                "{} runs merged into {}",
+                merged.runs_read,
+                dir.join("ablation.md").display()
+            );
+            Ok(())
+        }
+    }
+}
+
+/// A progress bar of `len` runs on stderr (hidden when stderr is not a terminal).
+fn progress_bar(len: usize) -> Result<indicatif::ProgressBar, String> {
+    let bar = indicatif::ProgressBar::new(len as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:30}] {pos}/{len} (eta {eta}) {msg}",
+        )
+        .map_err(|e| e.to_string())?,
+    );
+    Ok(bar)
+}
+
+/// Advances `bar` by one finished run; off a terminal, prints one line per run instead.
+fn progress(bar: &indicatif::ProgressBar, o: &RunOutcome) {
+    bar.set_message(o.spec.id());
+    bar.inc(1);
+    if bar.is_hidden() {
+        let status = match &o.status {
+            RunStatus::Done { wall_time_s } => format!("done in {wall_time_s:.1} s"),
+            RunStatus::Skipped => "finished earlier".to_string(),
+            RunStatus::Failed(_) => "failed".to_string(),
+        };
+        eprintln!(
+            "[{}/{}] {}: {status}",
+            bar.position(),
+            bar.length().unwrap_or(0),
+            o.spec.id()
+        );
+    }
+}
+
+/// Runs `runs` into `out` with a progress bar; prints each failure and returns how many
+/// failed.
+fn sweep_with_progress(
+    registry: &Registry,
+    runs: &[RunSpec],
+    out: &Path,
+    settings: &Settings,
+    protocols: &Protocols,
+) -> Result<usize, String> {
+    let bar = progress_bar(runs.len())?;
+    let runner = |spec: &RunSpec, dir: &Path| {
+        registry
+            .run_spec(spec, dir, settings, protocols)
+            .map_err(|e| e.into())
+    };
+    let outcomes = run_sweep(
+        runs,
+        out,
+        &runner,
+        &SweepOptions::default(),
+        &|o: &RunOutcome| progress(&bar, o),
+    )
+    .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    let mut failed = 0;
+    for o in &outcomes {
+        if let RunStatus::Failed(message) = &o.status {
+            eprintln!("failed: {}: {message}", o.spec.id());
+            failed += 1;
+        }
+    }
+    Ok(failed)
+}
+
+/// Applies the command line's push options to the protocol of `experiment`.
+fn apply_push_options(
+    registry: &Registry,
+    protocols: &mut Protocols,
+    experiment: &str,
+    pushes: Option<usize>,
+    impulse_range: Option<(f64, f64)>,
+    direction: Option<[f64; 3]>,
+) -> Result<(), String> {
+    if pushes == Some(0) {
+        return Err("--pushes must be at least 1".into());
+    }
+    let options = PushOptions {
+        pushes,
+        impulse_range,
+        direction,
+    };
+    registry
+        .find_experiment(experiment)
+        .map_err(|e| e.to_string())?
+        .apply_push_options(protocols, &options)
+}
