@@ -2,6 +2,7 @@
 //! module per area: `cargo test --test all <module>::` runs one area.
 
 mod approx_batch;
+mod bench;
 mod capture_step_closed_loop;
 mod capture_step_with_estimator;
 mod cli;

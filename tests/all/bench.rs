@@ -1,0 +1,337 @@
+//! The open bench: a user's approximator, rule and experiment registered beside the built-ins,
+//! every bad name or setting a typed error before anything runs, the leaderboard's contract, and
+//! the same bytes for a run alone, in a bench, through the command line and sharded.
+
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use steplearn::approx::{ApproxError, Grid, GridConfig, InputBox};
+use steplearn::bench::{Bench, BenchError, Registry};
+use steplearn::control::learner::LearnerInput;
+use steplearn::experiments::ExperimentError;
+use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
+use steplearn::experiments::paired::{Direction, Paired};
+use steplearn::experiments::run::Protocols;
+use steplearn::experiments::settings::Settings;
+use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
+use steplearn::experiments::sweep::{RunSpec, Shard};
+use steplearn::rules::{LearningRule, StepOutcome};
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("steplearn-bench-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// A rule of the test's own: twice the trunk deviation.
+struct Doubled;
+impl LearningRule for Doubled {
+    fn gradient(&self, step: &StepOutcome) -> f64 {
+        2.0 * step.theta_e
+    }
+}
+
+/// An experiment of the test's own, without the simulator: trains a fresh learner on a few
+/// seeded outcomes and reports its offset at one input ("learned") against 0 ("model").
+struct Probe;
+
+#[derive(Serialize, Deserialize)]
+struct ProbeResult {
+    offset_m: f64,
+}
+
+impl Experiment for Probe {
+    fn name(&self) -> &str {
+        "probe"
+    }
+    fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
+        let mut learner = ctx.make_learner()?;
+        let input = LearnerInput::new(0.02, 0.1, 0.1);
+        for k in 0..3 {
+            learner.query(input)?;
+            let theta_e = 0.01 * ((ctx.seed + k) % 4) as f64;
+            learner.touch_down(&StepOutcome {
+                theta_e,
+                theta_e_dot: 0.0,
+                f_e: 0.0,
+                f_r: 0.1,
+            })?;
+        }
+        std::fs::write(dir.join("probe.txt"), ctx.approx)
+            .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
+        let result = ProbeResult {
+            offset_m: learner.predict(input)?,
+        };
+        Ok(ExperimentResult::Custom(CustomResult::new(
+            self.name(),
+            &result,
+        )?))
+    }
+    fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
+        let v: Vec<f64> = runs
+            .iter()
+            .map(|s| match &s.result {
+                ExperimentResult::Custom(c) => c.parse::<ProbeResult>().unwrap().offset_m,
+                _ => f64::NAN,
+            })
+            .collect();
+        vec![Paired::new(
+            "offset, learned - model (m)",
+            &v,
+            0.0,
+            Direction::HigherIsBetter,
+        )]
+    }
+    fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
+        vec![Headline::mean_of("runs", [runs.len() as f64])]
+    }
+}
+
+fn coarse_grid(bounds: &InputBox) -> Result<Grid, ApproxError> {
+    Grid::new(GridConfig::new(bounds.clone(), vec![3, 3, 3], 1))
+}
+
+fn registry() -> Registry {
+    Registry::builtin()
+        .approximator("coarse-grid", coarse_grid)
+        .rule("doubled", || Doubled)
+        .experiment(Probe)
+}
+
+#[test]
+fn bad_registrations_and_selections_are_typed_errors_before_anything_runs() {
+    let dir = temp_dir("bad");
+    let dup = Registry::builtin().approximator("lwpr", coarse_grid);
+    assert!(matches!(dup.check(), Err(BenchError::Registry(m)) if m.contains("twice")));
+    let bench = Bench::new(&dup).out(&dir).run();
+    assert!(matches!(bench, Err(BenchError::Registry(_))), "{bench:?}");
+    let malformed = Registry::builtin().rule("Bad Name", || Doubled);
+    assert!(malformed.check().is_err());
+    let twice = Registry::builtin().experiment(Probe).experiment(Probe);
+    assert!(twice.check().is_err());
+
+    let r = registry();
+    let base = || {
+        Bench::new(&r)
+            .approximators(["coarse-grid"])
+            .rules(["doubled"])
+            .experiments(["probe"])
+            .out(&dir)
+    };
+    let unknown = base().rules(["doubled", "nope"]).run().unwrap_err();
+    assert!(
+        matches!(&unknown, BenchError::Unknown { what, name, .. } if what == "rule" && name == "nope"),
+        "{unknown}"
+    );
+    assert!(
+        unknown.to_string().contains("doubled"),
+        "lists the known names"
+    );
+    for (bad, what) in [
+        (base().approximators(["lwpr", "lwpr"]), "twice"),
+        (base().experiments(Vec::<String>::new()), "no experiment"),
+        (base().seeds(0), "seeds"),
+        (base().scale(0.0), "scale"),
+        (base().scale(f64::NAN), "scale"),
+        (base().baseline("lwpr", "doubled"), "baseline"),
+    ] {
+        let e = bad.run().unwrap_err();
+        assert!(e.to_string().contains(what), "{what}: {e}");
+    }
+    assert!(!dir.exists(), "nothing was written");
+}
+
+#[test]
+fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
+    let dir = temp_dir("leaderboard");
+    let r = registry();
+    let report = Bench::new(&r)
+        .approximators(["coarse-grid", "lwpr"])
+        .rules(["doubled", "pendulum-cart"])
+        .experiments(["probe"])
+        .seeds(3)
+        .out(&dir)
+        .run()
+        .unwrap();
+    assert_eq!(report.outcomes.len(), 2 * 2 * 3);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("leaderboard.json")).unwrap())
+            .unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 4);
+    assert_eq!(json["baseline"]["approx"], "lwpr");
+    for row in rows {
+        for key in ["approx", "rule", "experiment"] {
+            assert!(row[key].is_string(), "{row}");
+        }
+        let c = &row["vs_model"][0];
+        assert_eq!(c["quantity"], "offset, learned - model (m)");
+        assert!(c["mean"].is_f64() && c["ci95"][0].is_f64() && c["ci95"][1].is_f64());
+        assert!(["better", "level", "worse"].contains(&c["verdict"].as_str().unwrap()));
+        let is_base = row["approx"] == "lwpr" && row["rule"] == "pendulum-cart";
+        assert_eq!(row["vs_baseline"].as_array().unwrap().is_empty(), is_base);
+    }
+    // The comparison is the mean of the per-seed values, recomputed here from the summaries.
+    let mut offsets = Vec::new();
+    for seed in 0..3 {
+        let spec = RunSpec {
+            experiment: "probe".into(),
+            approx: "coarse-grid".into(),
+            rule: "doubled".into(),
+            seed,
+        };
+        let s = Summary::read(&dir.join(spec.id()).join("summary.json")).unwrap();
+        assert_eq!(
+            (s.approx.as_str(), s.rule.as_str()),
+            ("coarse-grid", "doubled")
+        );
+        let ExperimentResult::Custom(c) = &s.result else {
+            panic!("{s:?}")
+        };
+        offsets.push(c.parse::<ProbeResult>().unwrap().offset_m);
+    }
+    let mean = offsets.iter().sum::<f64>() / 3.0;
+    let row = rows
+        .iter()
+        .find(|r| r["approx"] == "coarse-grid" && r["rule"] == "doubled")
+        .unwrap();
+    assert!((row["vs_model"][0]["mean"].as_f64().unwrap() - mean).abs() < 1e-12);
+    assert!(mean > 0.0, "a learner that leaned forward steps longer");
+    for f in [
+        "leaderboard.md",
+        "leaderboard.csv",
+        "forest.svg",
+        "index.html",
+    ] {
+        assert!(dir.join(f).is_file(), "{f}");
+    }
+    let csv = std::fs::read_to_string(dir.join("leaderboard.csv")).unwrap();
+    assert!(
+        csv.lines()
+            .any(|l| l.starts_with("coarse-grid,doubled,probe,model,"))
+    );
+    // A run reused: a second call runs nothing and writes the same leaderboard.
+    let before = std::fs::read(dir.join("leaderboard.json")).unwrap();
+    let again = Bench::new(&r)
+        .approximators(["coarse-grid", "lwpr"])
+        .rules(["doubled", "pendulum-cart"])
+        .experiments(["probe"])
+        .seeds(3)
+        .out(&dir)
+        .run()
+        .unwrap();
+    assert!(
+        again
+            .outcomes
+            .iter()
+            .all(|o| o.status == steplearn::experiments::sweep::RunStatus::Skipped)
+    );
+    assert_eq!(std::fs::read(dir.join("leaderboard.json")).unwrap(), before);
+    // Another configuration into the same directory is refused, naming the record.
+    let changed = Bench::new(&r)
+        .approximators(["coarse-grid"])
+        .rules(["doubled"])
+        .experiments(["probe"])
+        .scale(0.5)
+        .out(&dir)
+        .run()
+        .unwrap_err();
+    assert!(matches!(changed, BenchError::ConfigChanged(_)), "{changed}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_run_gives_the_same_bytes_alone_in_a_bench_sharded_and_through_the_command_line() {
+    let r = registry();
+    let settings = Settings {
+        scale: 0.02,
+        ..Settings::default()
+    };
+    let spec = RunSpec {
+        experiment: "stability".into(),
+        approx: "coarse-grid".into(),
+        rule: "doubled".into(),
+        seed: 1,
+    };
+    let alone = temp_dir("alone");
+    std::fs::create_dir_all(&alone).unwrap();
+    let summary = r
+        .run_spec(&spec, &alone, &settings, &Protocols::default())
+        .unwrap();
+    let want = summary.to_json().unwrap();
+
+    let bench = temp_dir("bench");
+    fn select(b: Bench<'_>) -> Bench<'_> {
+        b.approximators(["coarse-grid"])
+            .rules(["doubled"])
+            .experiments(["stability"])
+            .seeds(2)
+            .scale(0.02)
+    }
+    select(Bench::new(&r)).threads(1).out(&bench).run().unwrap();
+    let sharded = temp_dir("sharded");
+    for i in 0..2 {
+        let b = select(Bench::new(&r)).threads(2).out(&sharded);
+        b.shard(Shard::new(i, 2).unwrap()).run().unwrap();
+    }
+    let cli = temp_dir("cli");
+    let code = steplearn::cli::main_from(
+        registry(),
+        [
+            "steplearn",
+            "bench",
+            "--approx",
+            "coarse-grid",
+            "--rule",
+            "doubled",
+            "--experiments",
+            "stability",
+            "--seeds",
+            "2",
+            "--scale",
+            "0.02",
+            "--out",
+            cli.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, std::process::ExitCode::SUCCESS);
+    for dir in [&bench, &sharded, &cli] {
+        let got = std::fs::read_to_string(dir.join(spec.id()).join("summary.json")).unwrap();
+        assert_eq!(got, want, "{}", dir.display());
+        assert_eq!(
+            std::fs::read(dir.join(spec.id()).join("pushes.csv")).unwrap(),
+            std::fs::read(alone.join("pushes.csv")).unwrap()
+        );
+    }
+    for d in [alone, bench, sharded, cli] {
+        std::fs::remove_dir_all(d).unwrap();
+    }
+}
+
+#[test]
+fn custom_results_round_trip_and_cannot_pose_as_built_ins() {
+    let c = CustomResult::new("probe", &ProbeResult { offset_m: 0.25 }).unwrap();
+    let s = Summary {
+        approx: "knn".into(),
+        rule: "doubled".into(),
+        seed: 7,
+        result: ExperimentResult::Custom(c),
+    };
+    let json = s.to_json().unwrap();
+    assert!(json.contains("\"experiment\": \"probe\""), "{json}");
+    assert_eq!(Summary::from_json(&json).unwrap(), s);
+    let posing = Summary {
+        result: ExperimentResult::Custom(
+            CustomResult::new("tracking", &ProbeResult { offset_m: 0.0 }).unwrap(),
+        ),
+        ..s.clone()
+    };
+    assert!(posing.to_json().is_err());
+    let clash = Summary {
+        result: ExperimentResult::Custom(
+            CustomResult::new("probe", &serde_json::json!({"seed": 3})).unwrap(),
+        ),
+        ..s
+    };
+    assert!(clash.to_json().is_err());
+    assert!(CustomResult::new("probe", &3.0).is_err(), "not an object");
+}
