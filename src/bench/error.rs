@@ -10,7 +10,7 @@ pub enum BenchError {
     #[error("registry: {0}")]
     Registry(String),
     /// A name that is not registered.
-    #[error("unknown {what} {name:?} (registered: {known})")]
+    #[error("unknown {what} '{name}' (registered: {known})")]
     Unknown {
         /// `"approximator"`, `"rule"` or `"experiment"`.
         what: String,

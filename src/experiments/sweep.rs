@@ -632,6 +632,17 @@ struct Collected {
     run_time_s: Vec<f64>,
 }
 
+/// The sort key of a rule in the ablation table: the built-in rules in their declared order,
+/// then any other by name.
+fn rule_order(rule: &str) -> (usize, String) {
+    use strum::VariantArray;
+    let rank = crate::rules::RuleKind::VARIANTS
+        .iter()
+        .position(|k| <&str>::from(*k) == rule)
+        .unwrap_or(usize::MAX);
+    (rank, rule.to_string())
+}
+
 /// Reads every run's `summary.json` (and `run.json`) under `dir` and builds the ablation table
 /// of experiments C and D with run times. Malformed files are listed in
 /// [`Merged::problems`] with their path and skipped; tracking and disturbance runs count in
@@ -644,7 +655,8 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
         .collect();
     run_dirs.sort();
     let mut merged = Merged::default();
-    let mut groups: BTreeMap<(String, String), Collected> = BTreeMap::new();
+    // Rows by approximator, then the built-in rules in their order, then other rules by name.
+    let mut groups: BTreeMap<(String, (usize, String)), Collected> = BTreeMap::new();
     for run_dir in run_dirs {
         let summary_path = run_dir.join(SUMMARY_FILE);
         if !summary_path.exists() {
@@ -663,7 +675,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
         };
         merged.runs_read += 1;
         let group = groups
-            .entry((summary.approx.clone(), summary.rule.clone()))
+            .entry((summary.approx.clone(), rule_order(&summary.rule)))
             .or_default();
         let record_path = run_dir.join(RECORD_FILE);
         if record_path.exists() {
@@ -725,7 +737,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
     }
     merged.rows = groups
         .into_iter()
-        .map(|((approx, rule), c)| AblationRow {
+        .map(|((approx, (_, rule)), c)| AblationRow {
             approx,
             rule,
             i50_open_loop: Stat::of(&c.i50[0]),
