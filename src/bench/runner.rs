@@ -34,8 +34,11 @@ pub struct Bench<'r> {
     threads: Option<usize>,
     baseline: Option<(String, String)>,
     command: String,
-    on_run: Option<Box<dyn Fn(&RunOutcome) + Sync + 'r>>,
+    on_run: Option<Box<OnRun<'r>>>,
 }
+
+/// A callback called as each run ends.
+type OnRun<'r> = dyn Fn(&RunOutcome) + Sync + 'r;
 
 /// What a bench did: every run's outcome and the leaderboard over the runs finished in its
 /// directory.
@@ -148,7 +151,7 @@ impl<'r> Bench<'r> {
     }
 
     /// The selection with defaults filled in and checked: (approximators, rules, experiments).
-    fn selection(&self) -> Result<(Vec<String>, Vec<String>, Vec<String>), BenchError> {
+    fn selection(&self) -> Result<[Vec<String>; 3], BenchError> {
         let r = self.registry;
         r.check()?;
         let pick = |given: &Option<Vec<String>>, all: Vec<&str>| {
@@ -160,12 +163,12 @@ impl<'r> Bench<'r> {
         r.check_selection("approximator", &approx)?;
         r.check_selection("rule", &rules)?;
         r.check_selection("experiment", &experiments)?;
-        Ok((approx, rules, experiments))
+        Ok([approx, rules, experiments])
     }
 
     /// The grid of runs this bench covers (every shard).
     pub fn grid(&self) -> Result<SweepGrid, BenchError> {
-        let (approx, rules, experiments) = self.selection()?;
+        let [approx, rules, experiments] = self.selection()?;
         if self.seeds == 0 {
             return Err(BenchError::Selection("seeds must be at least 1".into()));
         }
