@@ -426,9 +426,8 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 bench = bench.threads(n);
             }
             let grid = bench.grid().map_err(|e| e.to_string())?;
-            let total = shard.map_or(grid.runs().map_or(0, |r| r.len()), |s| {
-                grid.runs().map_or(0, |r| s.select(&r).len())
-            });
+            let runs = grid.runs().map_err(|e| e.to_string())?;
+            let total = shard.map_or(runs.len(), |s| s.select(&runs).len());
             let bar = progress_bar(total)?;
             let started = std::time::Instant::now();
             let result = bench

@@ -66,8 +66,23 @@ impl std::fmt::Debug for Registry {
     }
 }
 
-fn owned(names: Vec<&str>) -> Vec<String> {
-    names.into_iter().map(str::to_string).collect()
+/// The factory registered as `name` among `entries` (of kind `what`).
+fn find<'a, T>(what: &str, entries: &'a [(String, T)], name: &str) -> Result<&'a T, BenchError> {
+    entries
+        .iter()
+        .find(|(n, _)| n == name)
+        .map(|(_, f)| f)
+        .ok_or_else(|| {
+            let known: Vec<&str> = entries.iter().map(|(n, _)| n.as_str()).collect();
+            BenchError::unknown(what, name, &known)
+        })
+}
+
+/// The learner's input box (theta_E, theta_E_dot, F_R), which approximator factories receive.
+fn learner_bounds() -> Result<InputBox, BenchError> {
+    InputGrid::default()
+        .input_box()
+        .map_err(|e| BenchError::Selection(e.to_string()))
 }
 
 impl Registry {
@@ -99,23 +114,29 @@ impl Registry {
             .experiment(Robustness)
     }
 
-    /// Records why `name` cannot be registered as a `what`, if it cannot (malformed, or in
-    /// `names` already); true if so.
-    fn taken(&mut self, what: &str, name: &str, names: Vec<String>) -> bool {
-        let problem = match check_name(what, name) {
+    /// Why `name` cannot be registered as a `what` beside `names`, if it cannot (malformed,
+    /// or taken).
+    fn refusal(what: &str, name: &str, names: &[&str]) -> Option<String> {
+        match check_name(what, name) {
             Err(e) => Some(e),
-            Ok(()) if names.iter().any(|n| n == name) => {
-                Some(format!("{what} {name:?} is registered twice"))
-            }
+            Ok(()) if names.contains(&name) => Some(format!("{what} {name:?} is registered twice")),
             Ok(()) => None,
-        };
-        let taken = problem.is_some();
-        self.problems.extend(problem);
-        taken
+        }
+    }
+
+    /// Records `refusal`; true if there was one.
+    fn refused(&mut self, refusal: Option<String>) -> bool {
+        let refused = refusal.is_some();
+        self.problems.extend(refusal);
+        refused
     }
 
     fn add_approximator(&mut self, name: &str, factory: ApproxFactory) {
-        if !self.taken("approximator", name, owned(self.approximator_names())) {
+        if !self.refused(Self::refusal(
+            "approximator",
+            name,
+            &self.approximator_names(),
+        )) {
             self.approximators.push((name.to_string(), factory));
         }
     }
@@ -140,7 +161,7 @@ impl Registry {
         R: LearningRule + 'static,
         F: Fn() -> R + Send + Sync + 'static,
     {
-        if !self.taken("rule", name, owned(self.rule_names())) {
+        if !self.refused(Self::refusal("rule", name, &self.rule_names())) {
             let boxed: RuleFactory = Arc::new(move || Box::new(factory()));
             self.rules.push((name.to_string(), boxed));
         }
@@ -150,7 +171,7 @@ impl Registry {
     /// Registers an experiment under its [`Experiment::name`].
     pub fn experiment(mut self, experiment: impl Experiment + 'static) -> Self {
         let name = experiment.name().to_string();
-        if !self.taken("experiment", &name, owned(self.experiment_names())) {
+        if !self.refused(Self::refusal("experiment", &name, &self.experiment_names())) {
             self.experiments.push(Arc::new(experiment));
         }
         self
@@ -189,49 +210,15 @@ impl Registry {
             .ok_or_else(|| BenchError::unknown("experiment", name, &self.experiment_names()))
     }
 
-    fn find_approximator(&self, name: &str) -> Result<&ApproxFactory, BenchError> {
-        self.approximators
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, f)| f)
-            .ok_or_else(|| BenchError::unknown("approximator", name, &self.approximator_names()))
-    }
-
-    fn find_rule(&self, name: &str) -> Result<&RuleFactory, BenchError> {
-        self.rules
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, f)| f)
-            .ok_or_else(|| BenchError::unknown("rule", name, &self.rule_names()))
-    }
-
-    /// Checks that each of `names` is registered as a `what` (`"approximator"`, `"rule"` or
-    /// `"experiment"`) and appears once.
-    pub fn check_selection(&self, what: &str, names: &[String]) -> Result<(), BenchError> {
-        let known = match what {
-            "approximator" => self.approximator_names(),
-            "rule" => self.rule_names(),
-            _ => self.experiment_names(),
-        };
-        if names.is_empty() {
-            return Err(BenchError::Selection(format!("no {what} selected")));
-        }
-        for (i, n) in names.iter().enumerate() {
-            if !known.contains(&n.as_str()) {
-                return Err(BenchError::unknown(what, n, &known));
-            }
-            if names[..i].contains(n) {
-                return Err(BenchError::Selection(format!(
-                    "{what} {n:?} selected twice"
-                )));
-            }
-        }
-        Ok(())
-    }
-
-    /// Checks that `approx` and `rule` are registered and that the approximator builds.
+    /// Checks that `approx` and `rule` are registered and that the approximator builds, so
+    /// that a factory that cannot build is an error before any run.
     pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
-        self.learner_builder(approx, rule).map(|_| ())
+        find("rule", &self.rules, rule)?;
+        find("approximator", &self.approximators, approx)?(&learner_bounds()?)
+            .map(|_| ())
+            .map_err(|e| {
+                BenchError::Selection(format!("approximator {approx:?} cannot be built: {e}"))
+            })
     }
 
     /// A learner builder of approximator `approx` and rule `rule`: each call gives a fresh,
@@ -242,15 +229,9 @@ impl Registry {
         rule: &str,
     ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
     {
-        let make_approx = self.find_approximator(approx)?;
-        let make_rule = self.find_rule(rule)?;
-        let bounds = InputGrid::default()
-            .input_box()
-            .map_err(|e| BenchError::Selection(e.to_string()))?;
-        // Built once here, so that a factory that cannot build is an error before any run.
-        make_approx(&bounds).map_err(|e| {
-            BenchError::Selection(format!("approximator {approx:?} cannot be built: {e}"))
-        })?;
+        let make_approx = find("approximator", &self.approximators, approx)?;
+        let make_rule = find("rule", &self.rules, rule)?;
+        let bounds = learner_bounds()?;
         Ok(
             move |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
                 let a = make_approx(&bounds)

@@ -52,6 +52,25 @@ pub struct Report {
     pub out: PathBuf,
 }
 
+/// Checks that each of `names` is among the registered `known` names of a `what` and appears
+/// once.
+fn check_selection(what: &str, names: &[String], known: &[&str]) -> Result<(), BenchError> {
+    if names.is_empty() {
+        return Err(BenchError::Selection(format!("no {what} selected")));
+    }
+    for (i, n) in names.iter().enumerate() {
+        if !known.contains(&n.as_str()) {
+            return Err(BenchError::unknown(what, n, known));
+        }
+        if names[..i].contains(n) {
+            return Err(BenchError::Selection(format!(
+                "{what} {n:?} selected twice"
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn owned<I: IntoIterator<Item = S>, S: AsRef<str>>(names: I) -> Vec<String> {
     names.into_iter().map(|s| s.as_ref().to_string()).collect()
 }
@@ -160,9 +179,9 @@ impl<'r> Bench<'r> {
         let approx = pick(&self.approximators, r.approximator_names());
         let rules = pick(&self.rules, r.rule_names());
         let experiments = pick(&self.experiments, r.experiment_names());
-        r.check_selection("approximator", &approx)?;
-        r.check_selection("rule", &rules)?;
-        r.check_selection("experiment", &experiments)?;
+        check_selection("approximator", &approx, &r.approximator_names())?;
+        check_selection("rule", &rules, &r.rule_names())?;
+        check_selection("experiment", &experiments, &r.experiment_names())?;
         Ok([approx, rules, experiments])
     }
 

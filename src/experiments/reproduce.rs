@@ -80,6 +80,13 @@ impl Claims {
     /// Checks the claims on `summaries` (any order; other approximators or rules are ignored
     /// by the caller's choice of summaries). `p_theta` is the rule's TDA tolerance.
     pub fn from_summaries(summaries: &[Summary], p_theta: f64) -> Self {
+        Self::from_runs(&summaries.iter().collect::<Vec<_>>(), p_theta)
+    }
+
+    /// [`Claims::from_summaries`] on borrowed summaries. Each built-in experiment's
+    /// leaderboard comparisons are its claim's `over_seeds` (one definition for both), which
+    /// `p_theta` does not enter.
+    pub fn from_runs(summaries: &[&Summary], p_theta: f64) -> Self {
         let mut tracking = Vec::new();
         let mut disturbance = Vec::new();
         let mut stability = Vec::new();
@@ -94,7 +101,7 @@ impl Claims {
         let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
         let mut absorbed_diff = Vec::new();
         let mut bin_s_all = f64::NAN;
-        let mut sorted: Vec<&Summary> = summaries.iter().collect();
+        let mut sorted: Vec<&Summary> = summaries.to_vec();
         sorted.sort_by(|a, b| (a.experiment(), a.seed).cmp(&(b.experiment(), b.seed)));
         for s in sorted {
             match &s.result {

@@ -415,10 +415,7 @@ impl super::experiment::Experiment for Robustness {
     }
 
     fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
-        // The paired comparisons of the paper's claim (one definition, shared with
-        // `reproduce`); the rule's TDA tolerance does not enter them.
-        let runs: Vec<super::summary::Summary> = runs.iter().map(|s| (*s).clone()).collect();
-        super::reproduce::Claims::from_summaries(&runs, 0.0)
+        super::reproduce::Claims::from_runs(runs, 0.0)
             .robustness
             .over_seeds
     }

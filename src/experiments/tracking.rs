@@ -255,8 +255,6 @@ impl super::experiment::Experiment for Tracking {
     }
 
     fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
-        // The paired comparisons of the paper's claim (one definition, shared with
-        // `reproduce`); the rule's TDA tolerance does not enter them.
         let mut mean_diff = Vec::new();
         for s in runs {
             if let ExperimentResult::Tracking {
@@ -272,7 +270,6 @@ impl super::experiment::Experiment for Tracking {
                 mean_diff.push(if d.count() == 0 { f64::NAN } else { d.mean() });
             }
         }
-        let owned: Vec<super::summary::Summary> = runs.iter().map(|s| (*s).clone()).collect();
         let mut out = vec![super::paired::Paired::new(
             "std of F_E averaged over the bins after a change, learned - model (cm)",
             &mean_diff,
@@ -280,7 +277,7 @@ impl super::experiment::Experiment for Tracking {
             super::paired::Direction::LowerIsBetter,
         )];
         out.extend(
-            super::reproduce::Claims::from_summaries(&owned, 0.0)
+            super::reproduce::Claims::from_runs(runs, 0.0)
                 .tracking
                 .over_seeds,
         );

@@ -144,14 +144,17 @@ fn bad_registrations_and_selections_are_typed_errors_before_anything_runs() {
 fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
     let dir = temp_dir("leaderboard");
     let r = registry();
-    let report = Bench::new(&r)
-        .approximators(["coarse-grid", "lwpr"])
-        .rules(["doubled", "pendulum-cart"])
-        .experiments(["probe"])
-        .seeds(3)
-        .out(&dir)
-        .run()
-        .unwrap();
+    let bench = || {
+        Bench::new(&r)
+            .approximators(["coarse-grid", "lwpr"])
+            .rules(["doubled", "pendulum-cart"])
+            .experiments(["probe"])
+            .seeds(3)
+            .out(&dir)
+            .run()
+            .unwrap()
+    };
+    let report = bench();
     assert_eq!(report.outcomes.len(), 2 * 2 * 3);
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("leaderboard.json")).unwrap())
@@ -211,14 +214,7 @@ fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
     );
     // A run reused: a second call runs nothing and writes the same leaderboard.
     let before = std::fs::read(dir.join("leaderboard.json")).unwrap();
-    let again = Bench::new(&r)
-        .approximators(["coarse-grid", "lwpr"])
-        .rules(["doubled", "pendulum-cart"])
-        .experiments(["probe"])
-        .seeds(3)
-        .out(&dir)
-        .run()
-        .unwrap();
+    let again = bench();
     assert!(
         again
             .outcomes
