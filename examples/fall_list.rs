@@ -34,8 +34,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(path) => ConfigFile::load(path)?,
         None => ConfigFile::default(),
     };
-    let setup =
-        disturbance::trial_setup(&config.settings, &config.protocols.disturbance, args.seed);
+    let protocol = config.protocols.get("disturbance")?;
+    let setup = disturbance::trial_setup(&config.settings, &protocol, args.seed);
     let (log, falls) = if args.learned {
         let bounds = InputGrid::default().input_box()?;
         let mut learner = FootstepLearner::new(

@@ -14,15 +14,19 @@
 //! ```
 
 use crate::bench::{Bench, BenchError, Registry};
+use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::PushOptions;
 use crate::experiments::index_page::{command_line, write_index};
+use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::reproduce::{self, Claims};
-use crate::experiments::run::Protocols;
 use crate::experiments::settings::Settings;
+use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{
-    RunOutcome, RunSpec, RunStatus, SUMMARY_FILE, Shard, SweepGrid, SweepOptions, merge, run_sweep,
+    IDENTITY_FILE, RunOutcome, RunSpec, RunStatus, SUMMARY_FILE, Shard, SweepGrid, SweepOptions,
+    check_identity, merge, run_sweep,
 };
+use crate::report::write_atomic;
 use crate::rules::PendulumCart;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -91,9 +95,14 @@ enum Command {
         /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
         #[arg(long)]
         config: Option<PathBuf>,
-        /// Output directory.
+        /// Output directory: new or empty, or holding this same run (then reused); anything
+        /// else is refused unless --overwrite is given.
         #[arg(long)]
         out: PathBuf,
+        /// Replace what DIR holds, once the new run has finished (a failed run leaves it as
+        /// it was).
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Benchmarks approximators x rules x experiments x seeds: one directory per run (finished
     /// runs reused, shardable), then DIR/leaderboard.{json,md,csv}, forest.svg and index.html
@@ -245,11 +254,14 @@ where
     }
 }
 
-fn load_config(config: Option<PathBuf>) -> Result<ConfigFile, String> {
-    match config {
-        Some(path) => ConfigFile::load(&path),
-        None => Ok(ConfigFile::default()),
-    }
+/// The config file at `path` (the defaults without one), checked against the registry's
+/// experiments, with every experiment's whole protocol table.
+fn load_config(registry: &Registry, config: Option<PathBuf>) -> Result<ConfigFile, String> {
+    let config = match config {
+        Some(path) => ConfigFile::load_for(&path, registry.experiments())?,
+        None => ConfigFile::default(),
+    };
+    registry.resolve_config(&config).map_err(|e| e.to_string())
 }
 
 fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
@@ -262,13 +274,13 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             quick,
             config,
         } => {
-            let mut config = load_config(config)?;
+            let mut config = load_config(registry, config)?;
             if quick {
                 config.settings.scale = 0.1;
             }
             let seeds = seeds.unwrap_or(if quick { 2 } else { 5 });
-            if seeds == 0 {
-                return Err("--seeds must be at least 1".into());
+            if seeds == 0 || seeds > MAX_SEEDS {
+                return Err(format!("--seeds must be in [1, {MAX_SEEDS}], got {seeds}"));
             }
             let out = out.unwrap_or_else(|| {
                 PathBuf::from(if quick {
@@ -288,8 +300,15 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             let started = std::time::Instant::now();
             let failed =
                 sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
+            if failed > 0 {
+                return Err(format!(
+                    "{failed} of {} runs failed (see above); the claims report was not written",
+                    runs.len()
+                ));
+            }
+            let runner = registry.runner(&config.settings, &config.protocols);
             let (summaries, missing) =
-                reproduce::read_summaries(&grid, &out).map_err(|e| e.to_string())?;
+                reproduce::read_summaries(&grid, &out, &runner).map_err(|e| e.to_string())?;
             let claims = Claims::from_summaries(&summaries, PendulumCart::default().p_theta);
             claims
                 .write(&out, &approx, &rule)
@@ -326,11 +345,8 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 started.elapsed().as_secs_f64(),
                 out.join("claims.md").display()
             );
-            if failed > 0 || !missing.is_empty() {
-                return Err(format!(
-                    "{failed} runs failed; missing results: {}",
-                    missing.join(", ")
-                ));
+            if !missing.is_empty() {
+                return Err(format!("missing results: {}", missing.join(", ")));
             }
             Ok(())
         }
@@ -344,8 +360,9 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             push_direction,
             config,
             out,
+            overwrite,
         } => {
-            let mut config = load_config(config)?;
+            let mut config = load_config(registry, config)?;
             registry
                 .check_combination(&approx, &rule)
                 .map_err(|e| e.to_string())?;
@@ -363,23 +380,47 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 rule: rule.clone(),
                 seed,
             };
-            std::fs::create_dir_all(&out)
-                .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+            let identity = registry
+                .run_identity(&spec, &config.settings, &config.protocols)
+                .map_err(|e| e.to_string())?;
+            let summary_path = out.join(SUMMARY_FILE);
+            if !overwrite && summary_path.exists() && check_identity(&out, &identity).is_ok() {
+                let summary = Summary::read(&summary_path).map_err(|e| e.to_string())?;
+                eprintln!("{} holds this run, finished earlier: reused", out.display());
+                println!("{}", summary.to_json().map_err(|e| e.to_string())?);
+                return Ok(());
+            }
+            let holds = std::fs::read_dir(&out).map_or(false, |mut d| d.next().is_some());
+            if holds && !overwrite {
+                let why = if summary_path.exists() {
+                    check_identity(&out, &identity).err().unwrap_or_default()
+                } else {
+                    format!("{} is not empty", out.display())
+                };
+                return Err(format!(
+                    "{why}; nothing was changed. Choose another --out, or pass --overwrite to \
+                     replace its contents once the new run has finished"
+                ));
+            }
+            let staging = Staging::new(&out)?;
             let summary = registry
-                .run_spec(&spec, &out, &config.settings, &config.protocols)
+                .run_spec(&spec, staging.path(), &config.settings, &config.protocols)
+                .map_err(|e| e.to_string())?;
+            write_atomic(&staging.path().join(IDENTITY_FILE), identity.as_bytes())
                 .map_err(|e| e.to_string())?;
             summary
-                .write(&out.join("summary.json"))
+                .write(&staging.path().join(SUMMARY_FILE))
                 .map_err(|e| e.to_string())?;
             let config_toml = config.to_toml().map_err(|e| e.to_string())?;
             write_index(
-                &out,
+                staging.path(),
                 &format!("steplearn experiment {experiment} ({approx}, {rule}, seed {seed})"),
                 &["summary.json"],
                 &command_line(),
                 Some(&config_toml),
             )
             .map_err(|e| e.to_string())?;
+            staging.replace(&out)?;
             println!("{}", summary.to_json().map_err(|e| e.to_string())?);
             Ok(())
         }
@@ -395,7 +436,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             threads,
             out,
         } => {
-            let config = load_config(config)?;
+            let config = load_config(registry, config)?;
             let mut bench = Bench::new(registry)
                 .seeds(seeds)
                 .config(config)
@@ -479,6 +520,9 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             pushes,
             out,
         } => {
+            if seeds == 0 || seeds > MAX_SEEDS {
+                return Err(format!("--seeds must be in [1, {MAX_SEEDS}], got {seeds}"));
+            }
             let grid = SweepGrid::new(
                 &["stability", "robustness"],
                 &registry.approximator_names(),
@@ -490,11 +534,23 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 Some(s) => s.select(&runs),
                 None => runs,
             };
-            let mut protocols = Protocols::default();
-            if let Some(n) = pushes {
-                protocols.stability.pushes = n;
-            }
-            protocols.validate().map_err(|e| format!("--pushes: {e}"))?;
+            let mut protocols = ProtocolTables::new();
+            check_pushes(pushes)?;
+            let options = PushOptions {
+                pushes,
+                impulse_range: None,
+                direction: None,
+            };
+            registry
+                .find_experiment("stability")
+                .map_err(|e| e.to_string())?
+                .apply_push_options(&mut protocols, &options)
+                .map_err(|e| format!("--pushes: {e}"))?;
+            registry
+                .find_experiment("stability")
+                .map_err(|e| e.to_string())?
+                .protocol(&protocols)
+                .map_err(|e| format!("--pushes: {e}"))?;
             let failed =
                 sweep_with_progress(registry, &runs, &out, &Settings::default(), &protocols)?;
             println!("{} runs in {}", runs.len(), out.display());
@@ -504,11 +560,14 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Config { check: None } => {
-            print!("{}", ConfigFile::default_toml());
+            print!(
+                "{}",
+                ConfigFile::default_toml_for(registry.experiments()).map_err(|e| e.to_string())?
+            );
             Ok(())
         }
         Command::Config { check: Some(path) } => {
-            ConfigFile::load(&path)?;
+            ConfigFile::load_for(&path, registry.experiments())?;
             println!("ok");
             Ok(())
         }
@@ -583,14 +642,10 @@ fn sweep_with_progress(
     runs: &[RunSpec],
     out: &Path,
     settings: &Settings,
-    protocols: &Protocols,
+    protocols: &ProtocolTables,
 ) -> Result<usize, String> {
     let bar = progress_bar(runs.len())?;
-    let runner = |spec: &RunSpec, dir: &Path| {
-        registry
-            .run_spec(spec, dir, settings, protocols)
-            .map_err(|e| e.into())
-    };
+    let runner = registry.runner(settings, protocols);
     let outcomes = run_sweep(
         runs,
         out,
@@ -610,18 +665,26 @@ fn sweep_with_progress(
     Ok(failed)
 }
 
+/// Checks `--pushes` against [`MAX_PUSHES`].
+fn check_pushes(pushes: Option<usize>) -> Result<(), String> {
+    match pushes {
+        Some(n) if n == 0 || n > MAX_PUSHES => {
+            Err(format!("--pushes must be in [1, {MAX_PUSHES}], got {n}"))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Applies the command line's push options to the protocol of `experiment`.
 fn apply_push_options(
     registry: &Registry,
-    protocols: &mut Protocols,
+    protocols: &mut ProtocolTables,
     experiment: &str,
     pushes: Option<usize>,
     impulse_range: Option<(f64, f64)>,
     direction: Option<[f64; 3]>,
 ) -> Result<(), String> {
-    if pushes == Some(0) {
-        return Err("--pushes must be at least 1".into());
-    }
+    check_pushes(pushes)?;
     let options = PushOptions {
         pushes,
         impulse_range,
@@ -631,4 +694,64 @@ fn apply_push_options(
         .find_experiment(experiment)
         .map_err(|e| e.to_string())?
         .apply_push_options(protocols, &options)
+}
+
+/// A fresh directory beside an output directory, where a run writes until it has finished;
+/// removed on drop unless it replaced the output ([`Staging::replace`]).
+struct Staging {
+    path: PathBuf,
+    done: bool,
+}
+
+impl Staging {
+    fn new(out: &Path) -> Result<Self, String> {
+        let parent = match out.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent)
+            .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
+        let name = out
+            .file_name()
+            .map_or("run".into(), |n| n.to_string_lossy().into_owned());
+        let path = tempfile::Builder::new()
+            .prefix(&format!(".{name}.partial-"))
+            .tempdir_in(&parent)
+            .map_err(|e| format!("cannot create a directory in {}: {e}", parent.display()))?
+            .keep();
+        Ok(Staging { path, done: false })
+    }
+
+    fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Puts the finished run at `out`, replacing what was there.
+    fn replace(mut self, out: &Path) -> Result<(), String> {
+        let old = self.path.with_extension("old");
+        let had = out.exists();
+        if had {
+            std::fs::rename(out, &old)
+                .map_err(|e| format!("cannot move {} aside: {e}", out.display()))?;
+        }
+        if let Err(e) = std::fs::rename(&self.path, out) {
+            if had {
+                let _ = std::fs::rename(&old, out);
+            }
+            return Err(format!("cannot move the run to {}: {e}", out.display()));
+        }
+        self.done = true;
+        if had {
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.done {
+            let _ = std::fs::remove_dir_all(&self.path);
+        }
+    }
 }

@@ -98,6 +98,51 @@ pub fn at_least(field: &str, n: usize, min: usize) -> Result<(), ConfigError> {
     })
 }
 
+/// Checks that a count lies in `[min, max]`.
+pub fn count_in(field: &str, n: usize, min: usize, max: usize) -> Result<(), ConfigError> {
+    ensure(n >= min && n <= max, field, || {
+        format!("must be in [{min}, {max}], got {n}")
+    })
+}
+
+/// Checks that `v` is finite and in `[lo, hi]`.
+pub fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<(), ConfigError> {
+    ensure(v.is_finite() && v >= lo && v <= hi, field, || {
+        format!("must be finite and in [{lo}, {hi}], got {v}")
+    })
+}
+
+/// Checks that both ends of `(a, b)` lie in `[lo, hi]` (after [`ordered`] or the like).
+pub fn range_in(field: &str, (a, b): (f64, f64), lo: f64, hi: f64) -> Result<(), ConfigError> {
+    ensure(a >= lo && b <= hi, field, || {
+        format!("must lie within [{lo}, {hi}], got [{a}, {b}]")
+    })
+}
+
+/// The ranges of the experiments' counts, sizes, durations and magnitudes: what one run can
+/// do in bounded memory and time. A config or command line outside them is refused before
+/// anything runs.
+pub mod limits {
+    /// Pushes per controller in one run (at 3-7 s a push, at most about 20 h simulated).
+    pub const MAX_PUSHES: usize = 10_000;
+    /// Seeds of one command (`--seeds`).
+    pub const MAX_SEEDS: u64 = 10_000;
+    /// Simulated time of one trial (s): one day.
+    pub const MAX_TRIAL_S: f64 = 86_400.0;
+    /// A time between pushes, a settle time or a hold (s).
+    pub const MAX_GAP_S: f64 = 600.0;
+    /// The shortest time bin (s): one control tick of the paper's 100 Hz controller.
+    pub const MIN_BIN_S: f64 = 0.01;
+    /// Time bins after a change or a push (horizon / bin).
+    pub const MAX_BINS: f64 = 10_000.0;
+    /// A push impulse (Ns): 100 Ns sends the 13.5 kg robot off at 7 m/s, far past every fall.
+    pub const MAX_IMPULSE_NS: f64 = 100.0;
+    /// A reference step size or its range (m), either way.
+    pub const MAX_STEP_M: f64 = 1.0;
+    /// Points per axis of a dF map or an input grid.
+    pub const MAX_GRID_POINTS: usize = 1_000;
+}
+
 /// Deserializes a partial `T` over `base`: keys given override `base`'s, tables merge at every
 /// depth (arrays of tables of the same length merge element by element), anything else
 /// replaces. Unknown keys stay errors when `T` denies them.

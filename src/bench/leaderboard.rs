@@ -11,7 +11,7 @@ use super::{BenchError, Registry};
 use crate::experiments::experiment::{Experiment, Headline};
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;
-use crate::experiments::sweep::{RunSpec, SUMMARY_FILE, SweepGrid};
+use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
 use crate::report::forest::{ForestPanel, ForestRow, forest_plot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, Shortest, write_atomic, write_rows};
@@ -181,6 +181,7 @@ impl Leaderboard {
         out: &Path,
         baseline: &(String, String),
         scale: f64,
+        runner: &dyn Runner,
     ) -> Result<Self, BenchError> {
         let mut rows = Vec::new();
         let mut missing = Vec::new();
@@ -194,7 +195,7 @@ impl Leaderboard {
                     seed,
                 };
                 let path = out.join(spec.id()).join(SUMMARY_FILE);
-                if path.exists() {
+                if is_current(runner, &spec, out) {
                     runs.push(Summary::read(&path)?);
                 } else {
                     missing.push(spec.id());

@@ -31,5 +31,5 @@ mod runner;
 
 pub use error::BenchError;
 pub use leaderboard::{Comparison, Leaderboard, LeaderboardRow};
-pub use registry::Registry;
+pub use registry::{RESULTS_FORMAT, Registry, RegistryRunner};
 pub use runner::{Bench, Report};

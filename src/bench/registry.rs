@@ -6,17 +6,16 @@ use crate::Named;
 use crate::approx::{
     ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist,
 };
+use crate::config::ConfigError;
 use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
 use crate::experiments::ExperimentError;
-use crate::experiments::disturbance::Disturbance;
+use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::{Experiment, RunContext, RunLearner};
-use crate::experiments::robustness::Robustness;
-use crate::experiments::run::Protocols;
+use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::Settings;
-use crate::experiments::stability::Stability;
+use crate::experiments::suite;
 use crate::experiments::summary::{Summary, check_name};
-use crate::experiments::sweep::RunSpec;
-use crate::experiments::tracking::Tracking;
+use crate::experiments::sweep::{RunError, RunSpec, Runner};
 use crate::rules::{BalanceOnly, LearningRule, Linear, PendulumCart, RateDamped, TrackingOnly};
 use std::path::Path;
 use std::sync::Arc;
@@ -103,15 +102,16 @@ impl Registry {
                 Arc::new(move |b: &InputBox| kind.build(b).map(BoxedApproximator::new)),
             );
         }
-        r.rule("pendulum-cart", PendulumCart::default)
+        let mut r = r
+            .rule("pendulum-cart", PendulumCart::default)
             .rule("balance-only", || BalanceOnly)
             .rule("tracking-only", TrackingOnly::default)
             .rule("linear", Linear::default)
-            .rule("rate-damped", RateDamped::default)
-            .experiment(Tracking)
-            .experiment(Disturbance)
-            .experiment(Stability)
-            .experiment(Robustness)
+            .rule("rate-damped", RateDamped::default);
+        for e in suite::paper() {
+            r.add_experiment(e);
+        }
+        r
     }
 
     /// Why `name` cannot be registered as a `what` beside `names`, if it cannot (malformed,
@@ -170,11 +170,29 @@ impl Registry {
 
     /// Registers an experiment under its [`Experiment::name`].
     pub fn experiment(mut self, experiment: impl Experiment + 'static) -> Self {
+        self.add_experiment(Arc::new(experiment));
+        self
+    }
+
+    fn add_experiment(&mut self, experiment: Arc<dyn Experiment>) {
         let name = experiment.name().to_string();
         if !self.refused(Self::refusal("experiment", &name, &self.experiment_names())) {
-            self.experiments.push(Arc::new(experiment));
+            self.experiments.push(experiment);
         }
-        self
+    }
+
+    /// The registered experiments, in order.
+    pub fn experiments(&self) -> &[Arc<dyn Experiment>] {
+        &self.experiments
+    }
+
+    /// `config` checked against the registered experiments (every protocol table accepted by
+    /// its experiment, none of an unknown one) with every experiment's whole protocol table:
+    /// what a run records.
+    pub fn resolve_config(&self, config: &ConfigFile) -> Result<ConfigFile, BenchError> {
+        config
+            .resolved_for(&self.experiments)
+            .map_err(|e| BenchError::Selection(format!("invalid config: {e}")))
     }
 
     /// Every problem of the registrations (a name taken twice, a malformed name), as one error.
@@ -241,14 +259,14 @@ impl Registry {
         )
     }
 
-    /// Runs `spec` with `settings` and `protocols`: writes its figures and CSV into `dir` and
+    /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and CSV into `dir` and
     /// returns its summary (the caller writes `summary.json`).
     pub fn run_spec(
         &self,
         spec: &RunSpec,
         dir: &Path,
         settings: &Settings,
-        protocols: &Protocols,
+        protocols: &ProtocolTables,
     ) -> Result<Summary, ExperimentError> {
         let invalid = |e: BenchError| ExperimentError::Invalid(e.to_string());
         let experiment = self.find_experiment(&spec.experiment).map_err(invalid)?;
@@ -277,5 +295,89 @@ impl Registry {
             seed: spec.seed,
             result,
         })
+    }
+}
+
+/// The version of the results' format, recorded in every run's identity: raised when a
+/// change of steplearn makes earlier results differ from what it would produce now.
+pub const RESULTS_FORMAT: u32 = 1;
+
+/// What determines a run's results, recorded as its `run-config.toml`.
+#[derive(serde::Serialize)]
+struct RunIdentity<'a> {
+    format: u32,
+    experiment: &'a str,
+    approx: &'a str,
+    rule: &'a str,
+    seed: u64,
+    settings: &'a Settings,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    protocol: Option<Table>,
+}
+
+impl Registry {
+    /// The identity of `spec` with `settings` and `protocols`: the run, the whole settings,
+    /// the experiment's whole protocol table and [`RESULTS_FORMAT`], as TOML. Two runs with
+    /// the same identity give the same bytes.
+    pub fn run_identity(
+        &self,
+        spec: &RunSpec,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+    ) -> Result<String, BenchError> {
+        let invalid = |e: ConfigError| BenchError::Selection(format!("invalid config: {e}"));
+        settings.validate().map_err(invalid)?;
+        let protocol = self
+            .find_experiment(&spec.experiment)?
+            .protocol(protocols)
+            .map_err(invalid)?;
+        toml::to_string_pretty(&RunIdentity {
+            format: RESULTS_FORMAT,
+            experiment: &spec.experiment,
+            approx: &spec.approx,
+            rule: &spec.rule,
+            seed: spec.seed,
+            settings,
+            protocol,
+        })
+        .map_err(|e| BenchError::Selection(e.to_string()))
+    }
+
+    /// The sweep runner of this registry's runs with `settings` and `protocols`; it records
+    /// each run's identity, so a finished run is reused only for the same configuration.
+    pub fn runner<'a>(
+        &'a self,
+        settings: &'a Settings,
+        protocols: &'a ProtocolTables,
+    ) -> RegistryRunner<'a> {
+        RegistryRunner {
+            registry: self,
+            settings,
+            protocols,
+        }
+    }
+}
+
+/// Runs a registry's runs with one configuration ([`Registry::runner`]).
+#[derive(Debug, Clone, Copy)]
+pub struct RegistryRunner<'a> {
+    registry: &'a Registry,
+    settings: &'a Settings,
+    protocols: &'a ProtocolTables,
+}
+
+impl Runner for RegistryRunner<'_> {
+    fn run(&self, spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
+        Ok(self
+            .registry
+            .run_spec(spec, dir, self.settings, self.protocols)?)
+    }
+
+    fn identity(&self, spec: &RunSpec) -> Result<Option<String>, RunError> {
+        Ok(Some(self.registry.run_identity(
+            spec,
+            self.settings,
+            self.protocols,
+        )?))
     }
 }

@@ -2,10 +2,9 @@
 
 use super::leaderboard::Leaderboard;
 use super::{BenchError, Registry};
+use crate::config::limits::MAX_SEEDS;
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::sweep::{
-    RunOutcome, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, run_sweep,
-};
+use crate::experiments::sweep::{RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, run_sweep};
 use crate::report::write_atomic;
 use std::path::{Path, PathBuf};
 
@@ -188,8 +187,11 @@ impl<'r> Bench<'r> {
     /// The grid of runs this bench covers (every shard).
     pub fn grid(&self) -> Result<SweepGrid, BenchError> {
         let [approx, rules, experiments] = self.selection()?;
-        if self.seeds == 0 {
-            return Err(BenchError::Selection("seeds must be at least 1".into()));
+        if self.seeds == 0 || self.seeds > MAX_SEEDS {
+            return Err(BenchError::Selection(format!(
+                "seeds must be in [1, {MAX_SEEDS}], got {}",
+                self.seeds
+            )));
         }
         Ok(SweepGrid {
             experiments,
@@ -204,10 +206,7 @@ impl<'r> Bench<'r> {
         if let Some(scale) = self.scale {
             config.settings.scale = scale;
         }
-        config
-            .validate()
-            .map_err(|e| BenchError::Selection(e.to_string()))?;
-        Ok(config)
+        self.registry.resolve_config(&config)
     }
 
     fn baseline_of(&self, grid: &SweepGrid) -> Result<(String, String), BenchError> {
@@ -265,11 +264,7 @@ impl<'r> Bench<'r> {
             .map_err(|e| BenchError::Selection(e.to_string()))?;
         let runs = self.shard.select(&grid.runs()?);
         self.guard_config(&config_toml)?;
-        let runner = |spec: &RunSpec, dir: &Path| {
-            self.registry
-                .run_spec(spec, dir, &config.settings, &config.protocols)
-                .map_err(|e| e.into())
-        };
+        let runner = self.registry.runner(&config.settings, &config.protocols);
         let options = SweepOptions {
             threads: self.threads,
         };
@@ -285,6 +280,7 @@ impl<'r> Bench<'r> {
             &self.out,
             &baseline,
             config.settings.scale,
+            &runner,
         )?;
         leaderboard.write(&self.out, &self.command, &config_toml)?;
         let failed: Vec<(String, String)> = outcomes

@@ -233,13 +233,21 @@ pub enum TrustFallback {
     Nominal,
 }
 
+/// The most samples a prior may hold (each trains the approximator once at construction).
+pub const MAX_PRIOR_SAMPLES: usize = 1_000_000;
+
+/// The most samples the learner may record in one step (its memory per step is this many
+/// inputs).
+pub const MAX_SAMPLES_PER_STEP: usize = 100_000;
+
 /// The learner's initial belief dF = 0, trained into the approximator before any step so
 /// that it holds it with confidence (an untrained LWPR moves nearly all the way to its first
 /// targets, which makes eq. 6 at eta = 1 unstable; see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Prior {
-    /// Number of samples (0: no prior, the approximator starts as built).
+    /// Number of samples (0: no prior, the approximator starts as built; at most
+    /// [`MAX_PRIOR_SAMPLES`]).
     pub samples: usize,
     /// Lower corner of the box the samples cover.
     pub lo: LearnerInput,
@@ -336,10 +344,22 @@ impl LearnerConfig {
                 format!("must be finite and > 0, got {}", self.eta),
             ));
         }
-        if self.max_samples_per_step < 2 {
+        if !(2..=MAX_SAMPLES_PER_STEP).contains(&self.max_samples_per_step) {
             return Err(LearnerError::config(
                 "max_samples_per_step",
-                format!("must be >= 2, got {}", self.max_samples_per_step),
+                format!(
+                    "must be in [2, {MAX_SAMPLES_PER_STEP}], got {}",
+                    self.max_samples_per_step
+                ),
+            ));
+        }
+        if self.prior.samples > MAX_PRIOR_SAMPLES {
+            return Err(LearnerError::config(
+                "prior.samples",
+                format!(
+                    "must be at most {MAX_PRIOR_SAMPLES}, got {}",
+                    self.prior.samples
+                ),
             ));
         }
         for (name, v) in [

@@ -1,5 +1,6 @@
 //! The configuration file of the `steplearn` command (`--config FILE`, TOML or JSON):
-//! `[settings]` ([`Settings`]) and `[protocols.<experiment>]` ([`Protocols`]).
+//! `[settings]` ([`Settings`]) and `[protocols.<experiment>]` ([`ProtocolTables`], each table
+//! read and checked by its experiment).
 //!
 //! Strict and checked: every section and key must be known (an unknown one is an error that
 //! names it, where it is, and what is allowed); a partial section keeps the defaults for the keys
@@ -7,11 +8,14 @@
 //! the reason ([`ConfigError`]), never silently adjusted. [`ConfigFile::default_toml`] is the
 //! complete default file (what `steplearn config` prints).
 
-use super::run::Protocols;
+use super::experiment::Experiment;
+use super::protocol::ProtocolTables;
 use super::settings::Settings;
+use super::suite;
 use crate::config::ConfigError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use std::sync::Arc;
 
 /// A whole config file. Every field defaults, so an empty file is the paper's setup.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -19,8 +23,8 @@ use std::path::Path;
 pub struct ConfigFile {
     /// Settings shared by every experiment.
     pub settings: Settings,
-    /// Each experiment's protocol.
-    pub protocols: Protocols,
+    /// Each experiment's protocol table (absent: that experiment's defaults).
+    pub protocols: ProtocolTables,
 }
 
 /// Keys that are unset by default and so absent from [`ConfigFile::default_toml`]'s tables;
@@ -47,16 +51,23 @@ impl ConfigFile {
         Ok(config)
     }
 
-    /// Parses and validates TOML text.
+    /// Parses and validates TOML text (against the paper's experiments).
     pub fn parse_toml(text: &str) -> Result<Self, ConfigError> {
         let config = Self::from_toml(text)?;
         config.validate()?;
         Ok(config)
     }
 
-    /// Reads, parses (JSON if the name ends in `.json`, TOML otherwise) and validates a file.
-    /// The message names the file and the offending key or field.
+    /// Reads, parses (JSON if the name ends in `.json`, TOML otherwise) and validates a file
+    /// against the paper's experiments. The message names the file and the offending key or
+    /// field.
     pub fn load(path: &Path) -> Result<Self, String> {
+        Self::load_for(path, &suite::paper())
+    }
+
+    /// [`ConfigFile::load`] against `experiments` (a registry's): a protocol table is valid
+    /// when its experiment accepts it, and a table of no listed experiment is an error.
+    pub fn load_for(path: &Path, experiments: &[Arc<dyn Experiment>]) -> Result<Self, String> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let config = if path.extension().is_some_and(|e| e == "json") {
@@ -66,15 +77,52 @@ impl ConfigFile {
         };
         let config = config.map_err(|e| format!("{}: {}", path.display(), describe(&e)))?;
         config
-            .validate()
+            .validate_for(experiments)
             .map_err(|e| format!("{}: invalid value: {e}", path.display()))?;
         Ok(config)
     }
 
-    /// Checks every value of the settings and the protocols.
+    /// Checks every value of the settings and of the paper's experiments' protocols.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        self.validate_for(&suite::paper())
+    }
+
+    /// Checks every value of the settings and every protocol table against `experiments`.
+    pub fn validate_for(&self, experiments: &[Arc<dyn Experiment>]) -> Result<(), ConfigError> {
+        self.resolved_for(experiments).map(drop)
+    }
+
+    /// This configuration checked against `experiments`, with every experiment's whole
+    /// protocol table (its defaults where this leaves keys or tables out): the configuration
+    /// a run records.
+    pub fn resolved_for(
+        &self,
+        experiments: &[Arc<dyn Experiment>],
+    ) -> Result<ConfigFile, ConfigError> {
         self.settings.validate()?;
-        self.protocols.validate()
+        if let Some(unknown) = self
+            .protocols
+            .names()
+            .find(|name| !experiments.iter().any(|e| e.name() == *name))
+        {
+            let known: Vec<String> = experiments
+                .iter()
+                .map(|e| format!("`{}`", e.name()))
+                .collect();
+            return Err(ConfigError::new(
+                "protocols",
+                format!(
+                    "unknown field `{unknown}`, expected one of {} (the registered experiments)",
+                    known.join(", ")
+                ),
+            ));
+        }
+        let mut resolved = self.clone();
+        for e in experiments {
+            let table = e.protocol(&self.protocols)?;
+            resolved.protocols.set_table(e.name(), table);
+        }
+        Ok(resolved)
     }
 
     /// This configuration as TOML (every key that has a value).
@@ -82,13 +130,17 @@ impl ConfigFile {
         toml::to_string_pretty(self).map_err(|e| ConfigError::new("", e.to_string()))
     }
 
-    /// The complete default configuration as TOML: every section and key with its default
-    /// value, optional keys that are unset by default as comments. Parsing it gives
-    /// [`ConfigFile::default`].
+    /// The complete default configuration of the paper's experiments as TOML: every section
+    /// and key with its default value, optional keys that are unset by default as comments.
+    /// Parsing it gives the defaults.
     pub fn default_toml() -> String {
-        let body = Self::default()
-            .to_toml()
-            .expect("the default configuration serializes");
+        Self::default_toml_for(&suite::paper()).expect("the paper's defaults are valid")
+    }
+
+    /// [`ConfigFile::default_toml`] with the protocol tables of `experiments`; an error if an
+    /// experiment rejects its own defaults.
+    pub fn default_toml_for(experiments: &[Arc<dyn Experiment>]) -> Result<String, ConfigError> {
+        let body = Self::default().resolved_for(experiments)?.to_toml()?;
         let mut out = String::from(
             "# steplearn's complete default configuration (`steplearn config`).\n\
              # Use with `--config FILE`; any key or section may be left out (it keeps its\n\
@@ -104,7 +156,7 @@ impl ConfigFile {
                 }
             }
         }
-        out
+        Ok(out)
     }
 }
 
@@ -130,7 +182,32 @@ mod tests {
     #[test]
     fn default_toml_parses_back_to_the_defaults() {
         let parsed = ConfigFile::parse_toml(&ConfigFile::default_toml()).unwrap();
-        assert_eq!(parsed, ConfigFile::default());
+        let defaults = ConfigFile::default().resolved_for(&suite::paper()).unwrap();
+        assert_eq!(parsed, defaults);
+        // Resolving is idempotent, and the tables are those of the paper's experiments.
+        assert_eq!(parsed.resolved_for(&suite::paper()).unwrap(), defaults);
+        let names: Vec<&str> = defaults.protocols.names().collect();
+        assert_eq!(
+            names,
+            ["disturbance", "robustness", "stability", "tracking"]
+        );
+    }
+
+    #[test]
+    fn a_table_of_no_registered_experiment_is_an_error() {
+        let c = ConfigFile::from_toml(
+            "[protocols.stabilty]
+pushes = 3
+",
+        )
+        .unwrap();
+        let e = c.validate().unwrap_err();
+        assert_eq!(e.field, "protocols");
+        assert!(e.reason.contains("unknown field `stabilty`"), "{e}");
+        assert!(e.reason.contains("`stability`"), "{e}");
+        // Against no experiments at all, any table is unknown; without tables all is well.
+        assert!(c.validate_for(&[]).is_err());
+        assert!(ConfigFile::default().validate_for(&[]).is_ok());
     }
 
     #[test]

@@ -4,15 +4,22 @@
 //! the model and the learned walker see the same pushes.
 
 use super::aligned::AlignedStats;
+use super::claim::{Claim, by_seed};
 use super::compare::{ModelAndLearned, run_model_and_learned};
 use super::error::ExperimentError;
+use super::experiment::{Experiment, Headline, PushOptions, RunContext};
+use super::paired::{Direction, Paired};
+use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
+use crate::config::limits::{
+    MAX_BINS, MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MIN_BIN_S,
+};
 use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
-use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls};
+use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls, Summary};
 use crate::report::ReportError;
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{Fixed, write_rows};
@@ -63,15 +70,20 @@ impl DisturbanceProtocol {
     /// Checks ranges, at least one push, a unit direction and a horizon shorter than the
     /// shortest gap; errors name the field (relative to the protocol's section).
     pub fn validate(&self) -> Result<(), ConfigError> {
-        config::ensure(self.f_r.is_finite(), "f_r", || {
-            format!("must be finite, got {}", self.f_r)
-        })?;
-        config::non_negative("impulse", self.impulse)?;
-        config::at_least("pushes", self.pushes, 1)?;
+        config::in_range("f_r", self.f_r, -MAX_STEP_M, MAX_STEP_M)?;
+        config::in_range("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
+        config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
         config::positive_range("gap_s", self.gap_s)?;
-        config::positive("bin_s", self.bin_s)?;
+        config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)?;
+        config::in_range("bin_s", self.bin_s, MIN_BIN_S, MAX_GAP_S)?;
         config::positive("horizon_s", self.horizon_s)?;
-        config::positive("tolerance_m", self.tolerance_m)?;
+        config::ensure(self.horizon_s / self.bin_s <= MAX_BINS, "bin_s", || {
+            format!(
+                "gives more than {MAX_BINS} bins over the horizon {} s",
+                self.horizon_s
+            )
+        })?;
+        config::in_range("tolerance_m", self.tolerance_m, 1e-6, MAX_STEP_M)?;
         config::ensure(self.horizon_s < self.gap_s.0, "gap_s", || {
             format!(
                 "the shortest gap {} s must exceed the horizon {} s",
@@ -82,6 +94,12 @@ impl DisturbanceProtocol {
             format!("{} s exceeds the horizon {} s", self.bin_s, self.horizon_s)
         })?;
         config::unit_direction("direction", &self.direction)
+    }
+}
+
+impl Protocol for DisturbanceProtocol {
+    fn validate(&self) -> Result<(), ConfigError> {
+        DisturbanceProtocol::validate(self)
     }
 }
 
@@ -442,11 +460,11 @@ impl DisturbanceResult {
     }
 }
 
-/// Experiment B as a registered [`super::experiment::Experiment`].
+/// Experiment B as a registered [`Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Disturbance;
 
-impl super::experiment::Experiment for Disturbance {
+impl Experiment for Disturbance {
     fn name(&self) -> &str {
         super::ExperimentKind::Disturbance.into()
     }
@@ -455,14 +473,15 @@ impl super::experiment::Experiment for Disturbance {
         "B (Fig. 5): disturbance rejection; return to the reference step after 8 Ns pushes"
     }
 
-    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
-        super::reproduce::Claims::from_runs(runs, 0.0)
-            .disturbance
-            .over_seeds
+    fn protocol(&self, tables: &ProtocolTables) -> Result<Option<Table>, ConfigError> {
+        tables.resolve::<DisturbanceProtocol>(self.name())
     }
 
-    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
-        use super::experiment::Headline;
+    fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
+        claim(runs, 0.0).over_seeds
+    }
+
+    fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut h: [Vec<f64>; 4] = Default::default();
         for s in runs {
             if let ExperimentResult::Disturbance {
@@ -491,19 +510,17 @@ impl super::experiment::Experiment for Disturbance {
 
     fn apply_push_options(
         &self,
-        protocols: &mut super::run::Protocols,
-        options: &super::experiment::PushOptions,
+        protocols: &mut ProtocolTables,
+        options: &PushOptions,
     ) -> Result<(), String> {
-        let p = &mut protocols.disturbance;
-        options.apply_single(self.name(), &mut p.pushes, &mut p.impulse, &mut p.direction)
+        let mut p: DisturbanceProtocol = protocols.get(self.name()).map_err(|e| e.to_string())?;
+        options.apply_single(self.name(), &mut p.pushes, &mut p.impulse, &mut p.direction)?;
+        protocols.set(self.name(), &p).map_err(|e| e.to_string())
     }
 
-    fn run(
-        &self,
-        ctx: &super::experiment::RunContext<'_>,
-        dir: &Path,
-    ) -> Result<ExperimentResult, ExperimentError> {
-        let p = &ctx.protocols.disturbance;
+    fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
+        let p: DisturbanceProtocol = ctx.protocols.get(self.name())?;
+        let p = &p;
         let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
         r.write(dir, p.f_r)?;
         let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
@@ -638,4 +655,134 @@ mod tests {
         let r = PushResponse::new(&log(-0.02), &p).unwrap();
         assert_eq!((r.return_time_s, r.settle_time_s), (0.5, 1.0));
     }
+}
+
+/// Claim 2, checked on `runs` (this experiment's summaries, any order): after 8 Ns pushes the
+/// learned walker returns to the reference step sooner than the model, its largest mean TDA
+/// within 1.5 `p_theta` (the rule's TDA tolerance) and no more falls, on every seed; return,
+/// settle time, step error and fall shares paired over seeds.
+pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
+    let mut seeds = Vec::new();
+    let (mut return_diff, mut settle_diff, mut error_diff, mut falls_diff) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut late_falls_diff = Vec::new();
+    for (seed, result) in by_seed(runs, |s| {
+        matches!(s.result, ExperimentResult::Disturbance { .. }).then_some(&s.result)
+    }) {
+        let ExperimentResult::Disturbance {
+            return_time_s,
+            settle_time_s,
+            step_error_after_push_m,
+            max_tda_rad,
+            falls,
+        } = result
+        else {
+            continue;
+        };
+        let sooner = return_time_s.learned < return_time_s.model;
+        // Paired over seeds: return times only where both walkers absorbed a push (without
+        // one the return time is the horizon, not a measurement), fall rates only where both
+        // received pushes (a walker that falls while walking gets none, and its 0 falls would
+        // look perfect).
+        let absorbed = |p: u32, f: u32| p.saturating_sub(f) > 0;
+        let both_absorbed = falls.as_ref().is_none_or(|f| {
+            absorbed(f.pushes.model, f.falls.model) && absorbed(f.pushes.learned, f.falls.learned)
+        });
+        return_diff.push(if both_absorbed {
+            return_time_s.learned - return_time_s.model
+        } else {
+            f64::NAN
+        });
+        // Absent in older summaries (and the step error without an absorbed push): NaN, which
+        // the pairing leaves out.
+        settle_diff.push(
+            settle_time_s
+                .as_ref()
+                .filter(|_| both_absorbed)
+                .map_or(f64::NAN, |t| t.learned - t.model),
+        );
+        error_diff.push(
+            step_error_after_push_m
+                .as_ref()
+                .map_or(f64::NAN, |e| 100.0 * (e.learned - e.model)),
+        );
+        if let Some(f) = falls {
+            let rate = |falls: u32, pushes: u32| {
+                if pushes == 0 {
+                    f64::NAN
+                } else {
+                    falls as f64 / pushes as f64
+                }
+            };
+            falls_diff.push(
+                rate(f.falls.learned, f.pushes.learned) - rate(f.falls.model, f.pushes.model),
+            );
+            // Absent in older summaries: NaN, which the pairing leaves out.
+            late_falls_diff.push(f.before_next_push.as_ref().map_or(f64::NAN, |b| {
+                rate(b.learned, f.pushes.learned) - rate(b.model, f.pushes.model)
+            }));
+        }
+        let near = max_tda_rad.learned <= 1.5 * p_theta;
+        // Return times cover absorbed pushes only: a walker that falls more often than the
+        // model does not return sooner.
+        let no_more_falls = falls
+            .as_ref()
+            .is_none_or(|f| f.falls.learned <= f.falls.model);
+        let fell = falls
+            .as_ref()
+            .map(|f| {
+                format!(
+                    "; falls {} / {} learned vs {} / {} model",
+                    f.falls.learned, f.pushes.learned, f.falls.model, f.pushes.model
+                )
+            })
+            .unwrap_or_default();
+        let settle = settle_time_s
+            .as_ref()
+            .map(|t| {
+                format!(
+                    "; settle {:.2} s learned vs {:.2} s model",
+                    t.learned, t.model
+                )
+            })
+            .unwrap_or_default();
+        seeds.push((
+            seed,
+            sooner && near && no_more_falls,
+            format!(
+                "return {:.2} s learned vs {:.2} s model{settle}; max TDA {:.3} vs {:.3} rad{fell}",
+                return_time_s.learned, return_time_s.model, max_tda_rad.learned, max_tda_rad.model
+            ),
+        ));
+    }
+    let paired = |quantity: &str, values: &[f64]| {
+        Paired::new(quantity, values, 0.0, Direction::LowerIsBetter)
+    };
+    Claim::new(
+        "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta and no more falls (every seed).",
+        seeds,
+        Claim::every,
+        vec![
+            paired(
+                "return time to the reference step, learned - model (s)",
+                &return_diff,
+            ),
+            paired(
+                "settle time to the walker's own undisturbed step, learned - model (s)",
+                &settle_diff,
+            ),
+            paired(
+                "mean absolute step error F_hat - F_R of the touch-downs within the horizon after a push, learned - model (cm)",
+                &error_diff,
+            ),
+            paired(
+                "share of pushes ending in a fall, learned - model",
+                &falls_diff,
+            ),
+            paired(
+                "share of pushes followed by a fall before the next push, learned - model",
+                &late_falls_diff,
+            ),
+        ],
+    )
 }

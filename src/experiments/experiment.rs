@@ -8,9 +8,10 @@
 
 use super::error::ExperimentError;
 use super::paired::Paired;
-use super::run::Protocols;
+use super::protocol::{ProtocolTables, Table};
 use super::settings::Settings;
 use crate::approx::BoxedApproximator;
+use crate::config::ConfigError;
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::rules::LearningRule;
@@ -27,8 +28,8 @@ pub struct RunContext<'a> {
     /// The robot, walker and learner settings (`settings.scale` is the protocols' length
     /// fraction: 1 the paper's, 0.1 `--quick`).
     pub settings: &'a Settings,
-    /// The paper's protocols (each built-in experiment reads its own).
-    pub protocols: &'a Protocols,
+    /// The config's protocol tables (each experiment reads its own, `[protocols.<name>]`).
+    pub protocols: &'a ProtocolTables,
     /// The run's seed.
     pub seed: u64,
     /// The approximator's registered name.
@@ -130,11 +131,26 @@ pub trait Experiment: Send + Sync {
         ""
     }
 
-    /// Applies the command line's push options to its protocol; an error if they do not apply
-    /// (by default: an experiment that takes none).
+    /// Its whole protocol table in `tables` (`[protocols.<name>]`, its defaults where the
+    /// table leaves keys out), checked; `None` for an experiment without a protocol. A config
+    /// is valid only if every registered experiment accepts its table; this is also what a
+    /// run's recorded configuration holds. By default: no protocol, and a table for it is an
+    /// error. An experiment with a typed protocol returns `tables.resolve::<P>(self.name())`.
+    fn protocol(&self, tables: &ProtocolTables) -> Result<Option<Table>, ConfigError> {
+        match tables.table(self.name()) {
+            Some(_) => Err(ConfigError::new(
+                format!("protocols.{}", self.name()),
+                "this experiment takes no protocol",
+            )),
+            None => Ok(None),
+        }
+    }
+
+    /// Applies the command line's push options to its protocol table; an error if they do not
+    /// apply (by default: an experiment that takes none).
     fn apply_push_options(
         &self,
-        protocols: &mut Protocols,
+        protocols: &mut ProtocolTables,
         options: &PushOptions,
     ) -> Result<(), String> {
         let _ = protocols;

@@ -2,6 +2,7 @@
 //! harness that runs and sweeps them.
 
 pub mod aligned;
+pub mod claim;
 pub mod compare;
 pub mod config_file;
 pub mod disturbance;
@@ -11,12 +12,13 @@ pub mod fall_causes;
 pub mod index_page;
 mod kind;
 pub mod paired;
+pub mod protocol;
 pub mod reproduce;
 pub mod robustness;
-pub mod run;
 pub mod schedule;
 pub mod settings;
 pub mod stability;
+pub mod suite;
 pub mod summary;
 pub mod sweep;
 pub mod tracking;

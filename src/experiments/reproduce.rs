@@ -8,10 +8,10 @@
 
 use super::ExperimentKind;
 use super::error::ExperimentError;
-use super::paired::{Direction, Paired};
-use super::sweep::{SUMMARY_FILE, SweepGrid};
+use super::sweep::{Runner, SUMMARY_FILE, SweepGrid, is_current};
+use super::{disturbance, robustness, stability, tracking};
 use crate::Named;
-use crate::experiments::summary::{ExperimentResult, Summary};
+use crate::experiments::summary::Summary;
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{ReportError, write_atomic};
 use serde::{Deserialize, Serialize};
@@ -25,39 +25,7 @@ pub fn grid(approx: &str, rule: &str, seeds: u64) -> SweepGrid {
     SweepGrid::new(&experiments, &[approx], &[rule], seeds)
 }
 
-/// One claim's verdict per seed and overall.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Claim {
-    /// The claim, in words.
-    pub statement: String,
-    /// `(seed, holds, the measured figures in words)`, by seed.
-    pub seeds: Vec<(u64, bool, String)>,
-    /// Whether it holds overall (the rule for "overall" is in `statement`).
-    pub holds: bool,
-    /// The claim's figures compared over seeds (learned against model, paired by seed, with
-    /// 95% intervals): whether a difference exceeds the seed-to-seed noise. Empty in reports
-    /// written before these existed.
-    #[serde(default)]
-    pub over_seeds: Vec<Paired>,
-}
-
-impl Claim {
-    fn new(
-        statement: &str,
-        seeds: Vec<(u64, bool, String)>,
-        overall: impl Fn(usize, usize) -> bool,
-        over_seeds: Vec<Paired>,
-    ) -> Self {
-        let n = seeds.len();
-        let k = seeds.iter().filter(|s| s.1).count();
-        Claim {
-            statement: statement.to_string(),
-            holds: n > 0 && overall(k, n),
-            seeds,
-            over_seeds,
-        }
-    }
-}
+pub use super::claim::Claim;
 
 /// The paper's four claims, checked on a set of summaries.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -87,306 +55,12 @@ impl Claims {
     /// leaderboard comparisons are its claim's `over_seeds` (one definition for both), which
     /// `p_theta` does not enter.
     pub fn from_runs(summaries: &[&Summary], p_theta: f64) -> Self {
-        let mut tracking = Vec::new();
-        let mut disturbance = Vec::new();
-        let mut stability = Vec::new();
-        let mut robustness = Vec::new();
-        let mut std_sum: Vec<(f64, f64, f64)> = Vec::new();
-        let mut std_n = 0usize;
-        // Per-seed values for the comparisons over seeds.
-        let mut bin_diff: Vec<Vec<f64>> = Vec::new();
-        let (mut return_diff, mut settle_diff, mut error_diff, mut falls_diff) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        let mut late_falls_diff = Vec::new();
-        let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
-        let mut absorbed_diff = Vec::new();
-        let mut bin_s_all = f64::NAN;
-        let mut sorted: Vec<&Summary> = summaries.to_vec();
-        sorted.sort_by(|a, b| (a.experiment(), a.seed).cmp(&(b.experiment(), b.seed)));
-        for s in sorted {
-            match &s.result {
-                ExperimentResult::Tracking {
-                    step_error_std_m,
-                    bin_s,
-                } => {
-                    let (m, l) = (&step_error_std_m.model, &step_error_std_m.learned);
-                    let better = m
-                        .iter()
-                        .zip(l)
-                        .filter(|(m, l)| matches!((m, l), (Some(m), Some(l)) if l < m))
-                        .count();
-                    bin_s_all = *bin_s;
-                    if bin_diff.len() < m.len() {
-                        bin_diff.resize(m.len(), Vec::new());
-                    }
-                    for (k, (m, l)) in m.iter().zip(l).enumerate() {
-                        if let (Some(m), Some(l)) = (m, l) {
-                            bin_diff[k].push(100.0 * (l - m));
-                        }
-                    }
-                    // Every bin but at most one (the reading of "at every time").
-                    let holds = !m.is_empty() && better + 1 >= m.len();
-                    tracking.push((
-                        s.seed,
-                        holds,
-                        format!("learned std lower in {better} of {} bins", m.len()),
-                    ));
-                    if std_sum.is_empty() {
-                        std_sum = (0..m.len())
-                            .map(|k| ((k as f64 + 0.5) * bin_s, 0.0, 0.0))
-                            .collect();
-                    }
-                    // The mean over seeds covers the seeds with data in every bin.
-                    if std_sum.len() == m.len() && m.iter().chain(l).all(Option::is_some) {
-                        for (acc, (m, l)) in std_sum.iter_mut().zip(m.iter().zip(l)) {
-                            acc.1 += m.unwrap_or(0.0);
-                            acc.2 += l.unwrap_or(0.0);
-                        }
-                        std_n += 1;
-                    }
-                }
-                ExperimentResult::Disturbance {
-                    return_time_s,
-                    settle_time_s,
-                    step_error_after_push_m,
-                    max_tda_rad,
-                    falls,
-                } => {
-                    let sooner = return_time_s.learned < return_time_s.model;
-                    // Paired over seeds: return times only where both walkers absorbed a push
-                    // (without one the return time is the horizon, not a measurement), fall
-                    // rates only where both received pushes (a walker that falls while
-                    // walking gets none, and its 0 falls would look perfect).
-                    let absorbed = |p: u32, f: u32| p.saturating_sub(f) > 0;
-                    let both_absorbed = falls.as_ref().is_none_or(|f| {
-                        absorbed(f.pushes.model, f.falls.model)
-                            && absorbed(f.pushes.learned, f.falls.learned)
-                    });
-                    return_diff.push(if both_absorbed {
-                        return_time_s.learned - return_time_s.model
-                    } else {
-                        f64::NAN
-                    });
-                    // Absent in older summaries (and the step error without an absorbed push):
-                    // NaN, which the pairing leaves out.
-                    settle_diff.push(
-                        settle_time_s
-                            .as_ref()
-                            .filter(|_| both_absorbed)
-                            .map_or(f64::NAN, |t| t.learned - t.model),
-                    );
-                    error_diff.push(
-                        step_error_after_push_m
-                            .as_ref()
-                            .map_or(f64::NAN, |e| 100.0 * (e.learned - e.model)),
-                    );
-                    if let Some(f) = falls {
-                        let rate = |falls: u32, pushes: u32| {
-                            if pushes == 0 {
-                                f64::NAN
-                            } else {
-                                falls as f64 / pushes as f64
-                            }
-                        };
-                        falls_diff.push(
-                            rate(f.falls.learned, f.pushes.learned)
-                                - rate(f.falls.model, f.pushes.model),
-                        );
-                        // Absent in older summaries: NaN, which the pairing leaves out.
-                        late_falls_diff.push(f.before_next_push.as_ref().map_or(f64::NAN, |b| {
-                            rate(b.learned, f.pushes.learned) - rate(b.model, f.pushes.model)
-                        }));
-                    }
-                    let near = max_tda_rad.learned <= 1.5 * p_theta;
-                    // Return times cover absorbed pushes only: a walker that falls more often
-                    // than the model does not return sooner.
-                    let no_more_falls = falls
-                        .as_ref()
-                        .is_none_or(|f| f.falls.learned <= f.falls.model);
-                    let fell = falls
-                        .as_ref()
-                        .map(|f| {
-                            format!(
-                                "; falls {} / {} learned vs {} / {} model",
-                                f.falls.learned, f.pushes.learned, f.falls.model, f.pushes.model
-                            )
-                        })
-                        .unwrap_or_default();
-                    let settle = settle_time_s
-                        .as_ref()
-                        .map(|t| {
-                            format!(
-                                "; settle {:.2} s learned vs {:.2} s model",
-                                t.learned, t.model
-                            )
-                        })
-                        .unwrap_or_default();
-                    disturbance.push((
-                        s.seed,
-                        sooner && near && no_more_falls,
-                        format!(
-                            "return {:.2} s learned vs {:.2} s model{settle}; max TDA {:.3} vs {:.3} rad{fell}",
-                            return_time_s.learned,
-                            return_time_s.model,
-                            max_tda_rad.learned,
-                            max_tda_rad.model
-                        ),
-                    ));
-                }
-                ExperimentResult::Stability { controllers: c, .. } => {
-                    let (o, m, l) = (
-                        c.open_loop.impulse_at_50pct_fall_ns,
-                        c.model.impulse_at_50pct_fall_ns,
-                        c.learned.impulse_at_50pct_fall_ns,
-                    );
-                    i50_ratio.push(l / m);
-                    model_over_open.push(m / o);
-                    stability.push((
-                        s.seed,
-                        l >= m && m >= 1.5 * o,
-                        format!(
-                            "I50 learned {l:.2}, model {m:.2}, open-loop {o:.2} Ns (learned/model {:.2})",
-                            l / m
-                        ),
-                    ));
-                }
-                ExperimentResult::Robustness {
-                    pushes_until_first_absorbed,
-                    falls,
-                    impulse_ns,
-                    absorbed_by_push,
-                    no_learning,
-                } => {
-                    let n = *pushes_until_first_absorbed;
-                    let early = n.is_some_and(|n| n <= 3);
-                    let absorbed = absorbed_by_push.iter().filter(|&&a| a).count();
-                    let impulse = impulse_ns.map_or(String::new(), |i| format!(" at {i} Ns"));
-                    let first = match n {
-                        Some(n) => format!("first absorbed: push {n}"),
-                        None => "no push absorbed".to_string(),
-                    };
-                    // Without the baseline (older summaries) the comparison is not measured
-                    // and the claim does not hold for the seed.
-                    let (more, baseline) = match no_learning {
-                        Some(b) => {
-                            let b_absorbed = b.absorbed_by_push.iter().filter(|&&a| a).count();
-                            absorbed_diff.push(absorbed as f64 - b_absorbed as f64);
-                            (
-                                absorbed > b_absorbed,
-                                format!(
-                                    "absorbed {absorbed} of {} pushes{impulse} ({falls} falls) vs {b_absorbed} of {} without learning ({} falls)",
-                                    absorbed_by_push.len(),
-                                    b.absorbed_by_push.len(),
-                                    b.falls
-                                ),
-                            )
-                        }
-                        None => (false, format!("{falls} falls; no run without learning")),
-                    };
-                    robustness.push((s.seed, early && more, format!("{first}; {baseline}")));
-                }
-                ExperimentResult::Custom(_) => {}
-            }
-        }
-        let tracking_std_mean = if std_n == 0 {
-            Vec::new()
-        } else {
-            std_sum
-                .into_iter()
-                .map(|(t, m, l)| (t, m / std_n as f64, l / std_n as f64))
-                .collect()
-        };
-        let every = |k: usize, n: usize| k == n;
-        let most = |k: usize, n: usize| 2 * k > n;
         Claims {
-            tracking: Claim::new(
-                "1. With learning, the std of the step error is lower than the model's at every time bin after a reference change, all bins but at most one (every seed).",
-                tracking,
-                every,
-                bin_diff
-                    .iter()
-                    .enumerate()
-                    .map(|(k, v)| {
-                        let (a, b) = (k as f64 * bin_s_all, (k + 1) as f64 * bin_s_all);
-                        Paired::new(
-                            &format!(
-                                "std of F_E {a:.1}-{b:.1} s after a change, learned - model (cm)"
-                            ),
-                            v,
-                            0.0,
-                            Direction::LowerIsBetter,
-                        )
-                    })
-                    .collect(),
-            ),
-            disturbance: Claim::new(
-                "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta and no more falls (every seed).",
-                disturbance,
-                every,
-                vec![
-                    Paired::new(
-                        "return time to the reference step, learned - model (s)",
-                        &return_diff,
-                        0.0,
-                        Direction::LowerIsBetter,
-                    ),
-                    Paired::new(
-                        "settle time to the walker's own undisturbed step, learned - model (s)",
-                        &settle_diff,
-                        0.0,
-                        Direction::LowerIsBetter,
-                    ),
-                    Paired::new(
-                        "mean absolute step error F_hat - F_R of the touch-downs within the horizon after a push, learned - model (cm)",
-                        &error_diff,
-                        0.0,
-                        Direction::LowerIsBetter,
-                    ),
-                    Paired::new(
-                        "share of pushes ending in a fall, learned - model",
-                        &falls_diff,
-                        0.0,
-                        Direction::LowerIsBetter,
-                    ),
-                    Paired::new(
-                        "share of pushes followed by a fall before the next push, learned - model",
-                        &late_falls_diff,
-                        0.0,
-                        Direction::LowerIsBetter,
-                    ),
-                ],
-            ),
-            stability: Claim::new(
-                "3. Impulse at 50% falls: learned >= model >= 1.5 x open-loop (every seed).",
-                stability,
-                every,
-                vec![
-                    Paired::new(
-                        "I50 learned / model",
-                        &i50_ratio,
-                        1.0,
-                        Direction::HigherIsBetter,
-                    ),
-                    Paired::new(
-                        "I50 model / open-loop",
-                        &model_over_open,
-                        1.5,
-                        Direction::HigherIsBetter,
-                    ),
-                ],
-            ),
-            robustness: Claim::new(
-                "4. Without initialisation, the learner absorbs a push within its first three pushes and absorbs more pushes than the same walker without learning (dF = 0) on the same episodes (most seeds).",
-                robustness,
-                most,
-                vec![Paired::new(
-                    "pushes absorbed, learned - without learning",
-                    &absorbed_diff,
-                    0.0,
-                    Direction::HigherIsBetter,
-                )],
-            ),
-            tracking_std_mean,
+            tracking: tracking::claim(summaries),
+            disturbance: disturbance::claim(summaries, p_theta),
+            stability: stability::claim(summaries),
+            robustness: robustness::claim(summaries),
+            tracking_std_mean: tracking::std_over_seeds(summaries),
         }
     }
 
@@ -490,10 +164,12 @@ impl Claims {
 }
 
 /// Reads the summaries of `grid`'s runs under `out` (one directory per run id); runs without a
-/// summary are left out and listed in the second value.
+/// summary, or whose recorded identity is not `runner`'s, are left out and listed in the second
+/// value.
 pub fn read_summaries(
     grid: &SweepGrid,
     out: &Path,
+    runner: &dyn Runner,
 ) -> Result<(Vec<Summary>, Vec<String>), ExperimentError> {
     let runs = grid
         .runs()
@@ -502,7 +178,7 @@ pub fn read_summaries(
     let mut missing = Vec::new();
     for spec in runs {
         let path = out.join(spec.id()).join(SUMMARY_FILE);
-        if path.exists() {
+        if is_current(runner, &spec, out) {
             summaries.push(Summary::read(&path)?);
         } else {
             missing.push(spec.id());
@@ -515,6 +191,7 @@ pub fn read_summaries(
 mod tests {
     use super::*;
     use crate::experiments::paired::Verdict;
+    use crate::experiments::summary::ExperimentResult;
     use crate::experiments::summary::{
         ControllerFalls, Controllers, ModelLearned, NoLearning, PushFalls,
     };

@@ -2,18 +2,23 @@
 //! walker, the Capture Step *model* and the *learned* walker, walking in place with forward
 //! pushes of random impulse at random gait phases.
 
+use super::claim::{Claim, by_seed};
 use super::error::ExperimentError;
+use super::experiment::{Experiment, Headline, PushOptions, RunContext};
 use super::fall_causes::{
     ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified,
 };
+use super::paired::{Direction, Paired};
+use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::summary::FallCauseCounts;
 use super::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
+use crate::config::limits::{MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
-use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult};
+use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult, Summary};
 use crate::report::ReportError;
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
@@ -52,10 +57,18 @@ impl StabilityProtocol {
     /// Checks at least one push, a non-negative ordered impulse range, a positive ordered gap
     /// and a unit direction; errors name the field (relative to the protocol's section).
     pub fn validate(&self) -> Result<(), ConfigError> {
-        config::at_least("pushes", self.pushes, 1)?;
+        config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
         config::non_negative_range("impulse", self.impulse)?;
+        config::range_in("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
         config::positive_range("gap_s", self.gap_s)?;
+        config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)?;
         config::unit_direction("direction", &self.direction)
+    }
+}
+
+impl Protocol for StabilityProtocol {
+    fn validate(&self) -> Result<(), ConfigError> {
+        StabilityProtocol::validate(self)
     }
 }
 
@@ -248,11 +261,11 @@ pub fn direction_name(d: [f64; 3]) -> String {
     }
 }
 
-/// Experiment C as a registered [`super::experiment::Experiment`].
+/// Experiment C as a registered [`Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Stability;
 
-impl super::experiment::Experiment for Stability {
+impl Experiment for Stability {
     fn name(&self) -> &str {
         super::ExperimentKind::Stability.into()
     }
@@ -261,14 +274,15 @@ impl super::experiment::Experiment for Stability {
         "C (Fig. 6): stability; impulse at 50% falls stepping in place"
     }
 
-    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
-        super::reproduce::Claims::from_runs(runs, 0.0)
-            .stability
-            .over_seeds
+    fn protocol(&self, tables: &ProtocolTables) -> Result<Option<Table>, ConfigError> {
+        tables.resolve::<StabilityProtocol>(self.name())
     }
 
-    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
-        use super::experiment::Headline;
+    fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
+        claim(runs).over_seeds
+    }
+
+    fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut h: [Vec<f64>; 4] = Default::default();
         for s in runs {
             if let ExperimentResult::Stability { controllers: c, .. } = &s.result {
@@ -289,22 +303,19 @@ impl super::experiment::Experiment for Stability {
 
     fn apply_push_options(
         &self,
-        protocols: &mut super::run::Protocols,
-        options: &super::experiment::PushOptions,
+        protocols: &mut ProtocolTables,
+        options: &PushOptions,
     ) -> Result<(), String> {
-        let p = &mut protocols.stability;
+        let mut p: StabilityProtocol = protocols.get(self.name()).map_err(|e| e.to_string())?;
         p.pushes = options.pushes.unwrap_or(p.pushes);
         p.impulse = options.impulse_range.unwrap_or(p.impulse);
         p.direction = options.direction.unwrap_or(p.direction);
-        Ok(())
+        protocols.set(self.name(), &p).map_err(|e| e.to_string())
     }
 
-    fn run(
-        &self,
-        ctx: &super::experiment::RunContext<'_>,
-        dir: &Path,
-    ) -> Result<ExperimentResult, ExperimentError> {
-        let p = &ctx.protocols.stability;
+    fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
+        let p: StabilityProtocol = ctx.protocols.get(self.name())?;
+        let p = &p;
         let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
         r.write(dir, p.impulse, p.direction)?;
         let falls = |c: &ControllerPushes| ControllerFalls {
@@ -335,4 +346,51 @@ mod tests {
         assert_eq!(direction_name([0.0, -1.0, 0.0]), "right");
         assert_eq!(direction_name([0.6, 0.8, 0.0]), "(0.6, 0.8, 0)");
     }
+}
+
+/// Claim 3, checked on `runs` (this experiment's summaries, any order): the impulse at 50%
+/// falls of the learned walker at least the model's, and the model's at least 1.5 times the
+/// open-loop walker's, on every seed; both ratios paired over seeds.
+pub fn claim(runs: &[&Summary]) -> Claim {
+    let mut seeds = Vec::new();
+    let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
+    for (seed, c) in by_seed(runs, |s| match &s.result {
+        ExperimentResult::Stability { controllers, .. } => Some(controllers),
+        _ => None,
+    }) {
+        let (o, m, l) = (
+            c.open_loop.impulse_at_50pct_fall_ns,
+            c.model.impulse_at_50pct_fall_ns,
+            c.learned.impulse_at_50pct_fall_ns,
+        );
+        i50_ratio.push(l / m);
+        model_over_open.push(m / o);
+        seeds.push((
+            seed,
+            l >= m && m >= 1.5 * o,
+            format!(
+                "I50 learned {l:.2}, model {m:.2}, open-loop {o:.2} Ns (learned/model {:.2})",
+                l / m
+            ),
+        ));
+    }
+    Claim::new(
+        "3. Impulse at 50% falls: learned >= model >= 1.5 x open-loop (every seed).",
+        seeds,
+        Claim::every,
+        vec![
+            Paired::new(
+                "I50 learned / model",
+                &i50_ratio,
+                1.0,
+                Direction::HigherIsBetter,
+            ),
+            Paired::new(
+                "I50 model / open-loop",
+                &model_over_open,
+                1.5,
+                Direction::HigherIsBetter,
+            ),
+        ],
+    )
 }

@@ -13,6 +13,7 @@
 //! On a cluster, run shard `I` of `N` as one task (`--shard I/N`, 0-based, e.g. a Slurm array
 //! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call [`merge`] when all are done.
 
+use crate::config::limits::MAX_SEEDS;
 use crate::experiments::summary::{ExperimentResult, Summary, check_name};
 use crate::report::{ReportError, write_atomic};
 use crate::report::{Shortest, write_rows};
@@ -28,6 +29,9 @@ use thiserror::Error;
 pub const SUMMARY_FILE: &str = "summary.json";
 /// Name of the bookkeeping file of a run.
 pub const RECORD_FILE: &str = "run.json";
+/// A finished run's identity ([`Runner::identity`]): everything that determines its results.
+/// A finished run is reused only when this file is the same, byte for byte.
+pub const IDENTITY_FILE: &str = "run-config.toml";
 /// File names written by [`Merged::write`].
 pub const TABLE_FILES: [&str; 2] = ["ablation.md", "ablation.csv"];
 
@@ -102,14 +106,15 @@ pub struct SweepGrid {
 }
 
 impl SweepGrid {
-    /// The product of the given names with seeds `0..n_seeds`.
+    /// The product of the given names with seeds `0..n_seeds` (more than
+    /// [`crate::config::limits::MAX_SEEDS`] seeds: [`SweepGrid::runs`] refuses the grid).
     pub fn new(experiments: &[&str], approx: &[&str], rules: &[&str], n_seeds: u64) -> Self {
         let owned = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
         SweepGrid {
             experiments: owned(experiments),
             approx: owned(approx),
             rules: owned(rules),
-            seeds: (0..n_seeds).collect(),
+            seeds: (0..n_seeds.min(MAX_SEEDS + 1)).collect(),
         }
     }
 
@@ -125,6 +130,11 @@ impl SweepGrid {
             if len == 0 {
                 return Err(SweepError::InvalidGrid(format!("{what} is empty")));
             }
+        }
+        if self.seeds.len() as u64 > MAX_SEEDS {
+            return Err(SweepError::InvalidGrid(format!(
+                "more than {MAX_SEEDS} seeds"
+            )));
         }
         for (what, names) in [
             ("experiment", &self.experiments),
@@ -239,6 +249,15 @@ pub type RunError = Box<dyn std::error::Error + Send + Sync>;
 pub trait Runner: Sync {
     /// Runs `spec`, writing extra outputs into `dir`.
     fn run(&self, spec: &RunSpec, dir: &Path) -> Result<Summary, RunError>;
+
+    /// Everything that determines the results of `spec` (the run, the resolved settings and
+    /// protocol, the results format), as text: recorded as [`IDENTITY_FILE`] in the run's
+    /// directory, and a finished run is reused only if its record is the same. `None` (the
+    /// default, and for closures): a finished run is reused whatever produced it.
+    fn identity(&self, spec: &RunSpec) -> Result<Option<String>, RunError> {
+        let _ = spec;
+        Ok(None)
+    }
 }
 
 impl<F> Runner for F
@@ -271,7 +290,8 @@ pub enum RunStatus {
         /// Wall-clock time (s).
         wall_time_s: f64,
     },
-    /// A valid `summary.json` was already there.
+    /// A valid `summary.json` of the same run (the same identity, where the runner gives one)
+    /// was already there.
     Skipped,
     /// The runner failed or panicked, its summary did not match the spec, or an existing
     /// `summary.json` is malformed (left untouched); no summary was written.
@@ -306,15 +326,65 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
         .unwrap_or_else(|| "non-string panic payload".into())
 }
 
+/// Whether the finished run in `dir` is the run of `identity`: `Ok` to reuse it, otherwise
+/// why not (naming the first difference and how to proceed).
+pub fn check_identity(dir: &Path, identity: &str) -> Result<(), String> {
+    let path = dir.join(IDENTITY_FILE);
+    let how = format!(
+        "choose another output directory, or delete {} to run it again",
+        dir.display()
+    );
+    match std::fs::read_to_string(&path) {
+        Ok(existing) if existing == identity => Ok(()),
+        Ok(existing) => {
+            let differs = existing
+                .lines()
+                .zip(identity.lines())
+                .find(|(a, b)| a != b)
+                .map(|(a, b)| format!("recorded `{a}`, asked `{b}`"))
+                .unwrap_or_else(|| "the recorded configuration has other keys".to_string());
+            Err(format!(
+                "{} holds a finished run of another configuration ({differs}); {how}",
+                dir.display()
+            ))
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(format!(
+            "{} holds a finished run without a recorded configuration ({IDENTITY_FILE}), so \
+             whether it matches cannot be told; {how}",
+            dir.display()
+        )),
+        Err(e) => Err(format!("cannot read {}: {e}", path.display())),
+    }
+}
+
+/// Whether `out` holds a finished run of `spec` that `runner` would produce now: a readable
+/// summary, and the same identity where the runner records one.
+pub fn is_current(runner: &dyn Runner, spec: &RunSpec, out: &Path) -> bool {
+    let dir = out.join(spec.id());
+    dir.join(SUMMARY_FILE).exists()
+        && match runner.identity(spec) {
+            Ok(None) => true,
+            Ok(Some(identity)) => check_identity(&dir, &identity).is_ok(),
+            Err(_) => false,
+        }
+}
+
 fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
     let dir = out.join(spec.id());
     let summary_path = dir.join(SUMMARY_FILE);
+    let identity = match runner.identity(spec) {
+        Ok(identity) => identity,
+        Err(e) => return RunStatus::Failed(format!("invalid run: {e}")),
+    };
     if summary_path.exists() {
-        return match Summary::read(&summary_path) {
-            Ok(_) => RunStatus::Skipped,
-            Err(e) => RunStatus::Failed(format!(
+        if let Err(e) = Summary::read(&summary_path) {
+            return RunStatus::Failed(format!(
                 "existing result is unreadable and was left untouched (delete it to re-run): {e}"
-            )),
+            ));
+        }
+        return match identity.map(|i| check_identity(&dir, &i)) {
+            None | Some(Ok(())) => RunStatus::Skipped,
+            Some(Err(why)) => RunStatus::Failed(why),
         };
     }
     if let Err(e) = create_dir(&dir) {
@@ -347,6 +417,10 @@ fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
     let written = serde_json::to_string_pretty(&record)
         .map_err(|e| ReportError::invalid(e.to_string()))
         .and_then(|json| write_atomic(&dir.join(RECORD_FILE), json.as_bytes()))
+        .and_then(|()| match &identity {
+            Some(i) => write_atomic(&dir.join(IDENTITY_FILE), i.as_bytes()),
+            None => Ok(()),
+        })
         .and_then(|()| summary.write(&summary_path));
     match written {
         Ok(()) => RunStatus::Done { wall_time_s },

@@ -4,15 +4,20 @@
 //! change: its mean and standard deviation per bin are the figure.
 
 use super::aligned::AlignedStats;
+use super::claim::{Claim, by_seed};
 use super::compare::{ModelAndLearned, run_model_and_learned};
 use super::error::ExperimentError;
+use super::experiment::{Experiment, Headline, PushOptions, RunContext};
+use super::paired::{Direction, Paired};
+use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::ReferenceSchedule;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::TrialLog;
 use crate::approx::FunctionApproximator;
+use crate::config::limits::{MAX_BINS, MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S, MIN_BIN_S};
 use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
-use crate::experiments::summary::{ExperimentResult, ModelLearned};
+use crate::experiments::summary::{ExperimentResult, ModelLearned, Summary};
 use crate::report::ReportError;
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
 use crate::report::{Fixed, write_rows};
@@ -53,10 +58,18 @@ impl TrackingProtocol {
     /// field (relative to the protocol's section).
     pub fn validate(&self) -> Result<(), ConfigError> {
         config::ordered("reference", self.reference)?;
+        config::range_in("reference", self.reference, -MAX_STEP_M, MAX_STEP_M)?;
         config::positive_range("hold_s", self.hold_s)?;
-        config::positive("duration_s", self.duration_s)?;
-        config::positive("bin_s", self.bin_s)?;
+        config::range_in("hold_s", self.hold_s, 0.0, MAX_GAP_S)?;
+        config::in_range("duration_s", self.duration_s, MIN_BIN_S, MAX_TRIAL_S)?;
+        config::in_range("bin_s", self.bin_s, MIN_BIN_S, MAX_GAP_S)?;
         config::positive("horizon_s", self.horizon_s)?;
+        config::ensure(self.horizon_s / self.bin_s <= MAX_BINS, "bin_s", || {
+            format!(
+                "gives more than {MAX_BINS} bins over the horizon {} s",
+                self.horizon_s
+            )
+        })?;
         config::ensure(self.horizon_s <= self.hold_s.0, "horizon_s", || {
             format!(
                 "{} s exceeds the shortest hold {} s",
@@ -66,6 +79,12 @@ impl TrackingProtocol {
         config::ensure(self.bin_s <= self.horizon_s, "bin_s", || {
             format!("{} s exceeds the horizon {} s", self.bin_s, self.horizon_s)
         })
+    }
+}
+
+impl Protocol for TrackingProtocol {
+    fn validate(&self) -> Result<(), ConfigError> {
+        TrackingProtocol::validate(self)
     }
 }
 
@@ -241,11 +260,11 @@ impl TrackingResult {
     }
 }
 
-/// Experiment A as a registered [`super::experiment::Experiment`].
+/// Experiment A as a registered [`Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Tracking;
 
-impl super::experiment::Experiment for Tracking {
+impl Experiment for Tracking {
     fn name(&self) -> &str {
         super::ExperimentKind::Tracking.into()
     }
@@ -254,7 +273,11 @@ impl super::experiment::Experiment for Tracking {
         "A (Fig. 4): reference tracking; std of the step error after a reference change"
     }
 
-    fn versus_model(&self, runs: &[&super::summary::Summary]) -> Vec<super::paired::Paired> {
+    fn protocol(&self, tables: &ProtocolTables) -> Result<Option<Table>, ConfigError> {
+        tables.resolve::<TrackingProtocol>(self.name())
+    }
+
+    fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
         let mut mean_diff = Vec::new();
         for s in runs {
             if let ExperimentResult::Tracking {
@@ -270,22 +293,17 @@ impl super::experiment::Experiment for Tracking {
                 mean_diff.push(if d.count() == 0 { f64::NAN } else { d.mean() });
             }
         }
-        let mut out = vec![super::paired::Paired::new(
+        let mut out = vec![Paired::new(
             "std of F_E averaged over the bins after a change, learned - model (cm)",
             &mean_diff,
             0.0,
-            super::paired::Direction::LowerIsBetter,
+            Direction::LowerIsBetter,
         )];
-        out.extend(
-            super::reproduce::Claims::from_runs(runs, 0.0)
-                .tracking
-                .over_seeds,
-        );
+        out.extend(claim(runs).over_seeds);
         out
     }
 
-    fn headline(&self, runs: &[&super::summary::Summary]) -> Vec<super::experiment::Headline> {
-        use super::experiment::Headline;
+    fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut model = Vec::new();
         let mut learned = Vec::new();
         for s in runs {
@@ -305,8 +323,8 @@ impl super::experiment::Experiment for Tracking {
 
     fn apply_push_options(
         &self,
-        _protocols: &mut super::run::Protocols,
-        options: &super::experiment::PushOptions,
+        _protocols: &mut ProtocolTables,
+        options: &PushOptions,
     ) -> Result<(), String> {
         if !options.is_empty() {
             return Err("the tracking experiment has no pushes".into());
@@ -314,12 +332,9 @@ impl super::experiment::Experiment for Tracking {
         Ok(())
     }
 
-    fn run(
-        &self,
-        ctx: &super::experiment::RunContext<'_>,
-        dir: &Path,
-    ) -> Result<ExperimentResult, ExperimentError> {
-        let p = &ctx.protocols.tracking;
+    fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
+        let p: TrackingProtocol = ctx.protocols.get(self.name())?;
+        let p = &p;
         let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
         r.write(dir)?;
         let (model, learned) = r.std_per_bin();
@@ -339,4 +354,95 @@ struct AlignedRow<'a> {
     mean_f_e_m: Fixed<6>,
     std_f_e_m: Fixed<6>,
     steps: usize,
+}
+
+/// Claim 1, checked on `runs` (this experiment's summaries, any order): with learning, the
+/// std of the step error is below the model's in every time bin after a reference change but
+/// at most one, on every seed; paired over seeds bin by bin.
+pub fn claim(runs: &[&Summary]) -> Claim {
+    let mut seeds = Vec::new();
+    let mut bin_diff: Vec<Vec<f64>> = Vec::new();
+    let mut bin_s_all = f64::NAN;
+    for (seed, (std, bin_s)) in by_seed(runs, bins) {
+        let (m, l) = (&std.model, &std.learned);
+        let better = m
+            .iter()
+            .zip(l)
+            .filter(|(m, l)| matches!((m, l), (Some(m), Some(l)) if l < m))
+            .count();
+        bin_s_all = bin_s;
+        if bin_diff.len() < m.len() {
+            bin_diff.resize(m.len(), Vec::new());
+        }
+        for (k, (m, l)) in m.iter().zip(l).enumerate() {
+            if let (Some(m), Some(l)) = (m, l) {
+                bin_diff[k].push(100.0 * (l - m));
+            }
+        }
+        // Every bin but at most one (the reading of "at every time").
+        let holds = !m.is_empty() && better + 1 >= m.len();
+        seeds.push((
+            seed,
+            holds,
+            format!("learned std lower in {better} of {} bins", m.len()),
+        ));
+    }
+    let over_seeds = bin_diff
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let (a, b) = (k as f64 * bin_s_all, (k + 1) as f64 * bin_s_all);
+            Paired::new(
+                &format!("std of F_E {a:.1}-{b:.1} s after a change, learned - model (cm)"),
+                v,
+                0.0,
+                Direction::LowerIsBetter,
+            )
+        })
+        .collect();
+    Claim::new(
+        "1. With learning, the std of the step error is lower than the model's at every time bin after a reference change, all bins but at most one (every seed).",
+        seeds,
+        Claim::every,
+        over_seeds,
+    )
+}
+
+/// The std of F_E per bin, (bin centre s, model, learned), averaged over the seeds of `runs`
+/// with data in every bin (the bins of the first seed); empty if no seed has.
+pub fn std_over_seeds(runs: &[&Summary]) -> Vec<(f64, f64, f64)> {
+    let mut sum: Vec<(f64, f64, f64)> = Vec::new();
+    let mut n = 0usize;
+    for (_, (std, bin_s)) in by_seed(runs, bins) {
+        let (m, l) = (&std.model, &std.learned);
+        if sum.is_empty() {
+            sum = (0..m.len())
+                .map(|k| ((k as f64 + 0.5) * bin_s, 0.0, 0.0))
+                .collect();
+        }
+        if sum.len() == m.len() && m.iter().chain(l).all(Option::is_some) {
+            for (acc, (m, l)) in sum.iter_mut().zip(m.iter().zip(l)) {
+                acc.1 += m.unwrap_or(0.0);
+                acc.2 += l.unwrap_or(0.0);
+            }
+            n += 1;
+        }
+    }
+    if n == 0 {
+        return Vec::new();
+    }
+    sum.into_iter()
+        .map(|(t, m, l)| (t, m / n as f64, l / n as f64))
+        .collect()
+}
+
+/// A tracking summary's std of F_E per bin and its bin width.
+fn bins(s: &Summary) -> Option<(&ModelLearned<Vec<Option<f64>>>, f64)> {
+    match &s.result {
+        ExperimentResult::Tracking {
+            step_error_std_m,
+            bin_s,
+        } => Some((step_error_std_m, *bin_s)),
+        _ => None,
+    }
 }

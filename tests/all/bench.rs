@@ -10,7 +10,7 @@ use steplearn::control::learner::LearnerInput;
 use steplearn::experiments::ExperimentError;
 use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
-use steplearn::experiments::run::Protocols;
+use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
 use steplearn::experiments::sweep::{RunSpec, Shard};
@@ -251,7 +251,7 @@ fn a_run_gives_the_same_bytes_alone_in_a_bench_sharded_and_through_the_command_l
     let alone = temp_dir("alone");
     std::fs::create_dir_all(&alone).unwrap();
     let summary = r
-        .run_spec(&spec, &alone, &settings, &Protocols::default())
+        .run_spec(&spec, &alone, &settings, &ProtocolTables::new())
         .unwrap();
     let want = summary.to_json().unwrap();
 

@@ -43,11 +43,96 @@ fn stability_run_writes_summary_and_figures() {
     assert!(page.contains("experiment stability --pushes 3 --seed 4"));
     assert!(page.contains("[protocols.stability]"));
 
-    // A failing run leaves what is there untouched.
-    let before = std::fs::read(dir.join("summary.json")).unwrap();
-    let o = steplearn(&["experiment", "tracking", "--pushes", "3", "--out", out]);
-    assert!(!o.status.success());
-    assert_eq!(before, std::fs::read(dir.join("summary.json")).unwrap());
+    assert!(dir.join("run-config.toml").exists());
+
+    // The same run again is reused, not run; another run into the directory is refused and
+    // leaves every file of the finished run as it was.
+    let files = |d: &std::path::Path| {
+        let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.is_file())
+            .map(|p| {
+                (
+                    p.file_name().unwrap().to_string_lossy().into_owned(),
+                    std::fs::read(&p).unwrap(),
+                )
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let before = files(&dir);
+    let same = [
+        "experiment",
+        "stability",
+        "--pushes",
+        "3",
+        "--seed",
+        "4",
+        "--out",
+        out,
+    ];
+    let o = steplearn(&same);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("reused"));
+    assert_eq!(files(&dir), before);
+    for other in [
+        vec![
+            "experiment",
+            "stability",
+            "--pushes",
+            "3",
+            "--seed",
+            "5",
+            "--out",
+            out,
+        ],
+        vec![
+            "experiment",
+            "stability",
+            "--pushes",
+            "2",
+            "--seed",
+            "4",
+            "--out",
+            out,
+        ],
+        vec!["experiment", "disturbance", "--pushes", "1", "--out", out],
+    ] {
+        let o = steplearn(&other);
+        assert!(!o.status.success(), "{other:?} ran over a finished run");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("--overwrite") && err.contains("another configuration"),
+            "{err}"
+        );
+        assert_eq!(files(&dir), before, "{other:?}");
+    }
+    // Replacing it takes --overwrite, and leaves no file of the old run behind.
+    let o = steplearn(&[
+        "experiment",
+        "robustness",
+        "--pushes",
+        "1",
+        "--seed",
+        "5",
+        "--overwrite",
+        "--out",
+        out,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let now = files(&dir);
+    assert!(
+        now.iter()
+            .all(|(name, _)| !name.contains("fall_probability")),
+        "{now:?}"
+    );
+    let summary = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    assert!(
+        summary.contains("\"robustness\"") && summary.contains("\"seed\": 5"),
+        "{summary}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -87,7 +172,7 @@ fn bad_arguments_are_messages_and_failures() {
         ),
         (
             vec!["experiment", "stability", "--pushes", "0", "--out", "x"],
-            "--pushes must be at least 1",
+            "--pushes must be in [1, 10000], got 0",
         ),
         (
             vec![
@@ -288,7 +373,11 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
     let o = steplearn(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(stdout.matches("REPRODUCED").count(), 4, "{stdout}");
+    let verdicts = stdout
+        .lines()
+        .filter(|l| l.starts_with("REPRODUCED") || l.starts_with("NOT REPRODUCED"))
+        .count();
+    assert_eq!(verdicts, 4, "{stdout}");
     for kind in ["tracking", "disturbance", "stability", "robustness"] {
         let summary = out.join(format!("{kind}__lwpr__pendulum-cart__s0/summary.json"));
         assert!(summary.exists(), "{kind}");
@@ -324,5 +413,24 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
     // The finished runs were reused, not run again: their files were not rewritten.
     let after: Vec<_> = summaries.iter().map(|p| modified(p)).collect();
     assert_eq!(before, after);
+    // A changed config never yields the old results: the run it changes is refused (its
+    // files kept), and the report is not rewritten.
+    std::fs::write(
+        &config,
+        "[settings]\nscale = 0.02\n[protocols.stability]\npushes = 11\n\
+         [protocols.robustness]\npushes = 10\n",
+    )
+    .unwrap();
+    let stability = std::fs::read(&summaries[2]).unwrap();
+    let o = steplearn(&args);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("stability__lwpr__pendulum-cart__s0"), "{err}");
+    assert!(
+        err.contains("another configuration") && err.contains("pushes"),
+        "{err}"
+    );
+    assert_eq!(stability, std::fs::read(&summaries[2]).unwrap());
+    assert_eq!(report, std::fs::read(out.join("claims.md")).unwrap());
     std::fs::remove_dir_all(&dir).ok();
 }

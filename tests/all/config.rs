@@ -5,8 +5,12 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use steplearn::experiments::config_file::ConfigFile;
-use steplearn::experiments::run::Protocols;
+use steplearn::experiments::disturbance::DisturbanceProtocol;
+use steplearn::experiments::protocol::ProtocolTables;
+use steplearn::experiments::robustness::RobustnessProtocol;
 use steplearn::experiments::settings::Settings;
+use steplearn::experiments::stability::StabilityProtocol;
+use steplearn::experiments::tracking::TrackingProtocol;
 use steplearn::sim::BodyConfig;
 
 fn steplearn(args: &[&str]) -> Output {
@@ -178,7 +182,7 @@ fn partial_nested_sections_keep_the_other_defaults() {
     let mut expected = Settings::default();
     expected.sim.body.torso.mass = 11.5;
     assert_eq!(config.settings, expected);
-    assert_eq!(config.protocols, Protocols::default());
+    assert_eq!(config.protocols, ProtocolTables::new());
 
     // Thigh and shank share a type but not their defaults: each keeps its own.
     let config = ConfigFile::parse_toml("[settings.sim.body.shank]\nmass = 0.7\n").unwrap();
@@ -190,8 +194,9 @@ fn partial_nested_sections_keep_the_other_defaults() {
 
     // The robustness map keeps the protocol's 31 x 31, not the type's default.
     let config = ConfigFile::parse_toml("[protocols.robustness.map]\nf_r = 0.1\n").unwrap();
-    assert_eq!(config.protocols.robustness.map.f_r, 0.1);
-    assert_eq!(config.protocols.robustness.map.resolution, (31, 31));
+    let robustness: RobustnessProtocol = config.protocols.get("robustness").unwrap();
+    assert_eq!(robustness.map.f_r, 0.1);
+    assert_eq!(robustness.map.resolution, (31, 31));
 
     // The CLI accepts it.
     let (ok, out, err) = check("[settings.sim.body.torso]\nmass = 11.5\n");
@@ -248,8 +253,25 @@ fn printed_defaults_round_trip_through_check_and_parse_to_the_defaults() {
     }
     let parsed = ConfigFile::parse_toml(&text).unwrap();
     assert_eq!(parsed.settings, Settings::default());
-    assert_eq!(parsed.protocols, Protocols::default());
-    assert_eq!(parsed, ConfigFile::default());
+    let p = &parsed.protocols;
+    assert_eq!(
+        p.get::<TrackingProtocol>("tracking"),
+        Ok(TrackingProtocol::default())
+    );
+    assert_eq!(
+        p.get::<DisturbanceProtocol>("disturbance"),
+        Ok(DisturbanceProtocol::default())
+    );
+    assert_eq!(
+        p.get::<StabilityProtocol>("stability"),
+        Ok(StabilityProtocol::default())
+    );
+    assert_eq!(
+        p.get::<RobustnessProtocol>("robustness"),
+        Ok(RobustnessProtocol::default())
+    );
+    let defaults = ConfigFile::default().resolved_for(&steplearn::experiments::suite::paper());
+    assert_eq!(Ok(parsed), defaults);
     let (ok, out, err) = check(&text);
     assert!(ok, "{err}");
     assert_eq!(out.trim(), "ok");
@@ -359,4 +381,141 @@ fn malformed_files_and_missing_files_are_errors() {
     let o = steplearn(&["config", "--check", "/nonexistent-steplearn.toml"]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read"));
+}
+
+/// Values beyond what a run can do in bounded memory and time: each is refused by
+/// `config --check` and by the run itself, with a message naming the key, before anything
+/// runs (never a panic, an abort or a hang).
+#[test]
+fn hostile_values_are_refused_before_anything_runs() {
+    let huge = u64::MAX;
+    let cases = [
+        (
+            format!("[protocols.stability]\npushes = {}\n", i64::MAX),
+            "protocols.stability.pushes",
+        ),
+        (
+            "[protocols.tracking]\nbin_s = 1e-300\n".to_string(),
+            "protocols.tracking.bin_s",
+        ),
+        (
+            "[protocols.tracking]\nduration_s = 1e300\n".to_string(),
+            "protocols.tracking.duration_s",
+        ),
+        (
+            "[protocols.stability]\ngap_s = [1e300, 1e300]\n".to_string(),
+            "protocols.stability.gap_s",
+        ),
+        (
+            "[protocols.stability]\nimpulse = [0.0, 1e300]\n".to_string(),
+            "protocols.stability.impulse",
+        ),
+        (
+            "[protocols.disturbance]\nimpulse = 1e300\n".to_string(),
+            "protocols.disturbance.impulse",
+        ),
+        (
+            "[protocols.robustness]\nimpulse = 1e300\n".to_string(),
+            "protocols.robustness.impulse",
+        ),
+        (
+            "[protocols.robustness.map]\nresolution = [100000000, 100000000]\n".to_string(),
+            "protocols.robustness.map.resolution",
+        ),
+        (
+            "[protocols.robustness.metric_grid]\npoints = [100000000, 1, 1]\n".to_string(),
+            "protocols.robustness.metric_grid",
+        ),
+        (
+            format!(
+                "[settings.learner]\nmax_samples_per_step = {}\n",
+                1u64 << 40
+            ),
+            "max_samples_per_step",
+        ),
+        (
+            "[settings.learner.prior]\nsamples = 1000000000000000\n".to_string(),
+            "prior.samples",
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (text, key) in &cases {
+        let (ok, _, err) = check(text);
+        assert!(!ok, "{text:?} accepted by config --check");
+        assert!(err.contains(key), "{text:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        let e = ConfigFile::parse_toml(text).unwrap_err();
+        assert!(e.to_string().contains(key), "{text:?}: {e}");
+        // The run agrees with the check and leaves nothing behind.
+        let config = write(dir.path(), "hostile.toml", text);
+        let out = dir.path().join("out");
+        let o = steplearn(&[
+            "experiment",
+            "stability",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success(), "{text:?} ran");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(key) && !err.contains("panicked"),
+            "{text:?}: {err}"
+        );
+        assert!(!out.exists(), "{text:?} wrote {}", out.display());
+    }
+    // Command-line counts beyond the limits.
+    for args in [
+        vec!["reproduce", "--seeds", &huge.to_string()],
+        vec!["sweep", "--seeds", &huge.to_string()],
+        vec!["bench", "--seeds", &huge.to_string()],
+        vec!["experiment", "stability", "--pushes", &huge.to_string()],
+    ] {
+        let mut args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+        args.extend(["--out".into(), dir.path().join("cli").display().to_string()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = steplearn(&args);
+        assert!(!o.status.success(), "{args:?} ran");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            err.contains("seeds") || err.contains("pushes"),
+            "{args:?}: {err}"
+        );
+        assert!(!dir.path().join("cli").join("summary.json").exists());
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+    /// Any value of any numeric protocol key: refused with a message naming the key, or
+    /// accepted only within the documented limits (so that a run is bounded); never a panic.
+    #[test]
+    fn extreme_protocol_values_are_refused_or_bounded(
+        key in proptest::sample::select(vec![
+            ("stability", "pushes"), ("disturbance", "pushes"), ("robustness", "pushes"),
+            ("tracking", "bin_s"), ("tracking", "duration_s"), ("tracking", "horizon_s"),
+            ("disturbance", "impulse"), ("robustness", "impulse"), ("disturbance", "bin_s"),
+            ("disturbance", "horizon_s"), ("disturbance", "tolerance_m"), ("disturbance", "f_r"),
+        ]),
+        value in proptest::sample::select(vec![
+            "0", "1", "-1", "1e-300", "1e300", "nan", "inf", "-inf", "9223372036854775807",
+            "0.5", "4.0", "10001", "1e-3", "600.5",
+        ]),
+    ) {
+        let (section, name) = key;
+        let text = format!("[protocols.{section}]\n{name} = {value}\n");
+        let result = std::panic::catch_unwind(|| ConfigFile::parse_toml(&text));
+        let parsed = result.expect("validation never panics");
+        match parsed {
+            Err(e) => proptest::prop_assert!(e.field.starts_with(&format!("protocols.{section}")), "{text}: {e}"),
+            Ok(c) => {
+                let t = c.protocols.table(section).unwrap();
+                let v = t[name].as_float().or(t[name].as_integer().map(|i| i as f64)).unwrap();
+                proptest::prop_assert!(v.is_finite() && v.abs() <= 86_400.0, "{text} accepted");
+            }
+        }
+    }
 }

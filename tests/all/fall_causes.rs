@@ -8,7 +8,8 @@ use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::fall_causes::{
     FallCause, FallCauseObserver, FallEvent, StepLimits, classify,
 };
-use steplearn::experiments::run::Protocols;
+use steplearn::experiments::protocol::ProtocolTables;
+use steplearn::experiments::robustness::RobustnessProtocol;
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::StabilityProtocol;
@@ -82,14 +83,17 @@ fn the_observer_sees_every_fall_and_touch_down_of_a_trial() {
 #[test]
 fn stability_summary_counts_every_fall_by_cause() {
     let settings = Settings::default();
-    let protocols = Protocols {
-        stability: StabilityProtocol {
-            pushes: 5,
-            impulse: (6.0, 20.0),
-            ..StabilityProtocol::default()
-        },
-        ..Protocols::default()
-    };
+    let mut protocols = ProtocolTables::new();
+    protocols
+        .set(
+            "stability",
+            &StabilityProtocol {
+                pushes: 5,
+                impulse: (6.0, 20.0),
+                ..StabilityProtocol::default()
+            },
+        )
+        .unwrap();
     let dir = temp_dir("fall-causes-c");
     let s = Registry::builtin()
         .run_spec(
@@ -157,7 +161,7 @@ fn robustness_summary_carries_the_baseline_on_the_same_pushes() {
         scale: 0.2, // 3 of the protocol's 15 pushes
         ..Settings::default()
     };
-    let protocols = Protocols::default();
+    let protocols = ProtocolTables::new();
     let dir = temp_dir("fall-causes-d");
     let s = Registry::builtin()
         .run_spec(
@@ -178,7 +182,7 @@ fn robustness_summary_carries_the_baseline_on_the_same_pushes() {
     else {
         panic!("{:?}", s.result)
     };
-    assert_eq!(impulse_ns, Some(protocols.robustness.impulse));
+    assert_eq!(impulse_ns, Some(RobustnessProtocol::default().impulse));
     assert_eq!(absorbed_by_push.len(), 3);
     let b = no_learning.as_ref().expect("baseline");
     assert_eq!(b.absorbed_by_push.len(), absorbed_by_push.len());

@@ -386,13 +386,13 @@ fn all_files(dir: &Path) -> Vec<(String, Vec<u8>)> {
 #[test]
 fn real_experiments_are_byte_identical_under_1_and_4_threads() {
     use steplearn::bench::Registry;
-    use steplearn::experiments::run::Protocols;
+    use steplearn::experiments::protocol::ProtocolTables;
     use steplearn::experiments::settings::Settings;
     let settings = Settings {
         scale: 0.02,
         ..Settings::default()
     };
-    let protocols = Protocols::default();
+    let protocols = ProtocolTables::new();
     let mut runs = SweepGrid::new(
         &["tracking", "disturbance", "stability", "robustness"],
         &["lwpr"],

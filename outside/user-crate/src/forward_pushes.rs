@@ -1,5 +1,6 @@
 //! A user's own experiment: stepping in place, pushed forward with one impulse; how many pushes
-//! end in a fall, with and without the learned offset.
+//! end in a fall, with and without the learned offset. Its protocol is its own table of the
+//! config file, `[protocols.forward-pushes]`.
 
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -7,25 +8,40 @@ use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::ExperimentError;
 use steplearn::experiments::compare::run_model_and_learned;
 use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
+use steplearn::config::{ConfigError, at_least, positive};
 use steplearn::experiments::paired::{Direction, Paired};
+use steplearn::experiments::protocol::{Protocol, ProtocolTables, Table};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
 
-/// `pushes` forward pushes of `impulse_ns` (scaled by the bench's `scale`, at least 2).
-#[derive(Debug, Clone, Copy)]
-pub struct ForwardPushes {
+/// The experiment, registered as `forward-pushes`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ForwardPushes;
+
+/// Its protocol: `pushes` forward pushes of `impulse_ns` (scaled by the bench's `scale`, at
+/// least 2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ForwardPushesProtocol {
     /// Pushes per walker at scale 1.
     pub pushes: usize,
     /// The impulse (Ns).
     pub impulse_ns: f64,
 }
 
-impl Default for ForwardPushes {
+impl Default for ForwardPushesProtocol {
     fn default() -> Self {
-        ForwardPushes {
+        ForwardPushesProtocol {
             pushes: 60,
             impulse_ns: 11.0,
         }
+    }
+}
+
+impl Protocol for ForwardPushesProtocol {
+    fn validate(&self) -> Result<(), ConfigError> {
+        at_least("pushes", self.pushes, 1)?;
+        positive("impulse_ns", self.impulse_ns)
     }
 }
 
@@ -61,10 +77,15 @@ impl Experiment for ForwardPushes {
         "stepping in place, forward pushes of one impulse: pushes ending in a fall"
     }
 
+    fn protocol(&self, tables: &ProtocolTables) -> Result<Option<Table>, ConfigError> {
+        tables.resolve::<ForwardPushesProtocol>(self.name())
+    }
+
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
+        let p: ForwardPushesProtocol = ctx.protocols.get(self.name())?;
         let plan = PushPlan {
-            count: ctx.settings.scaled(self.pushes, 2),
-            impulse: (self.impulse_ns, self.impulse_ns),
+            count: ctx.settings.scaled(p.pushes, 2),
+            impulse: (p.impulse_ns, p.impulse_ns),
             settle: 3.0,
             gap: (3.0, 4.0),
         };
