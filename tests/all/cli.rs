@@ -207,7 +207,7 @@ fn bad_arguments_are_messages_and_failures() {
         ),
         (
             vec!["reproduce", "--seeds", "0", "--out", "x"],
-            "--seeds must be at least 1",
+            "--seeds must be in [1, 10000], got 0",
         ),
         (
             vec!["reproduce", "--config", "/nonexistent.toml", "--out", "x"],
