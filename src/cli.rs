@@ -390,7 +390,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 println!("{}", summary.to_json().map_err(|e| e.to_string())?);
                 return Ok(());
             }
-            let holds = std::fs::read_dir(&out).map_or(false, |mut d| d.next().is_some());
+            let holds = std::fs::read_dir(&out).is_ok_and(|mut d| d.next().is_some());
             if holds && !overwrite {
                 let why = if summary_path.exists() {
                     check_identity(&out, &identity).err().unwrap_or_default()

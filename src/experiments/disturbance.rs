@@ -587,76 +587,6 @@ struct AlignedRow<'a> {
     steps: usize,
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::experiments::trial::PushRecord;
-
-    /// Steps every 0.5 s for 60 s at F_R + `bias`, pushes at 10, 20, 30, 40 s; the two steps
-    /// after each push are 8 cm and 4 cm long of that.
-    fn log(bias: f64) -> TrialLog {
-        let pushes = [10.0, 20.0, 30.0, 40.0];
-        let steps = (1..120)
-            .map(|k| {
-                let time = k as f64 * 0.5 + 0.1;
-                let since = pushes
-                    .iter()
-                    .map(|&p| time - p)
-                    .filter(|d| *d >= 0.0)
-                    .fold(f64::INFINITY, f64::min);
-                let extra = if since < 0.5 {
-                    0.08
-                } else if since < 1.0 {
-                    0.04
-                } else {
-                    0.0
-                };
-                StepRecord {
-                    time,
-                    f_r: 0.2,
-                    f_hat: 0.2 + bias + extra,
-                    theta_e: 0.0,
-                    theta_e_dot: 0.0,
-                    learned_offset: 0.0,
-                    learning_gain: None,
-                    learning_response: None,
-                }
-            })
-            .collect();
-        TrialLog {
-            steps,
-            pushes: pushes
-                .iter()
-                .map(|&time| PushRecord {
-                    time,
-                    impulse: 8.0,
-                    fell: false,
-                })
-                .collect(),
-            falls: Vec::new(),
-            sim_time_s: 60.0,
-        }
-    }
-
-    #[test]
-    fn return_time_is_to_the_reference_and_settle_time_to_the_own_undisturbed_step() {
-        let p = DisturbanceProtocol::default();
-        // No bias: back at the reference and at its own steps after the 4 cm bin.
-        let r = PushResponse::new(&log(0.0), &p).unwrap();
-        assert_eq!((r.return_time_s, r.settle_time_s), (1.0, 1.0));
-        // Eight touch-downs within 4 s of each push: 8 cm, 4 cm, then on the reference.
-        assert!((r.step_error_after_push_m - 0.12 / 8.0).abs() < 1e-12);
-        // A steady 5 cm shortfall (beyond the 3 cm tolerance): never back at the reference,
-        // settled as soon as the pushed steps are over.
-        let r = PushResponse::new(&log(-0.05), &p).unwrap();
-        assert!((r.undisturbed_f_e + 0.05).abs() < 1e-12);
-        assert_eq!((r.return_time_s, r.settle_time_s), (p.horizon_s, 1.0));
-        // A 2 cm shortfall: the 4 cm step is then within 3 cm of the reference.
-        let r = PushResponse::new(&log(-0.02), &p).unwrap();
-        assert_eq!((r.return_time_s, r.settle_time_s), (0.5, 1.0));
-    }
-}
-
 /// Claim 2, checked on `runs` (this experiment's summaries, any order): after 8 Ns pushes the
 /// learned walker returns to the reference step sooner than the model, its largest mean TDA
 /// within 1.5 `p_theta` (the rule's TDA tolerance) and no more falls, on every seed; return,
@@ -785,4 +715,74 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
             ),
         ],
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::trial::PushRecord;
+
+    /// Steps every 0.5 s for 60 s at F_R + `bias`, pushes at 10, 20, 30, 40 s; the two steps
+    /// after each push are 8 cm and 4 cm long of that.
+    fn log(bias: f64) -> TrialLog {
+        let pushes = [10.0, 20.0, 30.0, 40.0];
+        let steps = (1..120)
+            .map(|k| {
+                let time = k as f64 * 0.5 + 0.1;
+                let since = pushes
+                    .iter()
+                    .map(|&p| time - p)
+                    .filter(|d| *d >= 0.0)
+                    .fold(f64::INFINITY, f64::min);
+                let extra = if since < 0.5 {
+                    0.08
+                } else if since < 1.0 {
+                    0.04
+                } else {
+                    0.0
+                };
+                StepRecord {
+                    time,
+                    f_r: 0.2,
+                    f_hat: 0.2 + bias + extra,
+                    theta_e: 0.0,
+                    theta_e_dot: 0.0,
+                    learned_offset: 0.0,
+                    learning_gain: None,
+                    learning_response: None,
+                }
+            })
+            .collect();
+        TrialLog {
+            steps,
+            pushes: pushes
+                .iter()
+                .map(|&time| PushRecord {
+                    time,
+                    impulse: 8.0,
+                    fell: false,
+                })
+                .collect(),
+            falls: Vec::new(),
+            sim_time_s: 60.0,
+        }
+    }
+
+    #[test]
+    fn return_time_is_to_the_reference_and_settle_time_to_the_own_undisturbed_step() {
+        let p = DisturbanceProtocol::default();
+        // No bias: back at the reference and at its own steps after the 4 cm bin.
+        let r = PushResponse::new(&log(0.0), &p).unwrap();
+        assert_eq!((r.return_time_s, r.settle_time_s), (1.0, 1.0));
+        // Eight touch-downs within 4 s of each push: 8 cm, 4 cm, then on the reference.
+        assert!((r.step_error_after_push_m - 0.12 / 8.0).abs() < 1e-12);
+        // A steady 5 cm shortfall (beyond the 3 cm tolerance): never back at the reference,
+        // settled as soon as the pushed steps are over.
+        let r = PushResponse::new(&log(-0.05), &p).unwrap();
+        assert!((r.undisturbed_f_e + 0.05).abs() < 1e-12);
+        assert_eq!((r.return_time_s, r.settle_time_s), (p.horizon_s, 1.0));
+        // A 2 cm shortfall: the 4 cm step is then within 3 cm of the reference.
+        let r = PushResponse::new(&log(-0.02), &p).unwrap();
+        assert_eq!((r.return_time_s, r.settle_time_s), (0.5, 1.0));
+    }
 }

@@ -334,20 +334,6 @@ impl Experiment for Stability {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::direction_name;
-
-    #[test]
-    fn titles_name_the_push_direction() {
-        assert_eq!(direction_name([1.0, 0.0, 0.0]), "forward");
-        assert_eq!(direction_name([-1.0, 0.0, 0.0]), "backward");
-        assert_eq!(direction_name([0.0, 1.0, 0.0]), "left");
-        assert_eq!(direction_name([0.0, -1.0, 0.0]), "right");
-        assert_eq!(direction_name([0.6, 0.8, 0.0]), "(0.6, 0.8, 0)");
-    }
-}
-
 /// Claim 3, checked on `runs` (this experiment's summaries, any order): the impulse at 50%
 /// falls of the learned walker at least the model's, and the model's at least 1.5 times the
 /// open-loop walker's, on every seed; both ratios paired over seeds.
@@ -393,4 +379,18 @@ pub fn claim(runs: &[&Summary]) -> Claim {
             ),
         ],
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::direction_name;
+
+    #[test]
+    fn titles_name_the_push_direction() {
+        assert_eq!(direction_name([1.0, 0.0, 0.0]), "forward");
+        assert_eq!(direction_name([-1.0, 0.0, 0.0]), "backward");
+        assert_eq!(direction_name([0.0, 1.0, 0.0]), "left");
+        assert_eq!(direction_name([0.0, -1.0, 0.0]), "right");
+        assert_eq!(direction_name([0.6, 0.8, 0.0]), "(0.6, 0.8, 0)");
+    }
 }

@@ -12,5 +12,5 @@ pub fn registry() -> Registry {
     Registry::builtin()
         .approximator("knn", |bounds: &InputBox| knn::Knn::new(bounds))
         .rule("softsign-cart", softsign::SoftsignCart::default)
-        .experiment(forward_pushes::ForwardPushes::default())
+        .experiment(forward_pushes::ForwardPushes)
 }
