@@ -535,26 +535,30 @@ fn failed_save_harmless<A: FunctionApproximator + Persist>(
     if missing.exists() {
         return Err(fail(CHECK, "a failed save created its directory"));
     }
-    // A save that fails over an existing file leaves that file intact (here the temporary
-    // file's name is taken by a directory, so writing it fails).
+    // A save whose final step fails (here the name is taken by a non-empty directory, so the
+    // written model cannot be renamed over it) leaves what was there intact and no temporary
+    // file behind.
     let path = dir.join("model.json");
-    no_panic(CHECK, "save", || m.save(&path))?
-        .map_err(|e| fail(CHECK, format!("save failed: {e}")))?;
-    let old = read(&path)?;
-    train(CHECK, &mut m, &ctx.stream(7, 50))?;
-    let blockers = [dir.join("model.json.tmp")];
-    for b in &blockers {
-        std::fs::create_dir(b)
-            .map_err(|e| fail(CHECK, format!("cannot create a directory: {e}")))?;
+    std::fs::create_dir(&path)
+        .and_then(|()| std::fs::write(path.join("keep"), b"kept"))
+        .map_err(|e| fail(CHECK, format!("cannot create a directory: {e}")))?;
+    let before = entries(dir)?;
+    if no_panic(CHECK, "save", || m.save(&path))?.is_ok() {
+        return Err(fail(CHECK, "a save over a non-empty directory succeeded"));
     }
-    let r = no_panic(CHECK, "save", || m.save(&path))?;
-    if r.is_err() && read(&path)? != old {
+    if read(&path.join("keep"))? != b"kept" || entries(dir)? != before {
         return Err(fail(
             CHECK,
-            "a failed save damaged the file it was replacing",
+            "a failed save changed what was there or left a temporary file",
         ));
     }
-    // Whether or not the save succeeded, the file holds a whole model.
+    // A save over an existing model replaces it whole.
+    let path = dir.join("model2.json");
+    no_panic(CHECK, "save", || m.save(&path))?
+        .map_err(|e| fail(CHECK, format!("save failed: {e}")))?;
+    train(CHECK, &mut m, &ctx.stream(7, 50))?;
+    no_panic(CHECK, "save", || m.save(&path))?
+        .map_err(|e| fail(CHECK, format!("save over a model failed: {e}")))?;
     if no_panic(CHECK, "load", || A::load(&path))?.is_err() {
         return Err(fail(
             CHECK,
@@ -562,6 +566,17 @@ fn failed_save_harmless<A: FunctionApproximator + Persist>(
         ));
     }
     Ok(())
+}
+
+/// The names in `dir`, sorted.
+fn entries(dir: &Path) -> Result<Vec<String>, ConformanceError> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .map_err(|e| fail("failed_save_harmless", format!("cannot list {dir:?}: {e}")))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    Ok(names)
 }
 
 fn read(path: &Path) -> Result<Vec<u8>, ConformanceError> {

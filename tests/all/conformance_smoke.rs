@@ -40,6 +40,9 @@ const LOAD_IGNORES_FILE: u8 = 2;
 const LEARNS_DIFFERENTLY_AFTER_LOAD: u8 = 3;
 const BAD_UPDATE_CHANGES_MODEL: u8 = 4;
 const PANICS_ON_SHORT_INPUT: u8 = 5;
+const WRONG_OUTPUT_DIM: u8 = 6;
+const UNTRAINED_NAN: u8 = 7;
+const SAVE_NOT_ATOMIC: u8 = 8;
 
 /// A grid with one deliberate defect, selected by `FAULT`.
 #[derive(Clone, Serialize, Deserialize)]
@@ -48,7 +51,12 @@ struct Broken<const FAULT: u8> {
     /// Updates since construction or load (not saved).
     #[serde(skip)]
     since_load: u64,
+    /// Extra outputs it claims (the `WRONG_OUTPUT_DIM` fault: one model in two claims one).
+    #[serde(skip)]
+    extra_out: usize,
 }
+
+static MADE: AtomicU64 = AtomicU64::new(0);
 
 static CALLS: AtomicU64 = AtomicU64::new(0);
 
@@ -57,6 +65,9 @@ impl<const FAULT: u8> Broken<FAULT> {
         Broken {
             inner: grid(),
             since_load: 1,
+            extra_out: usize::from(
+                FAULT == WRONG_OUTPUT_DIM && MADE.fetch_add(1, Ordering::Relaxed) % 2 == 1,
+            ),
         }
     }
 }
@@ -66,13 +77,16 @@ impl<const FAULT: u8> FunctionApproximator for Broken<FAULT> {
         self.inner.input_dim()
     }
     fn output_dim(&self) -> usize {
-        self.inner.output_dim()
+        self.inner.output_dim() + self.extra_out
     }
     fn predict(&self, x: &[f64], y: &mut [f64]) -> Result<(), ApproxError> {
         if FAULT == PANICS_ON_SHORT_INPUT {
             let _ = x[1];
         }
         self.inner.predict(x, y)?;
+        if FAULT == UNTRAINED_NAN && self.since_load == 1 {
+            y[0] = f64::NAN;
+        }
         if FAULT == NONDETERMINISTIC {
             y[0] += 1e-12 * (CALLS.fetch_add(1, Ordering::Relaxed) % 7) as f64;
         }
@@ -99,6 +113,20 @@ impl<const FAULT: u8> FunctionApproximator for Broken<FAULT> {
 }
 
 impl<const FAULT: u8> Persist for Broken<FAULT> {
+    fn save(&self, path: impl AsRef<std::path::Path>) -> Result<(), ApproxError> {
+        if FAULT == SAVE_NOT_ATOMIC {
+            // Clears the way first, then writes: a failure destroys what was there.
+            let path = path.as_ref();
+            let _ = std::fs::remove_dir_all(path);
+            let _ = std::fs::remove_file(path);
+            return Ok(std::fs::write(path, self.to_json()?)?);
+        }
+        let json = self.to_json()?;
+        Ok(steplearn::atomic_file::write_atomic(
+            path.as_ref(),
+            json.as_bytes(),
+        )?)
+    }
     fn check_invariants(&self) -> Result<(), ApproxError> {
         self.inner.check_invariants()
     }
@@ -162,4 +190,24 @@ fn a_rejected_update_that_changes_the_model_is_caught() {
 fn a_panic_is_an_error_not_a_panic() {
     let err = rejected_by(Broken::<PANICS_ON_SHORT_INPUT>::new, "bad_input_rejected");
     assert!(err.reason.contains("panicked"), "{err}");
+}
+
+#[test]
+fn models_that_disagree_on_their_dimensions_are_caught() {
+    let err = rejected_by(Broken::<WRONG_OUTPUT_DIM>::new, "dimensions");
+    assert!(err.reason.contains("differ in their dimensions"), "{err}");
+}
+
+#[test]
+fn non_finite_untrained_predictions_are_caught() {
+    rejected_by(Broken::<UNTRAINED_NAN>::new, "untrained_predictions_finite");
+}
+
+#[test]
+fn a_save_that_destroys_what_was_there_is_caught() {
+    let err = rejected_by(Broken::<SAVE_NOT_ATOMIC>::new, "failed_save_harmless");
+    assert!(
+        err.reason.contains("non-empty directory succeeded"),
+        "{err}"
+    );
 }
