@@ -85,6 +85,11 @@ fn browser() -> Option<&'static str> {
 #[test]
 fn the_page_renders_in_a_real_browser() {
     let Some(browser) = browser() else {
+        // CI installs Chromium (.ci/run); there a missing browser is a failure, not a skip.
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "no chromium found under CI=true (install Debian's `chromium` package)"
+        );
         eprintln!(
             "skipped: no chromium found (install Debian's `chromium` package to run this test)"
         );
