@@ -74,7 +74,7 @@ pub struct RobustnessProtocol {
     pub map: MapSpec,
     /// Whether the learner holds its dF = 0 prior ([`crate::control::learner::Prior`]) from
     /// the start. Default false: D's learner is not initialised, so it neither has the analytic
-    /// footstep nor believes dF = 0 is right; [`super::run::run_spec`] builds it with
+    /// footstep nor believes dF = 0 is right; [`run`] builds it with
     /// `Prior::none()` unless this is set. Measured (seeds 0-4, 15 pushes of 6 Ns): without the
     /// prior the first push was absorbed on every seed and 73 of 75 pushes in all; with it the
     /// first absorbed push was the 2nd-4th and 65 of 75 were absorbed.

@@ -34,7 +34,7 @@ pub struct ControllerFalls {
     /// Falls among them.
     pub falls: u32,
     /// Impulse (Ns) at which half the pushes make the robot fall, from
-    /// [`super::fall_rate::impulse_at_50pct_fall`] (with its documented fallbacks).
+    /// [`crate::report::fall_rate::impulse_at_50pct_fall`] (with its documented fallbacks).
     pub impulse_at_50pct_fall_ns: f64,
 }
 

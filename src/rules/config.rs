@@ -47,7 +47,7 @@ impl std::str::FromStr for RuleKind {
 /// An invalid rule name or parameter.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RuleError {
-    /// The name is not one of [`RuleKind::VARIANTS`].
+    /// The name is not one of the variants of [`RuleKind`].
     #[error("unknown rule {0:?} (expected {names})", names = RuleKind::names())]
     UnknownRule(String),
     /// A parameter is out of range.
