@@ -384,7 +384,10 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 .run_identity(&spec, &config.settings, &config.protocols)
                 .map_err(|e| e.to_string())?;
             let summary_path = out.join(SUMMARY_FILE);
-            if !overwrite && summary_path.exists() && check_identity(&out, &identity).is_ok() {
+            let finished = summary_path
+                .exists()
+                .then(|| check_identity(&out, &identity));
+            if !overwrite && finished == Some(Ok(())) {
                 let summary = Summary::read(&summary_path).map_err(|e| e.to_string())?;
                 eprintln!("{} holds this run, finished earlier: reused", out.display());
                 println!("{}", summary.to_json().map_err(|e| e.to_string())?);
@@ -392,10 +395,9 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             }
             let holds = std::fs::read_dir(&out).is_ok_and(|mut d| d.next().is_some());
             if holds && !overwrite {
-                let why = if summary_path.exists() {
-                    check_identity(&out, &identity).err().unwrap_or_default()
-                } else {
-                    format!("{} is not empty", out.display())
+                let why = match finished {
+                    Some(Err(why)) => why,
+                    _ => format!("{} is not empty", out.display()),
                 };
                 return Err(format!(
                     "{why}; nothing was changed. Choose another --out, or pass --overwrite to \
@@ -534,25 +536,21 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 Some(s) => s.select(&runs),
                 None => runs,
             };
-            let mut protocols = ProtocolTables::new();
-            check_pushes(pushes)?;
-            let options = PushOptions {
+            let mut config = ConfigFile::default();
+            apply_push_options(
+                registry,
+                &mut config.protocols,
+                "stability",
                 pushes,
-                impulse_range: None,
-                direction: None,
-            };
-            registry
-                .find_experiment("stability")
-                .map_err(|e| e.to_string())?
-                .apply_push_options(&mut protocols, &options)
-                .map_err(|e| format!("--pushes: {e}"))?;
-            registry
-                .find_experiment("stability")
-                .map_err(|e| e.to_string())?
-                .protocol(&protocols)
+                None,
+                None,
+            )
+            .map_err(|e| format!("--pushes: {e}"))?;
+            let config = registry
+                .resolve_config(&config)
                 .map_err(|e| format!("--pushes: {e}"))?;
             let failed =
-                sweep_with_progress(registry, &runs, &out, &Settings::default(), &protocols)?;
+                sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
             println!("{} runs in {}", runs.len(), out.display());
             if failed > 0 {
                 return Err(format!("{failed} runs failed"));
@@ -698,10 +696,7 @@ fn apply_push_options(
 
 /// A fresh directory beside an output directory, where a run writes until it has finished;
 /// removed on drop unless it replaced the output ([`Staging::replace`]).
-struct Staging {
-    path: PathBuf,
-    done: bool,
-}
+struct Staging(tempfile::TempDir);
 
 impl Staging {
     fn new(out: &Path) -> Result<Self, String> {
@@ -714,44 +709,36 @@ impl Staging {
         let name = out
             .file_name()
             .map_or("run".into(), |n| n.to_string_lossy().into_owned());
-        let path = tempfile::Builder::new()
+        tempfile::Builder::new()
             .prefix(&format!(".{name}.partial-"))
             .tempdir_in(&parent)
-            .map_err(|e| format!("cannot create a directory in {}: {e}", parent.display()))?
-            .keep();
-        Ok(Staging { path, done: false })
+            .map(Staging)
+            .map_err(|e| format!("cannot create a directory in {}: {e}", parent.display()))
     }
 
     fn path(&self) -> &Path {
-        &self.path
+        self.0.path()
     }
 
     /// Puts the finished run at `out`, replacing what was there.
-    fn replace(mut self, out: &Path) -> Result<(), String> {
-        let old = self.path.with_extension("old");
+    fn replace(self, out: &Path) -> Result<(), String> {
+        let old = self.path().with_extension("old");
         let had = out.exists();
         if had {
             std::fs::rename(out, &old)
                 .map_err(|e| format!("cannot move {} aside: {e}", out.display()))?;
         }
-        if let Err(e) = std::fs::rename(&self.path, out) {
+        if let Err(e) = std::fs::rename(self.path(), out) {
             if had {
                 let _ = std::fs::rename(&old, out);
             }
             return Err(format!("cannot move the run to {}: {e}", out.display()));
         }
-        self.done = true;
+        // Moved into place: nothing left for the guard to remove.
+        let _ = self.0.keep();
         if had {
             let _ = std::fs::remove_dir_all(&old);
         }
         Ok(())
-    }
-}
-
-impl Drop for Staging {
-    fn drop(&mut self) {
-        if !self.done {
-            let _ = std::fs::remove_dir_all(&self.path);
-        }
     }
 }

@@ -26,6 +26,13 @@ impl ConfigError {
         }
     }
 
+    /// A deserialization error, named by the path where it happened (empty at the top).
+    pub fn from_path<E: std::fmt::Display>(e: serde_path_to_error::Error<E>) -> Self {
+        let path = e.path().to_string();
+        let field = if path == "." { String::new() } else { path };
+        ConfigError::new(field, e.inner().to_string())
+    }
+
     /// The same error with `prefix.` put before its field (the section that holds it).
     pub fn within(mut self, prefix: &str) -> Self {
         self.field = if self.field.is_empty() {

@@ -40,13 +40,14 @@ impl ConfigFile {
     pub fn from_toml(text: &str) -> Result<Self, ConfigError> {
         let de =
             toml::Deserializer::parse(text).map_err(|e| ConfigError::new("", e.to_string()))?;
-        serde_path_to_error::deserialize(de).map_err(path_error)
+        serde_path_to_error::deserialize(de).map_err(ConfigError::from_path)
     }
 
     /// Parses JSON text (not yet validated).
     pub fn from_json(text: &str) -> Result<Self, ConfigError> {
         let mut de = serde_json::Deserializer::from_str(text);
-        let config: Self = serde_path_to_error::deserialize(&mut de).map_err(path_error)?;
+        let config: Self =
+            serde_path_to_error::deserialize(&mut de).map_err(ConfigError::from_path)?;
         de.end().map_err(|e| ConfigError::new("", e.to_string()))?;
         Ok(config)
     }
@@ -158,12 +159,6 @@ impl ConfigFile {
         }
         Ok(out)
     }
-}
-
-fn path_error<E: std::fmt::Display>(e: serde_path_to_error::Error<E>) -> ConfigError {
-    let path = e.path().to_string();
-    let field = if path == "." { String::new() } else { path };
-    ConfigError::new(field, e.inner().to_string())
 }
 
 /// A parse error as one message: "at `settings.sim`: unknown field `x`, expected ...".

@@ -66,10 +66,10 @@ impl Default for DisturbanceProtocol {
     }
 }
 
-impl DisturbanceProtocol {
+impl Protocol for DisturbanceProtocol {
     /// Checks ranges, at least one push, a unit direction and a horizon shorter than the
     /// shortest gap; errors name the field (relative to the protocol's section).
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    fn validate(&self) -> Result<(), ConfigError> {
         config::in_range("f_r", self.f_r, -MAX_STEP_M, MAX_STEP_M)?;
         config::in_range("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
         config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
@@ -94,12 +94,6 @@ impl DisturbanceProtocol {
             format!("{} s exceeds the horizon {} s", self.bin_s, self.horizon_s)
         })?;
         config::unit_direction("direction", &self.direction)
-    }
-}
-
-impl Protocol for DisturbanceProtocol {
-    fn validate(&self) -> Result<(), ConfigError> {
-        DisturbanceProtocol::validate(self)
     }
 }
 

@@ -42,11 +42,7 @@ impl ProtocolTables {
         let protocol: P = match self.tables.get(name) {
             None => P::default(),
             Some(table) => serde_path_to_error::deserialize(toml::Value::Table(table.clone()))
-                .map_err(|e| {
-                    let path = e.path().to_string();
-                    let field = if path == "." { String::new() } else { path };
-                    within(ConfigError::new(field, e.inner().to_string()))
-                })?,
+                .map_err(|e| within(ConfigError::from_path(e)))?,
         };
         protocol.validate().map_err(within)?;
         Ok(protocol)

@@ -102,10 +102,10 @@ fn map_patch<'de, D: serde::Deserializer<'de>>(d: D) -> Result<MapSpec, D::Error
     crate::config::patch(&RobustnessProtocol::default().map, d)
 }
 
-impl RobustnessProtocol {
+impl Protocol for RobustnessProtocol {
     /// Checks the numbers, the grid and the map; errors name the field (relative to the
     /// protocol's section).
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    fn validate(&self) -> Result<(), ConfigError> {
         config::in_range("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
         config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
         config::positive_range("settle_s", self.settle_s)?;
@@ -127,12 +127,6 @@ impl RobustnessProtocol {
         })?;
         config::count_in("map.resolution", self.map.resolution.0, 1, MAX_GRID_POINTS)?;
         config::count_in("map.resolution", self.map.resolution.1, 1, MAX_GRID_POINTS)
-    }
-}
-
-impl Protocol for RobustnessProtocol {
-    fn validate(&self) -> Result<(), ConfigError> {
-        RobustnessProtocol::validate(self)
     }
 }
 

@@ -53,22 +53,16 @@ impl Default for StabilityProtocol {
     }
 }
 
-impl StabilityProtocol {
+impl Protocol for StabilityProtocol {
     /// Checks at least one push, a non-negative ordered impulse range, a positive ordered gap
     /// and a unit direction; errors name the field (relative to the protocol's section).
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    fn validate(&self) -> Result<(), ConfigError> {
         config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
         config::non_negative_range("impulse", self.impulse)?;
         config::range_in("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
         config::positive_range("gap_s", self.gap_s)?;
         config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)?;
         config::unit_direction("direction", &self.direction)
-    }
-}
-
-impl Protocol for StabilityProtocol {
-    fn validate(&self) -> Result<(), ConfigError> {
-        StabilityProtocol::validate(self)
     }
 }
 

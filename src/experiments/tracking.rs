@@ -53,10 +53,10 @@ impl Default for TrackingProtocol {
     }
 }
 
-impl TrackingProtocol {
+impl Protocol for TrackingProtocol {
     /// Checks ranges, positive times and a horizon within the shortest hold; errors name the
     /// field (relative to the protocol's section).
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    fn validate(&self) -> Result<(), ConfigError> {
         config::ordered("reference", self.reference)?;
         config::range_in("reference", self.reference, -MAX_STEP_M, MAX_STEP_M)?;
         config::positive_range("hold_s", self.hold_s)?;
@@ -79,12 +79,6 @@ impl TrackingProtocol {
         config::ensure(self.bin_s <= self.horizon_s, "bin_s", || {
             format!("{} s exceeds the horizon {} s", self.bin_s, self.horizon_s)
         })
-    }
-}
-
-impl Protocol for TrackingProtocol {
-    fn validate(&self) -> Result<(), ConfigError> {
-        TrackingProtocol::validate(self)
     }
 }
 

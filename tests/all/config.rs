@@ -26,6 +26,18 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     path
 }
 
+/// `experiment stability --config CONFIG --out OUT`.
+fn stability_with(config: &Path, out: &Path) -> Output {
+    steplearn(&[
+        "experiment",
+        "stability",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
 /// `config --check` on `text`: (success, stdout, stderr).
 fn check(text: &str) -> (bool, String, String) {
     let dir = tempfile::tempdir().unwrap();
@@ -155,14 +167,7 @@ fn an_out_of_range_protocol_stops_the_experiment_before_it_runs() {
     let dir = tempfile::tempdir().unwrap();
     let config = write(dir.path(), "c.toml", "[protocols.stability]\npushes = 0\n");
     let out = dir.path().join("out");
-    let o = steplearn(&[
-        "experiment",
-        "stability",
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = stability_with(&config, &out);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("protocols.stability.pushes"), "{err}");
@@ -449,14 +454,7 @@ fn hostile_values_are_refused_before_anything_runs() {
         // The run agrees with the check and leaves nothing behind.
         let config = write(dir.path(), "hostile.toml", text);
         let out = dir.path().join("out");
-        let o = steplearn(&[
-            "experiment",
-            "stability",
-            "--config",
-            config.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        let o = stability_with(&config, &out);
         assert!(!o.status.success(), "{text:?} ran");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
