@@ -533,8 +533,9 @@ impl Default for MapSpec {
     }
 }
 
-/// What [`FootstepLearner::save`] writes: the config and the approximator (JSON). The rule is
-/// not part of the saved model; the caller supplies it on load.
+/// What [`FootstepLearner::save`] writes (JSON): everything the learner holds but the rule, so
+/// that a learner loaded mid-step continues exactly as the saved one would have. The rule is
+/// stateless and supplied by the caller on load.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SavedLearner<A> {
@@ -546,6 +547,79 @@ pub struct SavedLearner<A> {
     /// empty statistics in files from before it existed.
     #[serde(default)]
     pub trained: [MeanStd; LEARNER_INPUTS],
+    /// The step in progress; an empty step in files from before checkpoints.
+    #[serde(default)]
+    pub step: StepInProgress,
+}
+
+/// The current step as the learner has seen it: the inputs recorded for the touch-down update,
+/// their reach and the query counters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepInProgress {
+    /// Inputs recorded in this step, in query order.
+    pub recorded: Vec<[f64; LEARNER_INPUTS]>,
+    /// The reach `[lo, hi]` of each recorded input; `None` for an unbounded side.
+    pub reach: Vec<[Option<f64>; 2]>,
+    /// Whether the last query was recorded.
+    pub last_recorded: bool,
+    /// Every `stride`-th query of this step is recorded (a power of two).
+    pub stride: usize,
+    /// Queries seen in this step.
+    pub queries: usize,
+    /// The offset the last query returned (m).
+    pub last_offset: f64,
+}
+
+impl Default for StepInProgress {
+    fn default() -> Self {
+        StepInProgress {
+            recorded: Vec::new(),
+            reach: Vec::new(),
+            last_recorded: false,
+            stride: 1,
+            queries: 0,
+            last_offset: 0.0,
+        }
+    }
+}
+
+impl StepInProgress {
+    /// Checks that the step could have come from a learner with `max_samples` per step.
+    fn check(&self, max_samples: usize) -> Result<(), ApproxError> {
+        let corrupt = |msg: String| Err(ApproxError::Corrupt(format!("step in progress: {msg}")));
+        let n = self.recorded.len();
+        if n > max_samples || self.reach.len() != n {
+            return corrupt(format!(
+                "{n} recorded inputs and {} reaches, need equal counts of at most {max_samples}",
+                self.reach.len()
+            ));
+        }
+        if !self.stride.is_power_of_two() || n > self.queries || self.stride > self.queries.max(1) {
+            return corrupt(format!(
+                "stride {} and {} queries do not fit {n} recorded inputs",
+                self.stride, self.queries
+            ));
+        }
+        if self.last_recorded && n == 0 {
+            return corrupt("the last query is recorded but nothing is".into());
+        }
+        if !self.recorded.iter().flatten().all(|v| v.is_finite()) || !self.last_offset.is_finite() {
+            return corrupt("a recorded input or the last offset is not finite".into());
+        }
+        for [lo, hi] in &self.reach {
+            let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
+            if !(lo <= hi) || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
+                return corrupt(format!("reach [{lo}, {hi}] is not an interval"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A reach bound as saved: `None` for an infinite side.
+fn finite_or_none(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
 }
 
 impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
@@ -554,6 +628,7 @@ impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
             .validate()
             .map_err(|e| ApproxError::Corrupt(e.to_string()))?;
         self.approximator.check_invariants()?;
+        self.step.check(self.config.max_samples_per_step)?;
         if !self.trained.iter().all(MeanStd::is_consistent) {
             return Err(ApproxError::Corrupt(
                 "trained-input statistics are not consistent".into(),
@@ -794,9 +869,9 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     /// (m; infinite bounds allowed). With `anti_windup` the training targets of that input are
     /// clamped to it, so eq. (6) stops integrating where a larger offset has no effect (the
     /// step range is exhausted). The walker calls this every tick after [`Self::query`].
-    /// Errors (NaN, or `lo > hi`) leave the learner unchanged.
+    /// Errors (NaN, `lo > hi`, or an empty interval at infinity) leave the learner unchanged.
     pub fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        if lo.is_nan() || hi.is_nan() || lo > hi {
+        if lo.is_nan() || hi.is_nan() || lo > hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
             return Err(LearnerError::config(
                 "reach",
                 format!("needs lo <= hi, got [{lo}, {hi}]"),
@@ -1072,25 +1147,59 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
 }
 
 impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner<A, R> {
-    /// Saves the config and the approximator to `path` as JSON (atomically: temporary file and
-    /// rename, so a failed save leaves an existing file intact). The current step's recorded
-    /// inputs are not saved.
-    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), LearnerError> {
+    /// Everything the learner holds but its rule, as [`Self::save`] writes it.
+    pub fn checkpoint(&self) -> SavedLearner<A> {
         SavedLearner {
             config: self.config,
             approximator: self.approx.clone(),
             trained: self.trained,
+            step: StepInProgress {
+                recorded: self.recorded.clone(),
+                reach: self
+                    .reach
+                    .iter()
+                    .map(|[lo, hi]| [finite_or_none(*lo), finite_or_none(*hi)])
+                    .collect(),
+                last_recorded: self.last_recorded,
+                stride: self.stride,
+                queries: self.queries,
+                last_offset: self.last_offset,
+            },
         }
-        .save(path)
-        .map_err(LearnerError::approx)
     }
 
-    /// Loads a learner saved by [`Self::save`] with `rule`; it keeps learning from there. A
-    /// corrupt file or a wrongly shaped approximator is an error.
+    /// The learner of a checkpoint (checked) with `rule`: it continues bit for bit as the
+    /// learner that wrote it, mid-step included.
+    pub fn from_checkpoint(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
+        saved.check_invariants().map_err(LearnerError::approx)?;
+        let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
+        let step = saved.step;
+        learner.trained = saved.trained;
+        learner.recorded.extend_from_slice(&step.recorded);
+        learner.reach.extend(
+            step.reach
+                .iter()
+                .map(|[lo, hi]| [lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)]),
+        );
+        learner.last_recorded = step.last_recorded;
+        learner.stride = step.stride;
+        learner.queries = step.queries;
+        learner.last_offset = step.last_offset;
+        Ok(learner)
+    }
+
+    /// Saves the learner to `path` as JSON: config, approximator, trust-region statistics and
+    /// the step in progress (atomically: temporary file and rename, so a failed save leaves an
+    /// existing file intact).
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), LearnerError> {
+        self.checkpoint().save(path).map_err(LearnerError::approx)
+    }
+
+    /// Loads a learner saved by [`Self::save`] with `rule`; it continues exactly where the
+    /// saved one was, mid-step included. A corrupt file or a wrongly shaped approximator is an
+    /// error.
     pub fn load(path: impl AsRef<Path>, rule: R) -> Result<Self, LearnerError> {
         let saved = SavedLearner::<A>::load(path).map_err(LearnerError::approx)?;
-        let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
-        learner.trained = saved.trained;
-        Ok(learner)
+        Self::from_checkpoint(saved, rule)
     }
 }

@@ -22,6 +22,7 @@ mod index_page;
 mod kernel_ridge_properties;
 mod kinematics_round_trip;
 mod learner;
+mod learner_checkpoint;
 mod learner_humanoid;
 mod lipm_identities;
 mod lwpr_accuracy;
