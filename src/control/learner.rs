@@ -609,7 +609,12 @@ impl StepInProgress {
         }
         for [lo, hi] in &self.reach {
             let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
-            if !(lo <= hi) || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
+            if lo.is_nan()
+                || hi.is_nan()
+                || lo > hi
+                || lo == f64::INFINITY
+                || hi == f64::NEG_INFINITY
+            {
                 return corrupt(format!("reach [{lo}, {hi}] is not an interval"));
             }
         }
