@@ -18,6 +18,9 @@ use strum::VariantArray;
 
 type Learner = FootstepLearner<AnyApproximator, PendulumCart>;
 
+/// A deliberate corruption of a saved step.
+type Corruption = fn(&mut StepInProgress);
+
 /// A policy that, every `every` queries, saves its learner to a file and continues with the
 /// learner loaded from it.
 struct Reloading {
@@ -180,7 +183,7 @@ fn a_checkpoint_whose_step_does_not_fit_its_learner_is_refused() {
     let good = learner.checkpoint();
     assert_eq!(good.step.stride, 2);
     assert!(Learner::from_checkpoint(good.clone(), PendulumCart::default()).is_ok());
-    let broken: [(&str, fn(&mut StepInProgress)); 9] = [
+    let broken: [(&str, Corruption); 9] = [
         ("too many records", |s| s.recorded.extend([[0.0; 3]; 4])),
         ("reach count", |s| {
             s.reach.pop();
