@@ -1,6 +1,11 @@
 //! The crate's one place for summary statistics: running mean and standard deviation
 //! (Welford's algorithm, numerically stable in one pass) and evenly spaced grids.
 
+/// The largest count (of updates, samples, queries) a saved model may hold: every integer up
+/// to it is exact as an `f64`, and no run reaches it (2^53 updates at a million a second take
+/// 285 years), so a larger one can only come from a damaged file.
+pub const MAX_COUNT: u64 = 1 << 53;
+
 /// Running mean and variance of a stream of values (Welford).
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -36,7 +41,8 @@ impl MeanStd {
     /// sum of squares finite, the sum of squares not negative, both 0 without values (for
     /// checking deserialized statistics).
     pub fn is_consistent(&self) -> bool {
-        self.mean.is_finite()
+        self.n as u64 <= MAX_COUNT
+            && self.mean.is_finite()
             && self.m2.is_finite()
             && self.m2 >= 0.0
             && (self.n > 0 || (self.mean == 0.0 && self.m2 == 0.0))

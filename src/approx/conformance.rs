@@ -494,25 +494,35 @@ fn corrupt_saved_model_rejected<A: FunctionApproximator + Persist>(
         .map_err(|e| fail(CHECK, format!("saved JSON unparsable: {e}")))?;
     let mut paths = Vec::new();
     numeric_arrays(&value, &mut Vec::new(), &mut paths);
-    for path in paths.iter().take(40) {
-        for tamper in [Tamper::DropLast, Tamper::Huge] {
-            let mut v = value.clone();
-            apply(&mut v, path, tamper);
-            let text = v.to_string();
-            let what = format!("a model tampered with ({tamper:?} at {path:?})");
-            if let Ok(loaded) = from_json(&text)? {
-                let pts = probe_points(ctx.d);
-                let mut y = vec![0.0; ctx.n_out];
-                for x in &pts {
-                    let r = no_panic(CHECK, &format!("predict on {what}"), || {
-                        loaded.predict(x, &mut y)
-                    })?;
-                    if r.is_ok() && y.iter().any(|v| !v.is_finite()) {
-                        return Err(fail(
-                            CHECK,
-                            format!("{what} loaded and predicts non-finite values"),
-                        ));
-                    }
+    let mut integers = Vec::new();
+    integer_fields(&value, &mut Vec::new(), &mut integers);
+    let arrays = paths
+        .iter()
+        .take(40)
+        .flat_map(|p| [(p, Tamper::DropLast), (p, Tamper::Huge)]);
+    // Sizes, counts and dimensions: zero, beyond 32 bits, and the largest integer.
+    let fields = integers.iter().take(40).flat_map(|p| {
+        [0, 1 << 32, u64::MAX]
+            .into_iter()
+            .map(move |n| (p, Tamper::Integer(n)))
+    });
+    for (path, tamper) in arrays.chain(fields) {
+        let mut v = value.clone();
+        apply(&mut v, path, tamper);
+        let text = v.to_string();
+        let what = format!("a model tampered with ({tamper:?} at {path:?})");
+        if let Ok(loaded) = from_json(&text)? {
+            let pts = probe_points(ctx.d);
+            let mut y = vec![0.0; ctx.n_out];
+            for x in &pts {
+                let r = no_panic(CHECK, &format!("predict on {what}"), || {
+                    loaded.predict(x, &mut y)
+                })?;
+                if r.is_ok() && y.iter().any(|v| !v.is_finite()) {
+                    return Err(fail(
+                        CHECK,
+                        format!("{what} loaded and predicts non-finite values"),
+                    ));
                 }
             }
         }
@@ -595,6 +605,34 @@ fn tempdir(check: &'static str) -> Result<tempfile::TempDir, ConformanceError> {
 enum Tamper {
     DropLast,
     Huge,
+    Integer(u64),
+}
+
+/// The paths of the integer fields (not array elements) of `v`.
+fn integer_fields(v: &serde_json::Value, at: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
+    match v {
+        serde_json::Value::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                if !item.is_number() {
+                    at.push(i.to_string());
+                    integer_fields(item, at, out);
+                    at.pop();
+                }
+            }
+        }
+        serde_json::Value::Object(map) => {
+            for (k, item) in map {
+                at.push(k.clone());
+                if item.is_u64() {
+                    out.push(at.clone());
+                } else {
+                    integer_fields(item, at, out);
+                }
+                at.pop();
+            }
+        }
+        _ => {}
+    }
 }
 
 fn numeric_arrays(v: &serde_json::Value, at: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
@@ -632,6 +670,10 @@ fn apply(v: &mut serde_json::Value, path: &[String], tamper: Tamper) {
             _ => None,
         };
     }
+    if let (Some(field), Tamper::Integer(n)) = (&mut cur, tamper) {
+        **field = serde_json::json!(n);
+        return;
+    }
     if let Some(serde_json::Value::Array(items)) = cur {
         match tamper {
             Tamper::DropLast => {
@@ -642,6 +684,7 @@ fn apply(v: &mut serde_json::Value, path: &[String], tamper: Tamper) {
                     *first = serde_json::json!(1e308);
                 }
             }
+            Tamper::Integer(_) => {}
         }
     }
 }

@@ -28,6 +28,19 @@ pub enum ApproxError {
         /// The offending value.
         value: f64,
     },
+    /// An input or target too large in magnitude for the model to hold: training on it would
+    /// push the model past what a saved model may contain.
+    #[error("{what}[{index}] = {value} is beyond the model's range (|value| <= {limit})")]
+    OutOfRange {
+        /// Which argument was wrong.
+        what: &'static str,
+        /// Position of the first offending element.
+        index: usize,
+        /// The offending value.
+        value: f64,
+        /// The largest magnitude accepted.
+        limit: f64,
+    },
     /// A configuration parameter is out of its valid range.
     #[error("invalid configuration: {param} {reason}")]
     InvalidConfig {

@@ -439,6 +439,9 @@ impl Persist for KernelRidge {
             return corrupt(format!("invalid config: {e}"));
         }
         let (d, n_out) = (self.input_dim(), self.config.output_dim);
+        if self.updates > crate::stats::MAX_COUNT {
+            return corrupt(format!("{} updates is beyond any run", self.updates));
+        }
         if self.inv_length_scales.len() != d
             || self
                 .inv_length_scales
@@ -455,8 +458,8 @@ impl Persist for KernelRidge {
         if self.dictionary.len() != m * d
             || self.gram_inv.n() != m
             || self.covariance.n() != m
-            || self.mean.len() != m * n_out
-            || self.alpha.len() != m * n_out
+            || Some(self.mean.len()) != m.checked_mul(n_out)
+            || Some(self.alpha.len()) != m.checked_mul(n_out)
         {
             return corrupt("dictionary, matrices and coefficients disagree in size".into());
         }

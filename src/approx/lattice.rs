@@ -89,7 +89,7 @@ impl Lattice {
         if lattice != *self {
             return Err("lattice does not match the config".into());
         }
-        if table.len() != self.len() * outputs {
+        if Some(table.len()) != self.len().checked_mul(outputs) {
             return Err(format!(
                 "{} {entry}s for {} nodes x {outputs} outputs",
                 table.len(),

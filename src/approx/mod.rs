@@ -29,7 +29,7 @@ pub use exact_kernel_ridge::ExactKernelRidge;
 pub use grid::{Grid, GridConfig};
 pub use input_box::InputBox;
 pub use kernel_ridge::{KernelRidge, KernelRidgeConfig};
-pub use lwpr::{Kernel, Lwpr, LwprConfig, ReceptiveField, SubModel};
+pub use lwpr::{Kernel, Lwpr, LwprConfig, MAX_INPUT, MAX_TARGET, ReceptiveField, SubModel};
 pub use persist::Persist;
 pub use rbf::{Rbf, RbfConfig, RbfUpdate};
 

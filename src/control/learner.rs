@@ -595,7 +595,11 @@ impl StepInProgress {
                 self.reach.len()
             ));
         }
-        if !self.stride.is_power_of_two() || n > self.queries || self.stride > self.queries.max(1) {
+        if !self.stride.is_power_of_two()
+            || n > self.queries
+            || self.stride > self.queries.max(1)
+            || self.queries as u64 > crate::stats::MAX_COUNT
+        {
             return corrupt(format!(
                 "stride {} and {} queries do not fit {n} recorded inputs",
                 self.stride, self.queries

@@ -28,6 +28,7 @@ mod lipm_identities;
 mod lwpr_accuracy;
 mod lwpr_golden;
 mod lwpr_properties;
+mod model_files;
 mod motion_generator;
 mod rbf_properties;
 mod sim_body;

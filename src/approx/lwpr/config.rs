@@ -227,14 +227,13 @@ impl LwprConfig {
         if self.n_out == 0 {
             return Err(ApproxError::config("n_out", "must be at least 1"));
         }
-        if self.init_d.len() != n * n {
+        let Some(nn) = n.checked_mul(n) else {
+            return Err(ApproxError::config("n_in", format!("{n} is too large")));
+        };
+        if self.init_d.len() != nn {
             return Err(ApproxError::config(
                 "init_d",
-                format!(
-                    "needs {n} x {n} = {} elements, got {}",
-                    n * n,
-                    self.init_d.len()
-                ),
+                format!("needs {n} x {n} = {nn} elements, got {}", self.init_d.len()),
             ));
         }
         if let Some(v) = self.init_d.iter().find(|v| !v.is_finite()) {

@@ -140,6 +140,12 @@ impl Persist for Lwpr {
         }
         check_len("mean_x", mean_x, config.n_in)?;
         check_len("var_x", var_x, config.n_in)?;
+        if self.n_data() > crate::stats::MAX_COUNT {
+            return Err(corrupt(format!(
+                "n_data {} is beyond any run",
+                self.n_data()
+            )));
+        }
         if sub.len() != config.n_out {
             return Err(corrupt(format!(
                 "{} submodels for {} outputs",

@@ -94,5 +94,5 @@ mod tests;
 
 pub use config::LwprConfig;
 pub use kernel::Kernel;
-pub use model::{Lwpr, SubModel};
+pub use model::{Lwpr, MAX_INPUT, MAX_TARGET, SubModel};
 pub use receptive_field::ReceptiveField;

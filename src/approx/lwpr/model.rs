@@ -7,6 +7,33 @@ use super::workspace::Workspace;
 use crate::approx::{ApproxError, FunctionApproximator, check_output, check_vector};
 use serde::{Deserialize, Serialize};
 
+/// The largest normalised input (`|x_i / norm_in_i|`) [`Lwpr`] trains on: its fourth power,
+/// which the distance metric's curvature accumulates, stays far below what a saved model may
+/// hold, so what trains always loads again.
+pub const MAX_INPUT: f64 = 1e15;
+
+/// The largest normalised target (`|y_k / norm_out_k|`) [`Lwpr`] trains on: its square times
+/// any forgetting-weighted count stays far below what a saved model may hold.
+pub const MAX_TARGET: f64 = 1e20;
+
+/// Refuses `v` if an element exceeds `limit` after division by its norm.
+fn check_magnitude(
+    what: &'static str,
+    v: &[f64],
+    norm: &[f64],
+    limit: f64,
+) -> Result<(), ApproxError> {
+    match v.iter().zip(norm).position(|(x, n)| (x / n).abs() > limit) {
+        Some(index) => Err(ApproxError::OutOfRange {
+            what,
+            index,
+            value: v[index],
+            limit: limit * norm[index],
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Activations at or below this do not update a receptive field (as in the reference).
 pub(crate) const W_UPDATE: f64 = 0.001;
 
@@ -313,6 +340,8 @@ impl FunctionApproximator for Lwpr {
         let n = self.config.n_in;
         check_vector("input x", x, n)?;
         check_vector("target y", y, self.config.n_out)?;
+        check_magnitude("input x", x, &self.config.norm_in, MAX_INPUT)?;
+        check_magnitude("target y", y, &self.config.norm_out, MAX_TARGET)?;
         // Nothing below can fail: a rejected sample never reaches this point.
         self.ws.ensure(n);
         self.n_data += 1;
