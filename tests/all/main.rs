@@ -26,6 +26,7 @@ mod learner_checkpoint;
 mod learner_humanoid;
 mod lipm_identities;
 mod lwpr_accuracy;
+mod lwpr_cap;
 mod lwpr_golden;
 mod lwpr_properties;
 mod model_files;

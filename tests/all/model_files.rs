@@ -4,7 +4,8 @@
 //! answers with finite numbers or errors; it never panics or aborts. What trains and saves loads
 //! again bit for bit, large targets included.
 //!
-//! The corpus holds one trained model of every built-in approximator and two learner
+//! The corpus holds one trained model of every built-in approximator, LWPR at its cap of
+//! receptive fields, and two learner
 //! checkpoints taken mid-step. `STEPLEARN_BLESS=1 cargo test --test all model_files` rewrites it
 //! after a deliberate change of the file format.
 
@@ -89,6 +90,14 @@ fn corpus() -> Vec<(String, String)> {
         .iter()
         .map(|&k| (format!("{k}.json"), trained(k).to_json().unwrap()))
         .collect();
+    // LWPR at its receptive-field cap, with training stamps and replacements.
+    let mut capped = Lwpr::new(LwprConfig::new(3, 1).init_d(100.0).max_rfs(8)).unwrap();
+    for x in inputs(5, 200) {
+        capped.update(&x, &[x[0] - x[2]]).unwrap();
+    }
+    assert!(capped.submodel(0).unwrap().n_replaced > 0);
+    let capped = AnyApproximator::Lwpr(capped);
+    files.push(("lwpr-capped.json".into(), capped.to_json().unwrap()));
     for kind in [ApproxKind::Lwpr, ApproxKind::Grid] {
         let json = serde_json::to_string(&learner_mid_step(kind)).unwrap();
         files.push((format!("learner-{kind}.json"), json));
@@ -294,7 +303,7 @@ proptest! {
 
     #[test]
     fn mutated_model_files_load_or_are_refused(
-        file in 0..6usize,
+        file in 0..7usize,
         mutations in prop::collection::vec(mutation(), 1..4),
     ) {
         let corpus = committed_corpus();
@@ -308,7 +317,7 @@ proptest! {
 
     #[test]
     fn files_with_bytes_changed_or_cut_load_or_are_refused(
-        file in 0..6usize,
+        file in 0..7usize,
         at in any::<usize>(),
         byte in prop::sample::select(b"0123456789-.e,]}\"x ".to_vec()),
         cut in any::<bool>(),

@@ -63,6 +63,10 @@ pub struct LwprConfig {
     /// Receptive fields with activation at or below this do not contribute to predictions
     /// (the reference passes it to every `lwpr_predict` call; its demo uses 0.001). Default 0.001.
     pub cutoff: f64,
+    /// At most this many receptive fields per output (see [`LwprConfig::max_rfs`]). Default
+    /// none: unbounded, as the reference library.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_rfs: Option<usize>,
 }
 
 impl LwprConfig {
@@ -89,6 +93,7 @@ impl LwprConfig {
             norm_in: vec![1.0; n_in],
             norm_out: vec![1.0; n_out],
             cutoff: 0.001,
+            max_rfs: None,
         }
     }
 
@@ -211,6 +216,15 @@ impl LwprConfig {
         self
     }
 
+    /// Caps the receptive fields of each output at `n` (at least 1), for learners that run for
+    /// days on drifting inputs: when a new field is due and `n` exist, it replaces the field
+    /// that was trained least recently (ties: the oldest position), so memory and the cost of
+    /// an update stay bounded. Off by default; without it the model is the reference library's.
+    pub fn max_rfs(mut self, n: usize) -> Self {
+        self.max_rfs = Some(n);
+        self
+    }
+
     /// Prediction cutoff activation.
     pub fn cutoff(mut self, value: f64) -> Self {
         self.cutoff = value;
@@ -290,6 +304,9 @@ impl LwprConfig {
         positive("add_threshold", self.add_threshold)?;
         norms("norm_in", &self.norm_in, n)?;
         norms("norm_out", &self.norm_out, self.n_out)?;
+        if self.max_rfs == Some(0) {
+            return Err(ApproxError::config("max_rfs", "must be at least 1"));
+        }
         if !(0.0..1.0).contains(&self.cutoff) {
             return Err(ApproxError::config(
                 "cutoff",

@@ -153,6 +153,26 @@ impl Persist for Lwpr {
                 config.n_out
             )));
         }
+        for (k, s) in sub.iter().enumerate() {
+            let stamps_fit = match config.max_rfs {
+                Some(cap) => {
+                    s.rfs.len() <= cap
+                        && s.last_trained.len() == s.rfs.len()
+                        && s.last_trained.iter().all(|&t| t <= self.n_data())
+                }
+                None => s.last_trained.is_empty() && s.n_replaced == 0,
+            };
+            if !stamps_fit {
+                return Err(corrupt(format!(
+                    "output {k}: {} fields, {} training stamps and {} replacements do not fit \
+                     max_rfs {:?}",
+                    s.rfs.len(),
+                    s.last_trained.len(),
+                    s.n_replaced,
+                    config.max_rfs
+                )));
+            }
+        }
         for (k, SubModel { rfs, .. }) in sub.iter().enumerate() {
             for (i, rf) in rfs.iter().enumerate() {
                 check_rf(rf, self, &format!("output {k} rf {i}"))?;

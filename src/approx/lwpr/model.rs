@@ -44,6 +44,17 @@ pub struct SubModel {
     pub rfs: Vec<ReceptiveField>,
     /// How many receptive fields were pruned so far.
     pub n_pruned: usize,
+    /// With [`LwprConfig::max_rfs`]: for each field, the update count (`n_data`) at which it
+    /// was last trained; empty without the cap.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub last_trained: Vec<u64>,
+    /// With [`LwprConfig::max_rfs`]: how many fields were replaced at the cap so far.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub n_replaced: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// Locally weighted projection regression (Vijayakumar, D'Souza & Schaal 2005), faithful to
@@ -125,6 +136,8 @@ impl Lwpr {
                 .map(|_| SubModel {
                     rfs: Vec::new(),
                     n_pruned: 0,
+                    last_trained: Vec::new(),
+                    n_replaced: 0,
                 })
                 .collect(),
             scan: vec![ScanIndex::default(); n_out],
@@ -255,6 +268,8 @@ impl Lwpr {
         let mut top = TopTwo::default();
         let xn = std::mem::take(&mut ws.xn);
         let diag_only = config.diag_only;
+        // With a cap on the fields, the update count stamps every field trained.
+        let (cap, stamp) = (config.max_rfs, self.n_data);
         if self.scan.len() != config.n_out {
             self.scan.resize(config.n_out, ScanIndex::default());
         }
@@ -277,6 +292,9 @@ impl Lwpr {
             if act.w > W_UPDATE {
                 let rf = &mut sub.rfs[idx];
                 rf.train(config, &xn, yn, act, ws);
+                if cap.is_some() {
+                    sub.last_trained[idx] = stamp;
+                }
                 if config.update_d {
                     scan.write_metric(idx, rf);
                 }
@@ -290,8 +308,25 @@ impl Lwpr {
                 _ => None,
             };
             let rf = ReceptiveField::new(config, &self.init_m, template, &xn[..n], yn);
-            scan.push(&rf);
-            sub.rfs.push(rf);
+            match cap {
+                Some(cap) if sub.rfs.len() >= cap => {
+                    // Replace the field trained least recently (the first of equals).
+                    let victim = (0..sub.rfs.len())
+                        .min_by_key(|&i| (sub.last_trained[i], i))
+                        .unwrap_or(0);
+                    scan.write(victim, &rf);
+                    sub.rfs[victim] = rf;
+                    sub.last_trained[victim] = stamp;
+                    sub.n_replaced += 1;
+                }
+                _ => {
+                    scan.push(&rf);
+                    sub.rfs.push(rf);
+                    if cap.is_some() {
+                        sub.last_trained.push(stamp);
+                    }
+                }
+            }
         } else if let (true, Some(a), Some(b)) =
             (top.w_sec > config.w_prune, top.ind_max, top.ind_sec)
         {
@@ -304,6 +339,9 @@ impl Lwpr {
             };
             sub.rfs.swap_remove(prune);
             scan.swap_remove(prune);
+            if cap.is_some() {
+                sub.last_trained.swap_remove(prune);
+            }
             sub.n_pruned += 1;
         }
         ws.xn = xn;
