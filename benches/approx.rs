@@ -3,11 +3,13 @@
 //! One generic function, [`bench_approximator`], measures update and predict time of any
 //! [`FunctionApproximator`] on any [`Problem`]; adding an approximator is one line in
 //! [`benches`]. Bench ids: `update/<approximator>/<problem>` and
-//! `predict/<approximator>/<problem>`. Run with `cargo bench --bench approx`.
+//! `predict/<approximator>/<problem>`; `drift/lwpr/<max_rfs>/<updates>`: one update of LWPR
+//! after that many updates of a drifting stream, without a cap (`none`) and with
+//! `max_rfs(500)`. Run with `cargo bench --bench approx`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use steplearn::approx::problems::Problem;
+use steplearn::approx::problems::{Drift, Problem};
 use steplearn::approx::{FunctionApproximator, Lwpr, LwprConfig};
 
 /// Samples the model is trained on before timing (the reference's demo length).
@@ -67,6 +69,45 @@ fn lwpr_demo(problem: &Problem) -> impl Fn() -> Lwpr + '_ {
 fn benches(c: &mut Criterion) {
     for problem in [Problem::cross_2d(), Problem::step_offset_3d()] {
         bench_approximator(c, "lwpr", &problem, lwpr_demo(&problem));
+    }
+    bench_drift(c);
+}
+
+/// The cost of one LWPR update after 100,000 and 400,000 updates of a drifting stream, without
+/// and with a cap on receptive fields: it grows with the stream without the cap, and stays
+/// flat with it.
+fn bench_drift(c: &mut Criterion) {
+    for cap in [None, Some(500)] {
+        let config = LwprConfig::new(3, 1);
+        let mut model = Lwpr::new(match cap {
+            Some(n) => config.max_rfs(n),
+            None => config,
+        })
+        .expect("valid config");
+        let mut stream = Drift::new(1, 1e-3, 1.0);
+        let mut done = 0;
+        for updates in [100_000, 400_000] {
+            for (x, y) in stream.by_ref().take(updates - done) {
+                model.update(&x, &[y]).expect("valid sample");
+            }
+            // Time updates on a copy with the stream's next samples (cycled), so that each
+            // point measures the model where the drift has taken it.
+            let ahead: Vec<([f64; 3], f64)> = stream.by_ref().take(20_000).collect();
+            let mut timed = model.clone();
+            let mut i = 0;
+            let label = cap.map_or("none".to_string(), |n| n.to_string());
+            c.bench_function(&format!("drift/lwpr/{label}/{updates}"), |b| {
+                b.iter(|| {
+                    let (x, y) = &ahead[i % ahead.len()];
+                    i += 1;
+                    timed.update(black_box(x), &[*y]).expect("valid sample");
+                })
+            });
+            for (x, y) in &ahead {
+                model.update(x, &[*y]).expect("valid sample");
+            }
+            done = updates + ahead.len();
+        }
     }
 }
 

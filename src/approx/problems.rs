@@ -167,6 +167,47 @@ pub fn nmse(predicted: &[f64], truth: &[f64]) -> f64 {
     mse / var
 }
 
+/// An endless 3-input stream whose inputs drift: they move along a path (the first input
+/// grows by `speed` per sample, the second follows its sine) with uniform spread `+-spread`
+/// around it, the target a smooth function of where they are. A model that never forgets keeps
+/// adding local models along the path; the test of [`LwprConfig::max_rfs`](super::LwprConfig::max_rfs).
+#[derive(Debug)]
+pub struct Drift {
+    rng: ChaCha8Rng,
+    t: u64,
+    speed: f64,
+    spread: f64,
+}
+
+impl Drift {
+    /// A drift of `speed` input units per sample with spread `+-spread`, seeded.
+    pub fn new(seed: u64, speed: f64, spread: f64) -> Self {
+        Drift {
+            rng: ChaCha8Rng::seed_from_u64(seed),
+            t: 0,
+            speed,
+            spread,
+        }
+    }
+
+    /// The target at `x`: sin(2 x_0) + x_1 x_2 / 2.
+    pub fn target(x: &[f64; 3]) -> f64 {
+        (2.0 * x[0]).sin() + 0.5 * x[1] * x[2]
+    }
+}
+
+impl Iterator for Drift {
+    type Item = ([f64; 3], f64);
+    fn next(&mut self) -> Option<Self::Item> {
+        let p = self.t as f64 * self.speed;
+        self.t += 1;
+        let s = self.spread;
+        let mut r = || self.rng.random_range(-s..s);
+        let x = [p + r(), p.sin() + r(), r()];
+        Some((x, Drift::target(&x)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,35 +2,12 @@
 //! (bounded memory and cost per update) while the model keeps learning where the inputs are
 //! now; a cap never reached changes nothing; the cap survives save and load.
 
-use rand::rngs::ChaCha8Rng;
-use rand::{RngExt, SeedableRng};
+use steplearn::approx::problems::Drift;
 use steplearn::approx::{ApproxError, FunctionApproximator, Lwpr, LwprConfig, Persist};
 
-/// A 3-input stream whose inputs drift along a path (one unit of the first input per 10,000
-/// samples), the target a smooth function of where the inputs are.
-pub struct Drift {
-    rng: ChaCha8Rng,
-    t: u64,
-}
-
-impl Drift {
-    pub fn new(seed: u64) -> Self {
-        Drift {
-            rng: ChaCha8Rng::seed_from_u64(seed),
-            t: 0,
-        }
-    }
-}
-
-impl Iterator for Drift {
-    type Item = ([f64; 3], f64);
-    fn next(&mut self) -> Option<Self::Item> {
-        let p = self.t as f64 / 10_000.0;
-        self.t += 1;
-        let mut r = || self.rng.random_range(-0.3..0.3);
-        let x = [p + r(), p.sin() + r(), r()];
-        Some((x, (2.0 * x[0]).sin() + 0.5 * x[1] * x[2]))
-    }
+/// The drift of the tests: one input unit per 10,000 samples, spread +-0.3.
+fn drift(seed: u64) -> Drift {
+    Drift::new(seed, 1e-4, 0.3)
 }
 
 fn config(cap: Option<usize>) -> LwprConfig {
@@ -46,7 +23,7 @@ fn a_million_drifting_updates_stay_under_the_cap_and_keep_learning() {
     const CAP: usize = 100;
     let mut capped = Lwpr::new(config(Some(CAP))).unwrap();
     let mut free = Lwpr::new(config(None)).unwrap();
-    let mut stream = Drift::new(1);
+    let mut stream = drift(1);
     let mut sizes = Vec::new();
     for block in 0..10 {
         let mut recent = Vec::new();
@@ -101,12 +78,12 @@ fn a_cap_never_reached_changes_nothing() {
         Lwpr::new(config(Some(10_000))).unwrap(),
         Lwpr::new(config(None)).unwrap(),
     );
-    for (x, y) in Drift::new(2).take(20_000) {
+    for (x, y) in drift(2).take(20_000) {
         capped.update(&x, &[y]).unwrap();
         free.update(&x, &[y]).unwrap();
     }
     assert!(free.num_receptive_fields() > 20);
-    for (x, _) in Drift::new(3).take(500) {
+    for (x, _) in drift(3).take(500) {
         let (mut a, mut b) = ([0.0], [0.0]);
         capped.predict(&x, &mut a).unwrap();
         free.predict(&x, &mut b).unwrap();
@@ -159,7 +136,7 @@ fn a_zero_cap_is_refused_and_a_broken_capped_file_does_not_load() {
         })
     ));
     let mut m = Lwpr::new(config(Some(5))).unwrap();
-    for (x, y) in Drift::new(4).take(30_000) {
+    for (x, y) in drift(4).take(30_000) {
         m.update(&x, &[y]).unwrap();
     }
     let json: serde_json::Value = serde_json::from_str(&m.to_json().unwrap()).unwrap();
