@@ -6,7 +6,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use steplearn::approx::conformance::{
     CHECKS, ConformanceError, check_approximator, probe_points, stream, target,
 };
-use steplearn::approx::{ApproxError, FunctionApproximator, Grid, GridConfig, InputBox, Persist};
+use steplearn::approx::{
+    ApproxError, FunctionApproximator, Grid, GridConfig, InputBox, Persist, check_vector,
+};
 
 #[test]
 fn stream_is_seeded() {
@@ -43,6 +45,8 @@ const PANICS_ON_SHORT_INPUT: u8 = 5;
 const WRONG_OUTPUT_DIM: u8 = 6;
 const UNTRAINED_NAN: u8 = 7;
 const SAVE_NOT_ATOMIC: u8 = 8;
+const DEPENDS_ON_INSTANCE: u8 = 9;
+const LOAD_UNCHECKED: u8 = 10;
 
 /// A grid with one deliberate defect, selected by `FAULT`.
 #[derive(Clone, Serialize, Deserialize)]
@@ -54,6 +58,9 @@ struct Broken<const FAULT: u8> {
     /// Extra outputs it claims (the `WRONG_OUTPUT_DIM` fault: one model in two claims one).
     #[serde(skip)]
     extra_out: usize,
+    /// A bias on every target, different for each fresh model (the `DEPENDS_ON_INSTANCE`
+    /// fault), saved with the model so that a loaded one learns as the saved one would.
+    bias: f64,
 }
 
 static MADE: AtomicU64 = AtomicU64::new(0);
@@ -68,6 +75,11 @@ impl<const FAULT: u8> Broken<FAULT> {
             extra_out: usize::from(
                 FAULT == WRONG_OUTPUT_DIM && MADE.fetch_add(1, Ordering::Relaxed) % 2 == 1,
             ),
+            bias: if FAULT == DEPENDS_ON_INSTANCE {
+                1e-3 * (MADE.fetch_add(1, Ordering::Relaxed) % 5) as f64
+            } else {
+                0.0
+            },
         }
     }
 }
@@ -108,7 +120,8 @@ impl<const FAULT: u8> FunctionApproximator for Broken<FAULT> {
         if FAULT == LEARNS_DIFFERENTLY_AFTER_LOAD && self.since_load == 0 {
             return self.inner.update(x, &[y[0] + 1.0]);
         }
-        self.inner.update(x, y)
+        check_vector("target y", y, self.output_dim())?;
+        self.inner.update(x, &[y[0] + self.bias])
     }
 }
 
@@ -136,7 +149,9 @@ impl<const FAULT: u8> Persist for Broken<FAULT> {
         }
         let mut model: Self =
             serde_json::from_str(json).map_err(|e| ApproxError::Corrupt(e.to_string()))?;
-        model.check_invariants()?;
+        if FAULT != LOAD_UNCHECKED {
+            model.check_invariants()?;
+        }
         model.since_load = u64::MAX;
         Ok(model)
     }
@@ -210,4 +225,35 @@ fn a_save_that_destroys_what_was_there_is_caught() {
         err.reason.contains("non-empty directory succeeded"),
         "{err}"
     );
+}
+
+#[test]
+fn a_model_that_depends_on_more_than_its_data_is_caught() {
+    let err = rejected_by(Broken::<DEPENDS_ON_INSTANCE>::new, "same_data_same_model");
+    assert!(err.reason.contains("differ"), "{err}");
+}
+
+#[test]
+fn a_load_that_skips_the_invariants_is_caught() {
+    let err = rejected_by(
+        Broken::<LOAD_UNCHECKED>::new,
+        "corrupt_saved_model_rejected",
+    );
+    assert!(
+        err.reason.contains("tampered") || err.reason.contains("panicked"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_check_has_a_broken_approximator_that_only_it_catches() {
+    // Each test above names the check that must catch its broken approximator; this keeps the
+    // list complete when a check is added.
+    let source = include_str!("conformance_smoke.rs");
+    for check in CHECKS {
+        assert!(
+            source.contains(&format!("\"{check}\"")),
+            "no broken approximator for {check}"
+        );
+    }
 }
