@@ -197,7 +197,9 @@ fn report_recovery_and_mismatch_figures() {
         worst,
         count
     );
+    // The capture step returns within a step or two (measured: mean 1.41, worst 3).
     assert!(worst <= 6);
+    assert!(total as f64 / count as f64 <= 2.0, "mean {total} / {count}");
 
     // Capturable range in place with the step length limited to 0.5 m and steps lasting at
     // least 0.3 s: the largest forward
@@ -259,6 +261,7 @@ fn report_recovery_and_mismatch_figures() {
     }
 
     // Model mismatch: the plant's C differs from the controller's 3.0.
+    let mut periods: Vec<(f64, f64)> = Vec::new();
     for plant_c in [2.6, 2.8, 3.2, 3.4] {
         for f_r in [-0.1, 0.0, 0.2] {
             let r = GaitReference {
@@ -281,8 +284,32 @@ fn report_recovery_and_mismatch_figures() {
                 out.max_zmp_fraction
             );
             // Bounded: a steady gait (steps repeat) within 5 cm of the reference, lateral
-            // within 3 cm of nominal; the remaining error is the model's, for the learner.
+            // within 3 cm of nominal; the remaining error is the model's, for the learner. A
+            // faster plant (larger C) overshoots the reference step, a slower one falls short,
+            // and in place there is nothing to miss; the ZMP stays inside the foot.
             assert!(steady(&tail), "C {plant_c} F_R {f_r}: not steady");
+            let error = mean_x - f_r;
+            if f_r == 0.0 {
+                assert!(error.abs() < 1e-3, "C {plant_c} in place: {error}");
+            } else {
+                assert!(
+                    error * f_r * (plant_c - 3.0) > 0.0,
+                    "C {plant_c} F_R {f_r}: error {error}"
+                );
+            }
+            assert!(out.max_zmp_fraction <= 1.0, "C {plant_c}: ZMP outside the foot");
+            // A faster plant takes shorter steps in time: the period falls as C grows, around
+            // the nominal step time (measured 0.670 s at C 2.6 to 0.484 s at 3.4).
+            assert!(
+                (mean_period - cfg.nominal_step_time).abs() < 0.15,
+                "C {plant_c}: period {mean_period}"
+            );
+            if let Some(&(c, p)) = periods.last()
+                && c < plant_c
+            {
+                assert!(mean_period < p, "period {mean_period} at C {plant_c}, {p} at {c}");
+            }
+            periods.push((plant_c, mean_period));
             assert!(max_dev < 0.05, "C {plant_c} F_R {f_r}: {max_dev}");
             assert!(
                 (mean_y - 0.24).abs() < 0.03,
