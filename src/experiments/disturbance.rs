@@ -21,6 +21,8 @@ use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls, Summary};
 use crate::report::ReportError;
+use crate::report::band::{Labels, band, band_plot};
+use crate::report::csv_read::{number, read_rows};
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
@@ -579,6 +581,57 @@ struct AlignedRow<'a> {
     mean_tda_rad: Fixed<6>,
     std_tda_rad: Fixed<6>,
     steps: usize,
+}
+
+/// The columns of `disturbance_by_step.csv` the figure across seeds reads.
+#[derive(Debug, Deserialize)]
+struct ByStepCells {
+    controller: String,
+    touch_down_after_push: usize,
+    mean_step_m: String,
+}
+
+/// `disturbance_by_step_over_seeds.svg` in `dir`: the step size (cm) of the k-th touch-down
+/// after a push, mean over the runs in `run_dirs` (one per seed, each with its
+/// `disturbance_by_step.csv`) with its 95% band; runs without the file are left out, false
+/// when none has it.
+pub fn figure_over_seeds(
+    dir: &Path,
+    run_dirs: &[std::path::PathBuf],
+) -> Result<bool, ExperimentError> {
+    let (mut model, mut learned): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+    for run in run_dirs {
+        let path = run.join("disturbance_by_step.csv");
+        if !path.is_file() {
+            continue;
+        }
+        for row in read_rows::<ByStepCells>(&path)? {
+            let to = match row.controller.as_str() {
+                "model" => &mut model,
+                "learned" => &mut learned,
+                _ => continue,
+            };
+            let k = row.touch_down_after_push.max(1) - 1;
+            if to.len() <= k {
+                to.resize(k + 1, Vec::new());
+            }
+            to[k].push(100.0 * number(&row.mean_step_m));
+        }
+    }
+    let x = |v: &[Vec<f64>]| (1..=v.len()).map(|k| k as f64).collect::<Vec<_>>();
+    Ok(band_plot(
+        &dir.join("disturbance_by_step_over_seeds.svg"),
+        Labels {
+            title: "Step size of the k-th touch-down after a push",
+            x: "touch-down after the push",
+            y: "step size F (cm)",
+            integer_x: true,
+        },
+        &[
+            ("model", band(&x(&model), &model)),
+            ("learned", band(&x(&learned), &learned)),
+        ],
+    )?)
 }
 
 /// Claim 2, checked on `runs` (this experiment's summaries, any order): after 8 Ns pushes the

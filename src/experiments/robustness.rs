@@ -28,6 +28,7 @@ use crate::control::learner::{
 use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, NoLearning, Summary};
 use crate::report::ReportError;
+use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{HeatMapGrid, HeatPanel, LinePlot, Series, heat_map_grid, line_plot};
 use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
@@ -501,6 +502,50 @@ struct PushRow {
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 struct PushCell {
     push: usize,
+}
+
+/// `robustness_absorbed_over_seeds.svg` in `dir`: pushes absorbed so far against the push
+/// number, learning from scratch and without learning, mean over the seeds of `runs` with its
+/// 95% band; false when no run recorded its pushes.
+pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportError> {
+    let (mut learned, mut without): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+    let mut add = |to: &mut Vec<Vec<f64>>, absorbed: &[bool]| {
+        let mut so_far = 0.0;
+        for (k, a) in absorbed.iter().enumerate() {
+            so_far += f64::from(u8::from(*a));
+            if to.len() <= k {
+                to.resize(k + 1, Vec::new());
+            }
+            to[k].push(so_far);
+        }
+    };
+    for (_, (absorbed, no_learning)) in by_seed(runs, |s| match &s.result {
+        ExperimentResult::Robustness {
+            absorbed_by_push,
+            no_learning,
+            ..
+        } => Some((absorbed_by_push, no_learning)),
+        _ => None,
+    }) {
+        add(&mut learned, absorbed);
+        if let Some(n) = no_learning {
+            add(&mut without, &n.absorbed_by_push);
+        }
+    }
+    let x = |v: &[Vec<f64>]| (1..=v.len()).map(|k| k as f64).collect::<Vec<_>>();
+    band_plot(
+        &dir.join("robustness_absorbed_over_seeds.svg"),
+        Labels {
+            title: "Pushes absorbed so far, learning from scratch",
+            x: "push",
+            y: "pushes absorbed",
+            integer_x: true,
+        },
+        &[
+            ("learned", band(&x(&learned), &learned)),
+            ("without learning", band(&x(&without), &without)),
+        ],
+    )
 }
 
 /// Claim 4, checked on `runs` (this experiment's summaries, any order): without

@@ -295,7 +295,19 @@ fn draw_legend<'a>(chart: &mut Chart<'a, 'a>) -> Result<(), ReportError> {
 
 /// Line plot of several series with optional +-spread bands (Figs. 4, 5).
 pub fn line_plot(path: &Path, plot: &LinePlot) -> Result<(), ReportError> {
+    line_plot_ticks(path, plot, false)
+}
+
+/// [`line_plot`] with labels only at integer x ticks when `integer_x` (a count on the x axis).
+pub fn line_plot_ticks(path: &Path, plot: &LinePlot, integer_x: bool) -> Result<(), ReportError> {
     let (xr, yr) = series_bounds(plot.series)?;
+    let x_tick = |v: &f64| {
+        if integer_x && (v - v.round()).abs() > 1e-9 {
+            String::new()
+        } else {
+            tick(v)
+        }
+    };
     render(path, (800, 500), |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(plot.title, ("sans-serif", 22))
@@ -306,6 +318,8 @@ pub fn line_plot(path: &Path, plot: &LinePlot) -> Result<(), ReportError> {
             .map_err(plot_err)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&x_tick)
+            .y_label_formatter(&tick)
             .x_desc(plot.x_label)
             .y_desc(plot.y_label)
             .draw()
@@ -335,6 +349,8 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
     let draw_primary = |chart: &mut Chart| -> Result<(), ReportError> {
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .x_desc(plot.x_label)
             .y_desc(plot.y_label)
             .draw()
@@ -375,6 +391,7 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
         draw_primary(&mut chart)?;
         chart
             .configure_secondary_axes()
+            .y_label_formatter(&tick)
             .y_desc(label)
             .draw()
             .map_err(plot_err)?;
@@ -436,6 +453,8 @@ pub fn fall_probability_plot(path: &Path, plot: &FallPlot) -> Result<(), ReportE
             .map_err(plot_err)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .x_desc(plot.x_label)
             .y_desc("fall probability")
             .draw()
@@ -510,9 +529,9 @@ impl HeatPanel<'_> {
     }
 }
 
-/// Tick label with 2 significant decimals at most and no "-0".
-fn tick(v: &f64) -> String {
-    let s = format!("{:.2}", v + 0.0);
+/// Tick label: integers without a decimal point, others with at most 3 decimals, never "-0".
+pub fn tick(v: &f64) -> String {
+    let s = format!("{:.3}", v + 0.0);
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" { "0".into() } else { s }
 }
