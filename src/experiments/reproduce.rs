@@ -576,7 +576,12 @@ mod tests {
         assert!(md.contains("**not reproduced** (2 of 3 seeds)"), "{md}");
         assert!(md.contains("**not reproduced** (2 of 5 seeds)"), "{md}");
         // Over seeds: the per-seed values paired by seed, seeds without a figure left out.
-        let bins = &c.tracking.over_seeds;
+        // The headline first (each seed's mean over its bins), then one comparison per bin.
+        let headline = c.tracking.headline().unwrap();
+        assert!(headline.quantity.contains("averaged over the bins"));
+        assert_eq!(headline.values.len(), 3);
+        assert!((headline.values[0] - (-1.0)).abs() < 1e-9, "{headline:?}");
+        let bins = &c.tracking.over_seeds[1..];
         assert_eq!(bins.len(), 3);
         assert_eq!(bins[0].values.len(), 3);
         assert_eq!(bins[1].values.len(), 2, "seed 2 has no data in bin 1");
@@ -603,6 +608,22 @@ mod tests {
             md.contains("| I50 learned / model | 1.083 | [1.083, 1.083] | 2 | better |"),
             "{md}"
         );
+        // The lead lines: one per claim, both verdicts, first in claims.md.
+        let lead = c.lead_lines();
+        assert_eq!(lead.len(), 4);
+        assert!(
+            lead[2].starts_with("Claim 3, experiment C, stability (paper Fig. 6): learned better than the model over seeds (I50 learned / model), mean +1.083, 95% [+1.083, +1.083]; strict per seed: not reproduced, holds on 1 of 2 seeds"),
+            "{}",
+            lead[2]
+        );
+        assert!(lead[0].contains("level with the model"), "{}", lead[0]);
+        assert!(lead[0].contains("holds on 2 of 3 seeds"), "{}", lead[0]);
+        assert!(lead[3].contains("without learning"), "{}", lead[3]);
+        let first_section = md.find("\n## ").unwrap();
+        for line in &lead {
+            assert!(md[..first_section].contains(line.as_str()), "{line}");
+        }
+        assert!(!md.contains("*level*"));
         // Nothing measured, nothing reproduced.
         assert!(!Claims::from_summaries(&[], 0.15).robustness.holds);
     }
