@@ -371,9 +371,9 @@ impl DisturbanceResult {
             (
                 "Step size after an 8 Ns push (mean, band: +-1 std)",
                 since_push,
-                "step size (m)",
+                "step size (cm)",
             ),
-            |r| &r.step,
+            (|r| &r.step, 100.0),
             0.0,
             Some(([0.0, time_span], f_r)),
         )?;
@@ -382,9 +382,9 @@ impl DisturbanceResult {
             (
                 "Trunk deviation angle after an 8 Ns push (mean, band: +-1 std)",
                 since_push,
-                "TDA theta_E (rad)",
+                "TDA θ_E (rad)",
             ),
-            |r| &r.tda,
+            (|r| &r.tda, 1.0),
             0.0,
             None,
         )?;
@@ -394,9 +394,9 @@ impl DisturbanceResult {
             (
                 "Step size of each touch-down after an 8 Ns push (mean, band: +-1 std)",
                 "touch-down after the push (1: the first)",
-                "step size (m)",
+                "step size (cm)",
             ),
-            |r| &r.step_by_index,
+            (|r| &r.step_by_index, 100.0),
             0.5,
             Some(([1.0, STEPS_AFTER_PUSH as f64], f_r)),
         )?;
@@ -405,25 +405,27 @@ impl DisturbanceResult {
 }
 
 impl DisturbanceResult {
-    /// One figure of both walkers' `pick` (mean, band +- 1 std; x shifted by `x_shift`) and,
-    /// if given, a reference line at `reference.1` over the x range `reference.0`; `labels`
-    /// are (title, x label, y label).
+    /// One figure of both walkers' `pick.0` times `pick.1` (mean, band +- 1 std; x shifted by
+    /// `x_shift`) and, if given, a reference line at `reference.1` (unscaled) over the x
+    /// range `reference.0`; `labels` are (title, x label, y label).
     fn plot(
         &self,
         path: &Path,
         labels: (&str, &str, &str),
-        pick: fn(&PushResponse) -> &AlignedStats,
+        pick: (fn(&PushResponse) -> &AlignedStats, f64),
         x_shift: f64,
         reference: Option<([f64; 2], f64)>,
     ) -> Result<(), ExperimentError> {
         let shifted = |r: &PushResponse| {
-            let (x, y, spread) = pick(r).populated(1);
+            let (x, y, spread) = pick.0(r).populated(1);
             let x: Vec<f64> = x.into_iter().map(|x| x + x_shift).collect();
-            (x, y, spread)
+            let scaled = |v: Vec<f64>| v.into_iter().map(|v| pick.1 * v).collect::<Vec<f64>>();
+            (x, scaled(y), scaled(spread))
         };
         let (model, learned) = (shifted(&self.model), shifted(&self.learned));
-        let (rx, ry) =
-            reference.map_or((Vec::new(), Vec::new()), |(x, y)| (x.to_vec(), vec![y; 2]));
+        let (rx, ry) = reference.map_or((Vec::new(), Vec::new()), |(x, y)| {
+            (x.to_vec(), vec![pick.1 * y; 2])
+        });
         let mut series = Vec::new();
         for (name, (x, y, spread)) in [("model", &model), ("learned", &learned)] {
             if !x.is_empty() {

@@ -340,13 +340,14 @@ impl RobustnessResult {
         let x: Vec<f64> = (0..=self.episodes.len()).map(|i| i as f64).collect();
         let y: Vec<f64> = std::iter::once(self.initial_metric)
             .chain(self.episodes.iter().map(|e| e.learning_metric))
+            .map(|m| 100.0 * m)
             .collect();
         line_plot(
             &dir.join("learning_metric.svg"),
             &LinePlot {
-                title: "Learning metric (norm of dF over the input grid) after each push",
+                title: "Learning metric (norm of ΔF over the input grid) after each push",
                 x_label: "push",
-                y_label: "learning metric (m)",
+                y_label: "learning metric (cm)",
                 series: &[Series {
                     name: "learner only",
                     x: &x,
@@ -371,16 +372,22 @@ impl RobustnessResult {
             .iter()
             .map(|e| e.steps.iter().map(|s| (s.theta_e, s.theta_e_dot)).collect())
             .collect();
+        let values_cm: Vec<Vec<f64>> = self
+            .episodes
+            .iter()
+            .map(|e| e.map.values.iter().map(|v| 100.0 * v).collect())
+            .collect();
         let panels: Vec<HeatPanel> = self
             .episodes
             .iter()
             .zip(&titles)
             .zip(&points)
-            .map(|((e, title), pts)| HeatPanel {
+            .zip(&values_cm)
+            .map(|(((e, title), pts), values)| HeatPanel {
                 title,
                 xs: &e.map.theta_e,
                 ys: &e.map.theta_e_dot,
-                values: &e.map.values,
+                values,
                 points: pts,
             })
             .collect();
@@ -388,10 +395,10 @@ impl RobustnessResult {
             heat_map_grid(
                 &dir.join("df_maps.svg"),
                 &HeatMapGrid {
-                    title: "Learned step dF (m) over the trunk angle and rate, after each push",
-                    x_label: "theta_E (rad)",
-                    y_label: "theta_E_dot (rad/s)",
-                    value_label: "dF (m)",
+                    title: "Learned step offset ΔF (cm) over the trunk angle and rate, after each push",
+                    x_label: "θ_E (rad)",
+                    y_label: "θ̇_E (rad/s)",
+                    value_label: "ΔF (cm)",
                     panels: &panels,
                     columns: 5,
                 },

@@ -170,8 +170,11 @@ impl TrackingResult {
         }
         write_rows(&dir.join("tracking_aligned.csv"), &rows)?;
         // Figure: bins with at least two steps of the controller.
+        let cm = |v: Vec<f64>| v.into_iter().map(|v| 100.0 * v).collect::<Vec<_>>();
         let (mt, model_mean, model_std) = self.model.populated(2);
+        let (model_mean, model_std) = (cm(model_mean), cm(model_std));
         let (lt, learned_mean, learned_std) = self.learned.populated(2);
+        let (learned_mean, learned_std) = (cm(learned_mean), cm(learned_std));
         let mut series = Vec::new();
         if !mt.is_empty() {
             series.push(Series {
@@ -194,7 +197,7 @@ impl TrackingResult {
             &LinePlot {
                 title: "Step size error after a reference change (mean, band: +-1 std)",
                 x_label: "time since the change (s)",
-                y_label: "F_E (m)",
+                y_label: "F_E (cm)",
                 series: &series,
             },
         )?;
@@ -203,7 +206,7 @@ impl TrackingResult {
             log.steps
                 .iter()
                 .filter(|s| s.time <= window)
-                .map(|s| (s.time, s.f_hat))
+                .map(|s| (s.time, 100.0 * s.f_hat))
                 .unzip()
         };
         let (mt, mf) = series(&self.runs.model);
@@ -211,7 +214,7 @@ impl TrackingResult {
         let (rt, rf): (Vec<f64>, Vec<f64>) = (0..=(window * 10.0) as usize)
             .map(|i| {
                 let t = i as f64 * 0.1;
-                (t, self.reference.at(t))
+                (t, 100.0 * self.reference.at(t))
             })
             .unzip();
         let changes: Vec<f64> = self
@@ -225,7 +228,7 @@ impl TrackingResult {
             &EventPlot {
                 title: "Reference and measured step sizes",
                 x_label: "time (s)",
-                y_label: "step size (m)",
+                y_label: "step size (cm)",
                 series: &[
                     Series {
                         name: "reference F_R",

@@ -627,7 +627,7 @@ pub fn heat_map_grid(path: &Path, grid: &HeatMapGrid) -> Result<(), ReportError>
             .disable_mesh()
             .disable_x_axis()
             .y_labels(7)
-            .y_label_formatter(&|v| format!("{:.3}", v + 0.0))
+            .y_label_formatter(&tick)
             .y_label_style(("sans-serif", 12))
             .axis_desc_style(("sans-serif", 14))
             .y_desc(grid.value_label)
