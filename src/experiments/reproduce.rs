@@ -176,7 +176,7 @@ impl Claims {
             dirs.iter()
                 .map(|d| d.join(SUMMARY_FILE))
                 .filter(|p| p.is_file())
-                .map(|p| Summary::read(&p))
+                .map(|p| Summary::read(&p).map_err(ExperimentError::from))
                 .collect()
         };
         let tracking_runs = summaries(&runs(ExperimentKind::Tracking, &self.tracking))?;

@@ -516,7 +516,7 @@ struct PushCell {
 /// 95% band; false when no run recorded its pushes.
 pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportError> {
     let (mut learned, mut without): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
-    let mut add = |to: &mut Vec<Vec<f64>>, absorbed: &[bool]| {
+    let add = |to: &mut Vec<Vec<f64>>, absorbed: &[bool]| {
         let mut so_far = 0.0;
         for (k, a) in absorbed.iter().enumerate() {
             so_far += f64::from(u8::from(*a));

@@ -364,7 +364,7 @@ pub fn figure_over_seeds(
             ) else {
                 continue;
             };
-            if !(impulse >= 0.0) {
+            if impulse.is_nan() || impulse < 0.0 {
                 continue;
             }
             let k = (impulse / BIN_NS) as usize;
