@@ -653,6 +653,16 @@ mod tests {
     use super::*;
 
     #[test]
+    fn tick_labels_have_no_trailing_zeros_and_no_negative_zero() {
+        assert_eq!(tick(&2.0), "2");
+        assert_eq!(tick(&14.0), "14");
+        assert_eq!(tick(&-0.0), "0");
+        assert_eq!(tick(&-0.0001), "0");
+        assert_eq!(tick(&0.25), "0.25");
+        assert_eq!(tick(&-1.5), "-1.5");
+    }
+
+    #[test]
     fn each_controller_has_one_colour_in_every_figure() {
         for i in 0..4 {
             assert_eq!(series_colour("model", i), PALETTE[0]);

@@ -213,4 +213,19 @@ mod tests {
         assert!(html.contains("<figure>\n<svg width=\"10\"></svg>"));
         assert!(!html.contains("<?xml"));
     }
+
+    #[test]
+    fn markdown_lists_and_figure_links() {
+        let mut page = HtmlPage::new("t");
+        page.markdown("- Claim 1: **better**\n- Claim 2: level\n\nText.\n");
+        page.figure_link("run/a b.svg", "a <figure>");
+        let html = page.to_html();
+        assert!(html.contains(
+            "<ul>\n<li>Claim 1: <strong>better</strong></li>\n<li>Claim 2: level</li>\n</ul>"
+        ));
+        assert!(html.contains("<p>Text.</p>"));
+        assert!(
+            html.contains("<a href=\"run/a b.svg\">Figure (not inlined): a &lt;figure&gt;</a>")
+        );
+    }
 }
