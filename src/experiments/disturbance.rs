@@ -628,6 +628,7 @@ pub fn figure_over_seeds(
             x: "touch-down after the push",
             y: "step size F (cm)",
             integer_x: true,
+            y_range: f64::NEG_INFINITY..f64::INFINITY,
         },
         &[
             ("model", band(&x(&model), &model)),

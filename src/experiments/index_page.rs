@@ -20,13 +20,13 @@ pub const INLINE_MAX_BYTES: usize = 300_000;
 pub fn caption(file_name: &str) -> &'static str {
     match file_name {
         "tracking_std_over_seeds.svg" => {
-            "Experiment A (paper Fig. 4, left), claim 1: std of the step size error F_E after a reference change, mean over seeds with its 95% band (model vs learned). The paper: lower with learning at all times (1000 steps, F_R drawn from [-10, 20] cm)."
+            "Experiment A (paper Fig. 4, left), claim 1: std of the step size error F_E after a reference change, mean over seeds with its 95% band (clipped at 0; model vs learned). The paper: lower with learning at all times (1000 steps, F_R drawn from [-10, 20] cm)."
         }
         "disturbance_by_step_over_seeds.svg" => {
             "Experiment B (paper Fig. 5, left), claim 2: step size of the k-th touch-down after an 8 Ns push, mean over seeds with its 95% band (model vs learned). The paper: the learned walker returns to F_R = 20 cm sooner."
         }
         "stability_fall_probability_over_seeds.svg" => {
-            "Experiment C (paper Fig. 6), claim 3: fall probability per 2 Ns impulse bin combined over seeds (mean of the per-seed shares with its 95% band; open-loop, model, learned). The paper: the model far above open-loop, learned above the model (400 pushes, 0-20 Ns)."
+            "Experiment C (paper Fig. 6), claim 3: fall probability per 2 Ns impulse bin combined over seeds (mean of the per-seed shares with its 95% band clipped to [0, 1]; open-loop, model, learned). The paper: the model far above open-loop, learned above the model (400 pushes, 0-20 Ns)."
         }
         "robustness_absorbed_over_seeds.svg" => {
             "Experiment D (paper Fig. 7), claim 4: pushes absorbed so far against the push number, learning from scratch vs the same walker without learning, mean over seeds with its 95% band. The paper: falls on pushes 1 and 2, absorbs from the 3rd (8 Ns)."

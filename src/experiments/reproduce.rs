@@ -247,27 +247,39 @@ impl Lead {
     fn line(&self, n: usize, c: &Claim) -> String {
         let d = self.decimals;
         let paired = match c.headline() {
-            Some(p) => match p.verdict {
-                Some(v) => {
-                    let standing = match v {
-                        Verdict::Better => format!("better than {}", self.against),
-                        Verdict::Level => format!("level with {}", self.against),
-                        Verdict::Worse => format!("worse than {}", self.against),
-                    };
-                    format!(
-                        "learned {standing} over seeds ({}), mean {:+.d$}{u}, 95% [{:+.d$}, {:+.d$}]",
+            Some(p) => {
+                // Differences carry their sign; ratios (null 1) do not.
+                let num = |v: f64| {
+                    if p.null == 0.0 {
+                        format!("{v:+.d$}")
+                    } else {
+                        format!("{v:.d$}")
+                    }
+                };
+                match p.verdict {
+                    Some(v) => {
+                        let standing = match v {
+                            Verdict::Better => format!("better than {}", self.against),
+                            Verdict::Level => format!("level with {}", self.against),
+                            Verdict::Worse => format!("worse than {}", self.against),
+                        };
+                        format!(
+                            "learned {standing} over seeds ({}), mean {}{u}, 95% [{}, {}]",
+                            self.quantity,
+                            num(p.mean),
+                            num(p.ci95.0),
+                            num(p.ci95.1),
+                            u = self.unit
+                        )
+                    }
+                    None => format!(
+                        "too few seeds for a paired verdict ({}), mean {}{}",
                         self.quantity,
-                        p.mean,
-                        p.ci95.0,
-                        p.ci95.1,
-                        u = self.unit
-                    )
+                        num(p.mean),
+                        self.unit
+                    ),
                 }
-                None => format!(
-                    "too few seeds for a paired verdict ({}), mean {:+.d$}{}",
-                    self.quantity, p.mean, self.unit
-                ),
-            },
+            }
             None => "no paired comparison".to_string(),
         };
         format!(
@@ -612,7 +624,7 @@ mod tests {
         let lead = c.lead_lines();
         assert_eq!(lead.len(), 4);
         assert!(
-            lead[2].starts_with("Claim 3, experiment C, stability (paper Fig. 6): learned better than the model over seeds (I50 learned / model), mean +1.083, 95% [+1.083, +1.083]; strict per seed: not reproduced, holds on 1 of 2 seeds"),
+            lead[2].starts_with("Claim 3, experiment C, stability (paper Fig. 6): learned better than the model over seeds (I50 learned / model), mean 1.083, 95% [1.083, 1.083]; strict per seed: not reproduced, holds on 1 of 2 seeds"),
             "{}",
             lead[2]
         );

@@ -547,6 +547,7 @@ pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportEr
             x: "push",
             y: "pushes absorbed",
             integer_x: true,
+            y_range: 0.0..f64::INFINITY,
         },
         &[
             ("learned", band(&x(&learned), &learned)),

@@ -400,6 +400,7 @@ pub fn figure_over_seeds(
             x: "push impulse (Ns)",
             y: "fall probability",
             integer_x: false,
+            y_range: 0.0..1.0,
         },
         &bands,
     )?)

@@ -451,6 +451,7 @@ pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportEr
             x: "time since the change (s)",
             y: "std of F_E (cm)",
             integer_x: false,
+            y_range: 0.0..f64::INFINITY,
         },
         &[("model", band(&x, &model)), ("learned", band(&x, &learned))],
     )

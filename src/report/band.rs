@@ -4,6 +4,7 @@ use super::ReportError;
 use super::figures::{LinePlot, Series, line_plot_ticks};
 use crate::stats::MeanStd;
 use statrs::distribution::{ContinuousCDF, StudentsT};
+use std::ops::Range;
 use std::path::Path;
 
 /// Means over seeds and the half-widths of their 95% intervals, point by point.
@@ -46,7 +47,7 @@ pub fn band(x: &[f64], values: &[Vec<f64>]) -> Band {
 }
 
 /// Labels of a band plot: title (the number of seeds is appended), x and y axis.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Labels<'a> {
     /// The title.
     pub title: &'a str,
@@ -56,6 +57,8 @@ pub struct Labels<'a> {
     pub y: &'a str,
     /// Whether x counts something (labels at integer ticks only).
     pub integer_x: bool,
+    /// The values the quantity can take; bands are clipped to them.
+    pub y_range: Range<f64>,
 }
 
 /// A line plot of named bands (mean lines, 95% bands shaded). Bands without points are left
@@ -84,6 +87,7 @@ pub fn band_plot(path: &Path, labels: Labels, bands: &[(&str, Band)]) -> Result<
             series: &series,
         },
         labels.integer_x,
+        labels.y_range.clone(),
     )?;
     Ok(true)
 }

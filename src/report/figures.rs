@@ -254,13 +254,22 @@ type Chart<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-/// Draws bands then lines of `series` with legend entries, colours from `offset`.
-fn draw_series(chart: &mut Chart, series: &[Series], offset: usize) -> Result<(), ReportError> {
+/// Draws bands (clipped to `clip`) then lines of `series` with legend entries, colours from
+/// `offset`.
+fn draw_series(
+    chart: &mut Chart,
+    series: &[Series],
+    offset: usize,
+    clip: Range<f64>,
+) -> Result<(), ReportError> {
     for (i, s) in series.iter().enumerate() {
         let c = series_colour(s.name, i + offset);
         if let Some(spread) = s.spread {
-            let upper = (0..s.x.len()).map(|k| (s.x[k], s.y[k] + spread[k]));
-            let lower = (0..s.x.len()).rev().map(|k| (s.x[k], s.y[k] - spread[k]));
+            let y = |v: f64| v.clamp(clip.start, clip.end);
+            let upper = (0..s.x.len()).map(|k| (s.x[k], y(s.y[k] + spread[k])));
+            let lower = (0..s.x.len())
+                .rev()
+                .map(|k| (s.x[k], y(s.y[k] - spread[k])));
             chart
                 .draw_series(std::iter::once(Polygon::new(
                     upper.chain(lower).collect::<Vec<_>>(),
@@ -295,12 +304,19 @@ fn draw_legend<'a>(chart: &mut Chart<'a, 'a>) -> Result<(), ReportError> {
 
 /// Line plot of several series with optional +-spread bands (Figs. 4, 5).
 pub fn line_plot(path: &Path, plot: &LinePlot) -> Result<(), ReportError> {
-    line_plot_ticks(path, plot, false)
+    line_plot_ticks(path, plot, false, f64::NEG_INFINITY..f64::INFINITY)
 }
 
-/// [`line_plot`] with labels only at integer x ticks when `integer_x` (a count on the x axis).
-pub fn line_plot_ticks(path: &Path, plot: &LinePlot, integer_x: bool) -> Result<(), ReportError> {
+/// [`line_plot`] with labels only at integer x ticks when `integer_x` (a count on the x
+/// axis), and bands clipped to the range `y_clip` (the values a quantity can take).
+pub fn line_plot_ticks(
+    path: &Path,
+    plot: &LinePlot,
+    integer_x: bool,
+    y_clip: Range<f64>,
+) -> Result<(), ReportError> {
     let (xr, yr) = series_bounds(plot.series)?;
+    let yr = yr.start.max(y_clip.start)..yr.end.min(y_clip.end);
     let x_tick = |v: &f64| {
         if integer_x && (v - v.round()).abs() > 1e-9 {
             String::new()
@@ -324,7 +340,7 @@ pub fn line_plot_ticks(path: &Path, plot: &LinePlot, integer_x: bool) -> Result<
             .y_desc(plot.y_label)
             .draw()
             .map_err(plot_err)?;
-        draw_series(&mut chart, plot.series, 0)?;
+        draw_series(&mut chart, plot.series, 0, y_clip)?;
         draw_legend(&mut chart)
     })
 }
@@ -369,7 +385,7 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
                     PathElement::new(vec![(x + 10, y - 6), (x + 10, y + 6)], event_style)
                 });
         }
-        draw_series(chart, plot.series, 0)
+        draw_series(chart, plot.series, 0, f64::NEG_INFINITY..f64::INFINITY)
     };
     render(path, (900, 500), |root| {
         let chart = ChartBuilder::on(root)
