@@ -551,7 +551,7 @@ pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportEr
         },
         &[
             ("learned", band(&x(&learned), &learned)),
-            ("without learning", band(&x(&without), &without)),
+            ("no learning (ΔF = 0)", band(&x(&without), &without)),
         ],
     )
 }
