@@ -739,7 +739,7 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
         Paired::new(quantity, values, 0.0, Direction::LowerIsBetter)
     };
     Claim::new(
-        "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta and no more falls (every seed).",
+        "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA θ_E within 1.5 p_θ and no more falls (every seed).",
         seeds,
         Claim::every,
         vec![

@@ -605,7 +605,7 @@ pub fn claim(runs: &[&Summary]) -> Claim {
         seeds.push((seed, early && more, format!("{first}; {baseline}")));
     }
     Claim::new(
-        "4. Without initialisation, the learner absorbs a push within its first three pushes and absorbs more pushes than the same walker without learning (dF = 0) on the same episodes (most seeds).",
+        "4. Without initialisation, the learner absorbs a push within its first three pushes and absorbs more pushes than the same walker without learning (ΔF = 0) on the same episodes (most seeds).",
         seeds,
         Claim::most,
         vec![Paired::new(
