@@ -15,8 +15,8 @@ pub struct Claim {
     /// Whether it holds overall (the rule for "overall" is in `statement`).
     pub holds: bool,
     /// The claim's figures compared over seeds (learned against model, paired by seed, with
-    /// 95% intervals): whether a difference exceeds the seed-to-seed noise. Empty in reports
-    /// written before these existed.
+    /// 95% intervals): whether a difference exceeds the seed-to-seed noise; the first is the
+    /// claim's headline. Empty in reports written before these existed.
     #[serde(default)]
     pub over_seeds: Vec<Paired>,
 }
@@ -37,6 +37,16 @@ impl Claim {
             seeds,
             over_seeds,
         }
+    }
+
+    /// The seeds on which the claim holds.
+    pub fn seeds_holding(&self) -> usize {
+        self.seeds.iter().filter(|s| s.1).count()
+    }
+
+    /// The comparison that sums the claim up over seeds (the first of `over_seeds`).
+    pub fn headline(&self) -> Option<&Paired> {
+        self.over_seeds.first()
     }
 
     /// Holds on every seed.

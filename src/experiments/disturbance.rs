@@ -21,6 +21,8 @@ use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls, Summary};
 use crate::report::ReportError;
+use crate::report::band::{Labels, band, band_plot};
+use crate::report::csv_read::{number, read_rows};
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
@@ -369,9 +371,9 @@ impl DisturbanceResult {
             (
                 "Step size after an 8 Ns push (mean, band: +-1 std)",
                 since_push,
-                "step size (m)",
+                "step size (cm)",
             ),
-            |r| &r.step,
+            (|r| &r.step, 100.0),
             0.0,
             Some(([0.0, time_span], f_r)),
         )?;
@@ -380,9 +382,9 @@ impl DisturbanceResult {
             (
                 "Trunk deviation angle after an 8 Ns push (mean, band: +-1 std)",
                 since_push,
-                "TDA theta_E (rad)",
+                "TDA θ_E (rad)",
             ),
-            |r| &r.tda,
+            (|r| &r.tda, 1.0),
             0.0,
             None,
         )?;
@@ -392,9 +394,9 @@ impl DisturbanceResult {
             (
                 "Step size of each touch-down after an 8 Ns push (mean, band: +-1 std)",
                 "touch-down after the push (1: the first)",
-                "step size (m)",
+                "step size (cm)",
             ),
-            |r| &r.step_by_index,
+            (|r| &r.step_by_index, 100.0),
             0.5,
             Some(([1.0, STEPS_AFTER_PUSH as f64], f_r)),
         )?;
@@ -403,25 +405,27 @@ impl DisturbanceResult {
 }
 
 impl DisturbanceResult {
-    /// One figure of both walkers' `pick` (mean, band +- 1 std; x shifted by `x_shift`) and,
-    /// if given, a reference line at `reference.1` over the x range `reference.0`; `labels`
-    /// are (title, x label, y label).
+    /// One figure of both walkers' `pick.0` times `pick.1` (mean, band +- 1 std; x shifted by
+    /// `x_shift`) and, if given, a reference line at `reference.1` (unscaled) over the x
+    /// range `reference.0`; `labels` are (title, x label, y label).
     fn plot(
         &self,
         path: &Path,
         labels: (&str, &str, &str),
-        pick: fn(&PushResponse) -> &AlignedStats,
+        pick: (fn(&PushResponse) -> &AlignedStats, f64),
         x_shift: f64,
         reference: Option<([f64; 2], f64)>,
     ) -> Result<(), ExperimentError> {
         let shifted = |r: &PushResponse| {
-            let (x, y, spread) = pick(r).populated(1);
+            let (x, y, spread) = pick.0(r).populated(1);
             let x: Vec<f64> = x.into_iter().map(|x| x + x_shift).collect();
-            (x, y, spread)
+            let scaled = |v: Vec<f64>| v.into_iter().map(|v| pick.1 * v).collect::<Vec<f64>>();
+            (x, scaled(y), scaled(spread))
         };
         let (model, learned) = (shifted(&self.model), shifted(&self.learned));
-        let (rx, ry) =
-            reference.map_or((Vec::new(), Vec::new()), |(x, y)| (x.to_vec(), vec![y; 2]));
+        let (rx, ry) = reference.map_or((Vec::new(), Vec::new()), |(x, y)| {
+            (x.to_vec(), vec![pick.1 * y; 2])
+        });
         let mut series = Vec::new();
         for (name, (x, y, spread)) in [("model", &model), ("learned", &learned)] {
             if !x.is_empty() {
@@ -581,6 +585,58 @@ struct AlignedRow<'a> {
     steps: usize,
 }
 
+/// The columns of `disturbance_by_step.csv` the figure across seeds reads.
+#[derive(Debug, Deserialize)]
+struct ByStepCells {
+    controller: String,
+    touch_down_after_push: usize,
+    mean_step_m: String,
+}
+
+/// `disturbance_by_step_over_seeds.svg` in `dir`: the step size (cm) of the k-th touch-down
+/// after a push, mean over the runs in `run_dirs` (one per seed, each with its
+/// `disturbance_by_step.csv`) with its 95% band; runs without the file are left out, false
+/// when none has it.
+pub fn figure_over_seeds(
+    dir: &Path,
+    run_dirs: &[std::path::PathBuf],
+) -> Result<bool, ExperimentError> {
+    let (mut model, mut learned): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+    for run in run_dirs {
+        let path = run.join("disturbance_by_step.csv");
+        if !path.is_file() {
+            continue;
+        }
+        for row in read_rows::<ByStepCells>(&path)? {
+            let to = match row.controller.as_str() {
+                "model" => &mut model,
+                "learned" => &mut learned,
+                _ => continue,
+            };
+            let k = row.touch_down_after_push.max(1) - 1;
+            if to.len() <= k {
+                to.resize(k + 1, Vec::new());
+            }
+            to[k].push(100.0 * number(&row.mean_step_m));
+        }
+    }
+    let x = |v: &[Vec<f64>]| (1..=v.len()).map(|k| k as f64).collect::<Vec<_>>();
+    Ok(band_plot(
+        &dir.join("disturbance_by_step_over_seeds.svg"),
+        Labels {
+            title: "Step size of the k-th touch-down after a push",
+            x: "touch-down after the push",
+            y: "step size F (cm)",
+            integer_x: true,
+            y_range: f64::NEG_INFINITY..f64::INFINITY,
+        },
+        &[
+            ("model", band(&x(&model), &model)),
+            ("learned", band(&x(&learned), &learned)),
+        ],
+    )?)
+}
+
 /// Claim 2, checked on `runs` (this experiment's summaries, any order): after 8 Ns pushes the
 /// learned walker returns to the reference step sooner than the model, its largest mean TDA
 /// within 1.5 `p_theta` (the rule's TDA tolerance) and no more falls, on every seed; return,
@@ -683,7 +739,7 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
         Paired::new(quantity, values, 0.0, Direction::LowerIsBetter)
     };
     Claim::new(
-        "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA within 1.5 p_theta and no more falls (every seed).",
+        "2. After 8 Ns pushes the learned walker returns to the reference step size sooner than the model, with its largest mean TDA θ_E within 1.5 p_θ and no more falls (every seed).",
         seeds,
         Claim::every,
         vec![

@@ -8,11 +8,11 @@
 
 use super::ExperimentKind;
 use super::error::ExperimentError;
-use super::sweep::{Runner, SUMMARY_FILE, SweepGrid, is_current};
+use super::paired::Verdict;
+use super::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
 use super::{disturbance, robustness, stability, tracking};
 use crate::Named;
 use crate::experiments::summary::Summary;
-use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{ReportError, write_atomic};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -74,20 +74,42 @@ impl Claims {
         ]
     }
 
-    /// A Markdown report of the claims checked with approximator `approx` and rule `rule`: one
-    /// section per claim with its verdict and per-seed figures.
+    /// One line per claim stating both verdicts: paired over seeds (the claim's headline
+    /// comparison: better, level or worse, with its mean and 95% interval) and strict per seed
+    /// (holds on k of N seeds).
+    pub fn lead_lines(&self) -> Vec<String> {
+        self.all()
+            .iter()
+            .zip(LEADS)
+            .enumerate()
+            .map(|(i, (c, lead))| lead.line(i + 1, c))
+            .collect()
+    }
+
+    /// A Markdown report of the claims checked with approximator `approx` and rule `rule`: the
+    /// lead lines, then one section per claim with its verdicts and per-seed figures.
     pub fn to_markdown(&self, approx: &str, rule: &str) -> String {
         let mut md = format!("# Reproduction of the paper's claims ({approx} + {rule})\n\n");
+        for line in self.lead_lines() {
+            md.push_str(&format!("- {line}\n"));
+        }
+        md.push_str(
+            "\nPaired over seeds compares learned and model on the same seeds: better or worse \
+             when the 95% Student-t interval of the mean difference (or ratio) excludes no \
+             difference, level when it contains it. Strict per seed counts the seeds on which \
+             the claim holds as the paper states it; the claim is reproduced strictly only when \
+             enough seeds pass (the rule is in each claim's statement).\n\n",
+        );
         for c in self.all() {
-            let k = c.seeds.iter().filter(|s| s.1).count();
             md.push_str(&format!(
-                "## {}\n\n**{}** ({k} of {} seeds)\n\n| seed | holds | measured |\n|---|---|---|\n",
+                "## {}\n\nStrict per seed: **{}** ({} of {} seeds)\n\n| seed | holds | measured |\n|---|---|---|\n",
                 c.statement,
                 if c.holds {
                     "reproduced"
                 } else {
                     "not reproduced"
                 },
+                c.seeds_holding(),
                 c.seeds.len()
             ));
             for (seed, holds, text) in &c.seeds {
@@ -99,7 +121,7 @@ impl Claims {
             md.push('\n');
             if !c.over_seeds.is_empty() {
                 md.push_str(
-                    "Over seeds, paired by seed (95% Student-t interval of the mean; *level*: \
+                    "Over seeds, paired by seed (95% Student-t interval of the mean; level: \
                      no difference beyond the seed-to-seed noise):\n\n\
                      | quantity | mean | 95% interval | seeds | verdict |\n|---|---|---|---|---|\n",
                 );
@@ -121,8 +143,9 @@ impl Claims {
         md
     }
 
-    /// Writes `claims.md` (titled with `approx` and `rule`), `claims.json` and
-    /// `tracking_std_over_seeds.svg` into `dir`.
+    /// Writes `claims.md` (titled with `approx` and `rule`), `claims.json` and the figures
+    /// across seeds (`<experiment>_..._over_seeds.svg`, from the runs of the claims' seeds
+    /// under `dir`) into `dir`.
     pub fn write(&self, dir: &Path, approx: &str, rule: &str) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
         write_atomic(
@@ -132,34 +155,145 @@ impl Claims {
         let json =
             serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))?;
         write_atomic(&dir.join("claims.json"), json.as_bytes())?;
-        if !self.tracking_std_mean.is_empty() {
-            let t: Vec<f64> = self.tracking_std_mean.iter().map(|r| r.0).collect();
-            let m: Vec<f64> = self.tracking_std_mean.iter().map(|r| r.1).collect();
-            let l: Vec<f64> = self.tracking_std_mean.iter().map(|r| r.2).collect();
-            line_plot(
-                &dir.join("tracking_std_over_seeds.svg"),
-                &LinePlot {
-                    title: "Std of the step size error after a reference change (mean over seeds)",
-                    x_label: "time since the change (s)",
-                    y_label: "std of F_E (m)",
-                    series: &[
-                        Series {
-                            name: "model",
-                            x: &t,
-                            y: &m,
-                            spread: None,
-                        },
-                        Series {
-                            name: "learned",
-                            x: &t,
-                            y: &l,
-                            spread: None,
-                        },
-                    ],
-                },
-            )?;
-        }
+        let runs = |kind: ExperimentKind, claim: &Claim| -> Vec<std::path::PathBuf> {
+            claim
+                .seeds
+                .iter()
+                .map(|(seed, _, _)| {
+                    dir.join(
+                        RunSpec {
+                            experiment: kind.name().to_string(),
+                            approx: approx.to_string(),
+                            rule: rule.to_string(),
+                            seed: *seed,
+                        }
+                        .id(),
+                    )
+                })
+                .collect()
+        };
+        let summaries = |dirs: &[std::path::PathBuf]| -> Result<Vec<Summary>, ExperimentError> {
+            dirs.iter()
+                .map(|d| d.join(SUMMARY_FILE))
+                .filter(|p| p.is_file())
+                .map(|p| Summary::read(&p).map_err(ExperimentError::from))
+                .collect()
+        };
+        let tracking_runs = summaries(&runs(ExperimentKind::Tracking, &self.tracking))?;
+        tracking::figure_over_seeds(dir, &tracking_runs.iter().collect::<Vec<_>>())?;
+        disturbance::figure_over_seeds(dir, &runs(ExperimentKind::Disturbance, &self.disturbance))?;
+        stability::figure_over_seeds(dir, &runs(ExperimentKind::Stability, &self.stability))?;
+        let robustness_runs = summaries(&runs(ExperimentKind::Robustness, &self.robustness))?;
+        robustness::figure_over_seeds(dir, &robustness_runs.iter().collect::<Vec<_>>())?;
         Ok(())
+    }
+}
+
+/// How a claim's lead line names it and its headline comparison.
+#[derive(Debug, Clone, Copy)]
+struct Lead {
+    /// The experiment (A-D) and its name.
+    experiment: &'static str,
+    /// The paper's figures.
+    figures: &'static str,
+    /// What the learned walker is compared with.
+    against: &'static str,
+    /// The headline quantity, in words.
+    quantity: &'static str,
+    /// Its unit after the number (with its leading space), or "" for a ratio.
+    unit: &'static str,
+    /// Decimals shown.
+    decimals: usize,
+}
+
+/// The lead of each claim, in the order of [`Claims::all`].
+const LEADS: [Lead; 4] = [
+    Lead {
+        experiment: "A, tracking",
+        figures: "Fig. 4",
+        against: "the model",
+        quantity: "std of F_E after a reference change, learned - model",
+        unit: " cm",
+        decimals: 2,
+    },
+    Lead {
+        experiment: "B, disturbance",
+        figures: "Fig. 5",
+        against: "the model",
+        quantity: "return time to F_R after a push, learned - model",
+        unit: " s",
+        decimals: 2,
+    },
+    Lead {
+        experiment: "C, stability",
+        figures: "Fig. 6",
+        against: "the model",
+        quantity: "I50 learned / model",
+        unit: "",
+        decimals: 3,
+    },
+    Lead {
+        experiment: "D, robustness",
+        figures: "Figs. 7-8",
+        against: "the same walker without learning",
+        quantity: "pushes absorbed, learned - without learning",
+        unit: " pushes",
+        decimals: 1,
+    },
+];
+
+impl Lead {
+    /// Claim `n`'s lead line.
+    fn line(&self, n: usize, c: &Claim) -> String {
+        let d = self.decimals;
+        let paired = match c.headline() {
+            Some(p) => {
+                // Differences carry their sign; ratios (null 1) do not.
+                let num = |v: f64| {
+                    if p.null == 0.0 {
+                        format!("{v:+.d$}")
+                    } else {
+                        format!("{v:.d$}")
+                    }
+                };
+                match p.verdict {
+                    Some(v) => {
+                        let standing = match v {
+                            Verdict::Better => format!("better than {}", self.against),
+                            Verdict::Level => format!("level with {}", self.against),
+                            Verdict::Worse => format!("worse than {}", self.against),
+                        };
+                        format!(
+                            "learned {standing} over seeds ({}), mean {}{u}, 95% [{}, {}]",
+                            self.quantity,
+                            num(p.mean),
+                            num(p.ci95.0),
+                            num(p.ci95.1),
+                            u = self.unit
+                        )
+                    }
+                    None => format!(
+                        "too few seeds for a paired verdict ({}), mean {}{}",
+                        self.quantity,
+                        num(p.mean),
+                        self.unit
+                    ),
+                }
+            }
+            None => "no paired comparison".to_string(),
+        };
+        format!(
+            "Claim {n}, experiment {} (paper {}): {paired}; strict per seed: {} on {} of {} seeds",
+            self.experiment,
+            self.figures,
+            if c.holds {
+                "reproduced, holds"
+            } else {
+                "not reproduced, holds"
+            },
+            c.seeds_holding(),
+            c.seeds.len()
+        )
     }
 }
 
@@ -190,7 +324,6 @@ pub fn read_summaries(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiments::paired::Verdict;
     use crate::experiments::summary::ExperimentResult;
     use crate::experiments::summary::{
         ControllerFalls, Controllers, ModelLearned, NoLearning, PushFalls,
@@ -455,7 +588,12 @@ mod tests {
         assert!(md.contains("**not reproduced** (2 of 3 seeds)"), "{md}");
         assert!(md.contains("**not reproduced** (2 of 5 seeds)"), "{md}");
         // Over seeds: the per-seed values paired by seed, seeds without a figure left out.
-        let bins = &c.tracking.over_seeds;
+        // The headline first (each seed's mean over its bins), then one comparison per bin.
+        let headline = c.tracking.headline().unwrap();
+        assert!(headline.quantity.contains("averaged over the bins"));
+        assert_eq!(headline.values.len(), 3);
+        assert!((headline.values[0] - (-1.0)).abs() < 1e-9, "{headline:?}");
+        let bins = &c.tracking.over_seeds[1..];
         assert_eq!(bins.len(), 3);
         assert_eq!(bins[0].values.len(), 3);
         assert_eq!(bins[1].values.len(), 2, "seed 2 has no data in bin 1");
@@ -482,6 +620,22 @@ mod tests {
             md.contains("| I50 learned / model | 1.083 | [1.083, 1.083] | 2 | better |"),
             "{md}"
         );
+        // The lead lines: one per claim, both verdicts, first in claims.md.
+        let lead = c.lead_lines();
+        assert_eq!(lead.len(), 4);
+        assert!(
+            lead[2].starts_with("Claim 3, experiment C, stability (paper Fig. 6): learned better than the model over seeds (I50 learned / model), mean 1.083, 95% [1.083, 1.083]; strict per seed: not reproduced, holds on 1 of 2 seeds"),
+            "{}",
+            lead[2]
+        );
+        assert!(lead[0].contains("level with the model"), "{}", lead[0]);
+        assert!(lead[0].contains("holds on 2 of 3 seeds"), "{}", lead[0]);
+        assert!(lead[3].contains("without learning"), "{}", lead[3]);
+        let first_section = md.find("\n## ").unwrap();
+        for line in &lead {
+            assert!(md[..first_section].contains(line.as_str()), "{line}");
+        }
+        assert!(!md.contains("*level*"));
         // Nothing measured, nothing reproduced.
         assert!(!Claims::from_summaries(&[], 0.15).robustness.holds);
     }

@@ -28,6 +28,7 @@ use crate::control::learner::{
 use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, NoLearning, Summary};
 use crate::report::ReportError;
+use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{HeatMapGrid, HeatPanel, LinePlot, Series, heat_map_grid, line_plot};
 use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
@@ -339,13 +340,14 @@ impl RobustnessResult {
         let x: Vec<f64> = (0..=self.episodes.len()).map(|i| i as f64).collect();
         let y: Vec<f64> = std::iter::once(self.initial_metric)
             .chain(self.episodes.iter().map(|e| e.learning_metric))
+            .map(|m| 100.0 * m)
             .collect();
         line_plot(
             &dir.join("learning_metric.svg"),
             &LinePlot {
-                title: "Learning metric (norm of dF over the input grid) after each push",
+                title: "Learning metric (norm of ΔF over the input grid) after each push",
                 x_label: "push",
-                y_label: "learning metric (m)",
+                y_label: "learning metric (cm)",
                 series: &[Series {
                     name: "learner only",
                     x: &x,
@@ -370,16 +372,22 @@ impl RobustnessResult {
             .iter()
             .map(|e| e.steps.iter().map(|s| (s.theta_e, s.theta_e_dot)).collect())
             .collect();
+        let values_cm: Vec<Vec<f64>> = self
+            .episodes
+            .iter()
+            .map(|e| e.map.values.iter().map(|v| 100.0 * v).collect())
+            .collect();
         let panels: Vec<HeatPanel> = self
             .episodes
             .iter()
             .zip(&titles)
             .zip(&points)
-            .map(|((e, title), pts)| HeatPanel {
+            .zip(&values_cm)
+            .map(|(((e, title), pts), values)| HeatPanel {
                 title,
                 xs: &e.map.theta_e,
                 ys: &e.map.theta_e_dot,
-                values: &e.map.values,
+                values,
                 points: pts,
             })
             .collect();
@@ -387,10 +395,10 @@ impl RobustnessResult {
             heat_map_grid(
                 &dir.join("df_maps.svg"),
                 &HeatMapGrid {
-                    title: "Learned step dF (m) over the trunk angle and rate, after each push",
-                    x_label: "theta_E (rad)",
-                    y_label: "theta_E_dot (rad/s)",
-                    value_label: "dF (m)",
+                    title: "Learned step offset ΔF (cm) over the trunk angle and rate, after each push",
+                    x_label: "θ_E (rad)",
+                    y_label: "θ̇_E (rad/s)",
+                    value_label: "ΔF (cm)",
                     panels: &panels,
                     columns: 5,
                 },
@@ -503,6 +511,51 @@ struct PushCell {
     push: usize,
 }
 
+/// `robustness_absorbed_over_seeds.svg` in `dir`: pushes absorbed so far against the push
+/// number, learning from scratch and without learning, mean over the seeds of `runs` with its
+/// 95% band; false when no run recorded its pushes.
+pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportError> {
+    let (mut learned, mut without): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+    let add = |to: &mut Vec<Vec<f64>>, absorbed: &[bool]| {
+        let mut so_far = 0.0;
+        for (k, a) in absorbed.iter().enumerate() {
+            so_far += f64::from(u8::from(*a));
+            if to.len() <= k {
+                to.resize(k + 1, Vec::new());
+            }
+            to[k].push(so_far);
+        }
+    };
+    for (_, (absorbed, no_learning)) in by_seed(runs, |s| match &s.result {
+        ExperimentResult::Robustness {
+            absorbed_by_push,
+            no_learning,
+            ..
+        } => Some((absorbed_by_push, no_learning)),
+        _ => None,
+    }) {
+        add(&mut learned, absorbed);
+        if let Some(n) = no_learning {
+            add(&mut without, &n.absorbed_by_push);
+        }
+    }
+    let x = |v: &[Vec<f64>]| (1..=v.len()).map(|k| k as f64).collect::<Vec<_>>();
+    band_plot(
+        &dir.join("robustness_absorbed_over_seeds.svg"),
+        Labels {
+            title: "Pushes absorbed so far, learning from scratch",
+            x: "push",
+            y: "pushes absorbed",
+            integer_x: true,
+            y_range: 0.0..f64::INFINITY,
+        },
+        &[
+            ("learned", band(&x(&learned), &learned)),
+            ("no learning (ΔF = 0)", band(&x(&without), &without)),
+        ],
+    )
+}
+
 /// Claim 4, checked on `runs` (this experiment's summaries, any order): without
 /// initialisation the learner absorbs a push within its first three pushes and absorbs more
 /// pushes than the same walker without learning, on most seeds; the difference in pushes
@@ -552,7 +605,7 @@ pub fn claim(runs: &[&Summary]) -> Claim {
         seeds.push((seed, early && more, format!("{first}; {baseline}")));
     }
     Claim::new(
-        "4. Without initialisation, the learner absorbs a push within its first three pushes and absorbs more pushes than the same walker without learning (dF = 0) on the same episodes (most seeds).",
+        "4. Without initialisation, the learner absorbs a push within its first three pushes and absorbs more pushes than the same walker without learning (ΔF = 0) on the same episodes (most seeds).",
         seeds,
         Claim::most,
         vec![Paired::new(

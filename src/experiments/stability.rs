@@ -20,6 +20,8 @@ use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult, Summary};
 use crate::report::ReportError;
+use crate::report::band::{Labels, band, band_plot};
+use crate::report::csv_read::{number, read_rows};
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
 use crate::report::write_rows;
@@ -326,6 +328,82 @@ impl Experiment for Stability {
             fall_causes: r.fall_cause_counts(),
         })
     }
+}
+
+/// The columns of `pushes.csv` the figure across seeds reads.
+#[derive(Debug, Deserialize)]
+struct PushCells {
+    controller: String,
+    impulse_ns: String,
+    fell: bool,
+}
+
+/// `stability_fall_probability_over_seeds.svg` in `dir`: the share of pushes ending in a fall
+/// per 2 Ns impulse bin, per controller, mean over the runs in `run_dirs` (one per seed, each
+/// with its `pushes.csv`) with its 95% band; runs without the file are left out, false when
+/// none has it.
+pub fn figure_over_seeds(
+    dir: &Path,
+    run_dirs: &[std::path::PathBuf],
+) -> Result<bool, ExperimentError> {
+    const BIN_NS: f64 = 2.0;
+    let names = ["open-loop", "model", "learned"];
+    // Per controller and bin, one fall share per seed.
+    let mut shares: Vec<Vec<Vec<f64>>> = vec![Vec::new(); names.len()];
+    for run in run_dirs {
+        let path = run.join("pushes.csv");
+        if !path.is_file() {
+            continue;
+        }
+        // (falls, pushes) per controller and bin for this seed.
+        let mut counts: Vec<Vec<(u32, u32)>> = vec![Vec::new(); names.len()];
+        for row in read_rows::<PushCells>(&path)? {
+            let (Some(c), impulse) = (
+                names.iter().position(|n| *n == row.controller),
+                number(&row.impulse_ns),
+            ) else {
+                continue;
+            };
+            if impulse.is_nan() || impulse < 0.0 {
+                continue;
+            }
+            let k = (impulse / BIN_NS) as usize;
+            if counts[c].len() <= k {
+                counts[c].resize(k + 1, (0, 0));
+            }
+            counts[c][k].0 += u32::from(row.fell);
+            counts[c][k].1 += 1;
+        }
+        for (c, bins) in counts.iter().enumerate() {
+            for (k, &(falls, pushes)) in bins.iter().enumerate() {
+                if shares[c].len() <= k {
+                    shares[c].resize(k + 1, Vec::new());
+                }
+                if pushes > 0 {
+                    shares[c][k].push(f64::from(falls) / f64::from(pushes));
+                }
+            }
+        }
+    }
+    let bands: Vec<(&str, _)> = names
+        .iter()
+        .zip(&shares)
+        .map(|(name, s)| {
+            let x: Vec<f64> = (0..s.len()).map(|k| (k as f64 + 0.5) * BIN_NS).collect();
+            (*name, band(&x, s))
+        })
+        .collect();
+    Ok(band_plot(
+        &dir.join("stability_fall_probability_over_seeds.svg"),
+        Labels {
+            title: "Probability to fall per 2 Ns impulse bin",
+            x: "push impulse (Ns)",
+            y: "fall probability",
+            integer_x: false,
+            y_range: 0.0..1.0,
+        },
+        &bands,
+    )?)
 }
 
 /// Claim 3, checked on `runs` (this experiment's summaries, any order): the impulse at 50%

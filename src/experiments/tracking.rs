@@ -19,6 +19,7 @@ use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, ModelLearned, Summary};
 use crate::report::ReportError;
+use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
 use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
@@ -169,8 +170,11 @@ impl TrackingResult {
         }
         write_rows(&dir.join("tracking_aligned.csv"), &rows)?;
         // Figure: bins with at least two steps of the controller.
+        let cm = |v: Vec<f64>| v.into_iter().map(|v| 100.0 * v).collect::<Vec<_>>();
         let (mt, model_mean, model_std) = self.model.populated(2);
+        let (model_mean, model_std) = (cm(model_mean), cm(model_std));
         let (lt, learned_mean, learned_std) = self.learned.populated(2);
+        let (learned_mean, learned_std) = (cm(learned_mean), cm(learned_std));
         let mut series = Vec::new();
         if !mt.is_empty() {
             series.push(Series {
@@ -193,7 +197,7 @@ impl TrackingResult {
             &LinePlot {
                 title: "Step size error after a reference change (mean, band: +-1 std)",
                 x_label: "time since the change (s)",
-                y_label: "F_E (m)",
+                y_label: "F_E (cm)",
                 series: &series,
             },
         )?;
@@ -202,7 +206,7 @@ impl TrackingResult {
             log.steps
                 .iter()
                 .filter(|s| s.time <= window)
-                .map(|s| (s.time, s.f_hat))
+                .map(|s| (s.time, 100.0 * s.f_hat))
                 .unzip()
         };
         let (mt, mf) = series(&self.runs.model);
@@ -210,7 +214,7 @@ impl TrackingResult {
         let (rt, rf): (Vec<f64>, Vec<f64>) = (0..=(window * 10.0) as usize)
             .map(|i| {
                 let t = i as f64 * 0.1;
-                (t, self.reference.at(t))
+                (t, 100.0 * self.reference.at(t))
             })
             .unzip();
         let changes: Vec<f64> = self
@@ -224,7 +228,7 @@ impl TrackingResult {
             &EventPlot {
                 title: "Reference and measured step sizes",
                 x_label: "time (s)",
-                y_label: "step size (m)",
+                y_label: "step size (cm)",
                 series: &[
                     Series {
                         name: "reference F_R",
@@ -272,29 +276,7 @@ impl Experiment for Tracking {
     }
 
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
-        let mut mean_diff = Vec::new();
-        for s in runs {
-            if let ExperimentResult::Tracking {
-                step_error_std_m, ..
-            } = &s.result
-            {
-                let d = step_error_std_m
-                    .model
-                    .iter()
-                    .zip(&step_error_std_m.learned)
-                    .filter_map(|(m, l)| Some(100.0 * (l.as_ref()? - m.as_ref()?)));
-                let d = crate::stats::MeanStd::of(d);
-                mean_diff.push(if d.count() == 0 { f64::NAN } else { d.mean() });
-            }
-        }
-        let mut out = vec![Paired::new(
-            "std of F_E averaged over the bins after a change, learned - model (cm)",
-            &mean_diff,
-            0.0,
-            Direction::LowerIsBetter,
-        )];
-        out.extend(claim(runs).over_seeds);
-        out
+        claim(runs).over_seeds
     }
 
     fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
@@ -381,19 +363,35 @@ pub fn claim(runs: &[&Summary]) -> Claim {
             format!("learned std lower in {better} of {} bins", m.len()),
         ));
     }
-    let over_seeds = bin_diff
+    // The headline first: each seed's learned - model std averaged over its bins with data.
+    let mean_diff: Vec<f64> = by_seed(runs, bins)
         .iter()
-        .enumerate()
-        .map(|(k, v)| {
-            let (a, b) = (k as f64 * bin_s_all, (k + 1) as f64 * bin_s_all);
-            Paired::new(
-                &format!("std of F_E {a:.1}-{b:.1} s after a change, learned - model (cm)"),
-                v,
-                0.0,
-                Direction::LowerIsBetter,
-            )
+        .map(|(_, (std, _))| {
+            let d = std
+                .model
+                .iter()
+                .zip(&std.learned)
+                .filter_map(|(m, l)| Some(100.0 * (l.as_ref()? - m.as_ref()?)));
+            let d = crate::stats::MeanStd::of(d);
+            if d.count() == 0 { f64::NAN } else { d.mean() }
         })
         .collect();
+    let over_seeds = std::iter::once(Paired::new(
+        "std of F_E averaged over the bins after a change, learned - model (cm)",
+        &mean_diff,
+        0.0,
+        Direction::LowerIsBetter,
+    ))
+    .chain(bin_diff.iter().enumerate().map(|(k, v)| {
+        let (a, b) = (k as f64 * bin_s_all, (k + 1) as f64 * bin_s_all);
+        Paired::new(
+            &format!("std of F_E {a:.1}-{b:.1} s after a change, learned - model (cm)"),
+            v,
+            0.0,
+            Direction::LowerIsBetter,
+        )
+    }))
+    .collect();
     Claim::new(
         "1. With learning, the std of the step error is lower than the model's at every time bin after a reference change, all bins but at most one (every seed).",
         seeds,
@@ -428,6 +426,35 @@ pub fn std_over_seeds(runs: &[&Summary]) -> Vec<(f64, f64, f64)> {
     sum.into_iter()
         .map(|(t, m, l)| (t, m / n as f64, l / n as f64))
         .collect()
+}
+
+/// `tracking_std_over_seeds.svg` in `dir`: the std of F_E (cm) per bin after a reference
+/// change, mean over the seeds of `runs` with its 95% band; false when no run has bins.
+pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportError> {
+    let mut x = Vec::new();
+    let (mut model, mut learned): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+    for (_, (std, bin_s)) in by_seed(runs, bins) {
+        for (k, (m, l)) in std.model.iter().zip(&std.learned).enumerate() {
+            if x.len() <= k {
+                x.push((k as f64 + 0.5) * bin_s);
+                model.push(Vec::new());
+                learned.push(Vec::new());
+            }
+            model[k].extend(m.map(|v| 100.0 * v));
+            learned[k].extend(l.map(|v| 100.0 * v));
+        }
+    }
+    band_plot(
+        &dir.join("tracking_std_over_seeds.svg"),
+        Labels {
+            title: "Std of the step error after a reference change",
+            x: "time since the change (s)",
+            y: "std of F_E (cm)",
+            integer_x: false,
+            y_range: 0.0..f64::INFINITY,
+        },
+        &[("model", band(&x, &model)), ("learned", band(&x, &learned))],
+    )
 }
 
 /// A tracking summary's std of F_E per bin and its bin width.

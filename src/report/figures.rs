@@ -254,13 +254,22 @@ type Chart<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-/// Draws bands then lines of `series` with legend entries, colours from `offset`.
-fn draw_series(chart: &mut Chart, series: &[Series], offset: usize) -> Result<(), ReportError> {
+/// Draws bands (clipped to `clip`) then lines of `series` with legend entries, colours from
+/// `offset`.
+fn draw_series(
+    chart: &mut Chart,
+    series: &[Series],
+    offset: usize,
+    clip: Range<f64>,
+) -> Result<(), ReportError> {
     for (i, s) in series.iter().enumerate() {
         let c = series_colour(s.name, i + offset);
         if let Some(spread) = s.spread {
-            let upper = (0..s.x.len()).map(|k| (s.x[k], s.y[k] + spread[k]));
-            let lower = (0..s.x.len()).rev().map(|k| (s.x[k], s.y[k] - spread[k]));
+            let y = |v: f64| v.clamp(clip.start, clip.end);
+            let upper = (0..s.x.len()).map(|k| (s.x[k], y(s.y[k] + spread[k])));
+            let lower = (0..s.x.len())
+                .rev()
+                .map(|k| (s.x[k], y(s.y[k] - spread[k])));
             chart
                 .draw_series(std::iter::once(Polygon::new(
                     upper.chain(lower).collect::<Vec<_>>(),
@@ -295,7 +304,26 @@ fn draw_legend<'a>(chart: &mut Chart<'a, 'a>) -> Result<(), ReportError> {
 
 /// Line plot of several series with optional +-spread bands (Figs. 4, 5).
 pub fn line_plot(path: &Path, plot: &LinePlot) -> Result<(), ReportError> {
+    line_plot_ticks(path, plot, false, f64::NEG_INFINITY..f64::INFINITY)
+}
+
+/// [`line_plot`] with labels only at integer x ticks when `integer_x` (a count on the x
+/// axis), and bands clipped to the range `y_clip` (the values a quantity can take).
+pub fn line_plot_ticks(
+    path: &Path,
+    plot: &LinePlot,
+    integer_x: bool,
+    y_clip: Range<f64>,
+) -> Result<(), ReportError> {
     let (xr, yr) = series_bounds(plot.series)?;
+    let yr = yr.start.max(y_clip.start)..yr.end.min(y_clip.end);
+    let x_tick = |v: &f64| {
+        if integer_x && (v - v.round()).abs() > 1e-9 {
+            String::new()
+        } else {
+            tick(v)
+        }
+    };
     render(path, (800, 500), |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(plot.title, ("sans-serif", 22))
@@ -306,11 +334,13 @@ pub fn line_plot(path: &Path, plot: &LinePlot) -> Result<(), ReportError> {
             .map_err(plot_err)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&x_tick)
+            .y_label_formatter(&tick)
             .x_desc(plot.x_label)
             .y_desc(plot.y_label)
             .draw()
             .map_err(plot_err)?;
-        draw_series(&mut chart, plot.series, 0)?;
+        draw_series(&mut chart, plot.series, 0, y_clip)?;
         draw_legend(&mut chart)
     })
 }
@@ -335,6 +365,8 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
     let draw_primary = |chart: &mut Chart| -> Result<(), ReportError> {
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .x_desc(plot.x_label)
             .y_desc(plot.y_label)
             .draw()
@@ -353,7 +385,7 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
                     PathElement::new(vec![(x + 10, y - 6), (x + 10, y + 6)], event_style)
                 });
         }
-        draw_series(chart, plot.series, 0)
+        draw_series(chart, plot.series, 0, f64::NEG_INFINITY..f64::INFINITY)
     };
     render(path, (900, 500), |root| {
         let chart = ChartBuilder::on(root)
@@ -375,6 +407,7 @@ pub fn event_plot(path: &Path, plot: &EventPlot) -> Result<(), ReportError> {
         draw_primary(&mut chart)?;
         chart
             .configure_secondary_axes()
+            .y_label_formatter(&tick)
             .y_desc(label)
             .draw()
             .map_err(plot_err)?;
@@ -436,6 +469,8 @@ pub fn fall_probability_plot(path: &Path, plot: &FallPlot) -> Result<(), ReportE
             .map_err(plot_err)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .x_desc(plot.x_label)
             .y_desc("fall probability")
             .draw()
@@ -510,9 +545,9 @@ impl HeatPanel<'_> {
     }
 }
 
-/// Tick label with 2 significant decimals at most and no "-0".
-fn tick(v: &f64) -> String {
-    let s = format!("{:.2}", v + 0.0);
+/// Tick label: integers without a decimal point, others with at most 3 decimals, never "-0".
+pub fn tick(v: &f64) -> String {
+    let s = format!("{:.3}", v + 0.0);
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" { "0".into() } else { s }
 }
@@ -608,7 +643,7 @@ pub fn heat_map_grid(path: &Path, grid: &HeatMapGrid) -> Result<(), ReportError>
             .disable_mesh()
             .disable_x_axis()
             .y_labels(7)
-            .y_label_formatter(&|v| format!("{:.3}", v + 0.0))
+            .y_label_formatter(&tick)
             .y_label_style(("sans-serif", 12))
             .axis_desc_style(("sans-serif", 14))
             .y_desc(grid.value_label)
@@ -632,6 +667,16 @@ pub fn heat_map_grid(path: &Path, grid: &HeatMapGrid) -> Result<(), ReportError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tick_labels_have_no_trailing_zeros_and_no_negative_zero() {
+        assert_eq!(tick(&2.0), "2");
+        assert_eq!(tick(&14.0), "14");
+        assert_eq!(tick(&-0.0), "0");
+        assert_eq!(tick(&-0.0001), "0");
+        assert_eq!(tick(&0.25), "0.25");
+        assert_eq!(tick(&-1.5), "-1.5");
+    }
 
     #[test]
     fn each_controller_has_one_colour_in_every_figure() {

@@ -69,7 +69,7 @@ impl HtmlPage {
         self
     }
 
-    /// The Markdown the reports write: `#` headings, pipe tables and paragraphs.
+    /// The Markdown the reports write: `#` headings, `- ` lists, pipe tables and paragraphs.
     pub fn markdown(&mut self, md: &str) -> &mut Self {
         let lines: Vec<&str> = md.lines().collect();
         let mut i = 0;
@@ -81,6 +81,13 @@ impl HtmlPage {
                 let level = 1 + h.chars().take_while(|&c| c == '#').count() as u8;
                 self.heading(level + 1, h.trim_start_matches('#').trim());
                 i += 1;
+            } else if line.starts_with("- ") {
+                let mut items = Vec::new();
+                while i < lines.len() && lines[i].trim().starts_with("- ") {
+                    items.push(lines[i].trim()[2..].trim());
+                    i += 1;
+                }
+                self.list(&items);
             } else if line.starts_with('|') {
                 let mut rows = Vec::new();
                 while i < lines.len() && lines[i].trim().starts_with('|') {
@@ -138,6 +145,27 @@ impl HtmlPage {
         self
     }
 
+    /// A figure left out of the page to keep it small: a link to its file at the relative
+    /// path `href`, with its caption.
+    pub fn figure_link(&mut self, href: &str, caption: &str) -> &mut Self {
+        self.body.push_str(&format!(
+            "<p class=\"figure-link\"><a href=\"{}\">Figure (not inlined): {}</a></p>\n",
+            escape(href),
+            inline(caption)
+        ));
+        self
+    }
+
+    /// A bulleted list, one item per entry (`**bold**` allowed).
+    pub fn list(&mut self, items: &[&str]) -> &mut Self {
+        self.body.push_str("<ul>\n");
+        for item in items {
+            self.body.push_str(&format!("<li>{}</li>\n", inline(item)));
+        }
+        self.body.push_str("</ul>\n");
+        self
+    }
+
     /// The whole page.
     pub fn to_html(&self) -> String {
         format!(
@@ -184,5 +212,20 @@ mod tests {
         assert!(!html.contains("---"));
         assert!(html.contains("<figure>\n<svg width=\"10\"></svg>"));
         assert!(!html.contains("<?xml"));
+    }
+
+    #[test]
+    fn markdown_lists_and_figure_links() {
+        let mut page = HtmlPage::new("t");
+        page.markdown("- Claim 1: **better**\n- Claim 2: level\n\nText.\n");
+        page.figure_link("run/a b.svg", "a <figure>");
+        let html = page.to_html();
+        assert!(html.contains(
+            "<ul>\n<li>Claim 1: <strong>better</strong></li>\n<li>Claim 2: level</li>\n</ul>"
+        ));
+        assert!(html.contains("<p>Text.</p>"));
+        assert!(
+            html.contains("<a href=\"run/a b.svg\">Figure (not inlined): a &lt;figure&gt;</a>")
+        );
     }
 }

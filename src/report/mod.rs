@@ -3,7 +3,9 @@
 //! [`crate::experiments::summary`]) or the simulator.
 
 mod atomic;
+pub mod band;
 mod csv_file;
+pub mod csv_read;
 mod error;
 pub mod fall_rate;
 pub mod figures;
