@@ -17,7 +17,7 @@ use crate::bench::{Bench, BenchError, Registry};
 use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::PushOptions;
-use crate::experiments::index_page::{command_line, write_index};
+use crate::experiments::index_page::{INDEX_FILE, command_line, write_index};
 use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::reproduce::{self, Claims};
 use crate::experiments::settings::Settings;
@@ -322,28 +322,19 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 Some(&config_toml),
             )
             .map_err(|e| e.to_string())?;
-            for c in claims.all() {
-                let k = c.seeds.iter().filter(|s| s.1).count();
-                println!(
-                    "{} {} ({k}/{} seeds)",
-                    if c.holds {
-                        "REPRODUCED    "
-                    } else {
-                        "NOT REPRODUCED"
-                    },
-                    c.statement,
-                    c.seeds.len()
-                );
+            // One line per claim with both verdicts, then every paired quantity.
+            for (line, c) in claims.lead_lines().iter().zip(claims.all()) {
+                println!("{line}");
                 for p in &c.over_seeds {
                     println!("    over seeds: {}", p.describe(3));
                 }
             }
             println!(
-                "{} runs in {} ({:.0} s); report: {}",
+                "{} runs in {} ({:.0} s); open {} (or claims.md beside it)",
                 runs.len(),
                 out.display(),
                 started.elapsed().as_secs_f64(),
-                out.join("claims.md").display()
+                out.join(INDEX_FILE).display()
             );
             if !missing.is_empty() {
                 return Err(format!("missing results: {}", missing.join(", ")));
@@ -607,14 +598,15 @@ fn progress_bar(len: usize) -> Result<indicatif::ProgressBar, String> {
     let bar = indicatif::ProgressBar::new(len as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:30}] {pos}/{len} (eta {eta}) {msg}",
+            "{elapsed_precise} [{bar:30}] {pos}/{len} ({eta_precise} left) {msg}",
         )
         .map_err(|e| e.to_string())?,
     );
     Ok(bar)
 }
 
-/// Advances `bar` by one finished run; off a terminal, prints one line per run instead.
+/// Advances `bar` by one finished run; off a terminal (CI, nohup, Slurm), prints one line per
+/// run instead: its count, status, the time elapsed and an estimate of the time left.
 fn progress(bar: &indicatif::ProgressBar, o: &RunOutcome) {
     bar.set_message(o.spec.id());
     bar.inc(1);
@@ -624,12 +616,32 @@ fn progress(bar: &indicatif::ProgressBar, o: &RunOutcome) {
             RunStatus::Skipped => "finished earlier".to_string(),
             RunStatus::Failed(_) => "failed".to_string(),
         };
+        let (k, n) = (bar.position(), bar.length().unwrap_or(0));
+        let elapsed = bar.elapsed().as_secs_f64();
+        // The mean time per finished run so far, for the runs still to come.
+        let left = if k < n && k > 0 {
+            format!(
+                ", about {} left",
+                clock(elapsed / k as f64 * (n - k) as f64)
+            )
+        } else {
+            String::new()
+        };
         eprintln!(
-            "[{}/{}] {}: {status}",
-            bar.position(),
-            bar.length().unwrap_or(0),
-            o.spec.id()
+            "[{k}/{n}] {}: {status} ({} elapsed{left})",
+            o.spec.id(),
+            clock(elapsed)
         );
+    }
+}
+
+/// `seconds` as `1h02m03s`, `2m03s` or `3s`.
+fn clock(seconds: f64) -> String {
+    let s = seconds.max(0.0).round() as u64;
+    match (s / 3600, s / 60 % 60, s % 60) {
+        (0, 0, sec) => format!("{sec}s"),
+        (0, m, sec) => format!("{m}m{sec:02}s"),
+        (h, m, sec) => format!("{h}h{m:02}m{sec:02}s"),
     }
 }
 

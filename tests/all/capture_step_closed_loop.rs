@@ -297,7 +297,10 @@ fn report_recovery_and_mismatch_figures() {
                     "C {plant_c} F_R {f_r}: error {error}"
                 );
             }
-            assert!(out.max_zmp_fraction <= 1.0, "C {plant_c}: ZMP outside the foot");
+            assert!(
+                out.max_zmp_fraction <= 1.0,
+                "C {plant_c}: ZMP outside the foot"
+            );
             // A faster plant takes shorter steps in time: the period falls as C grows, around
             // the nominal step time (measured 0.670 s at C 2.6 to 0.484 s at 3.4).
             assert!(
@@ -307,7 +310,10 @@ fn report_recovery_and_mismatch_figures() {
             if let Some(&(c, p)) = periods.last()
                 && c < plant_c
             {
-                assert!(mean_period < p, "period {mean_period} at C {plant_c}, {p} at {c}");
+                assert!(
+                    mean_period < p,
+                    "period {mean_period} at C {plant_c}, {p} at {c}"
+                );
             }
             periods.push((plant_c, mean_period));
             assert!(max_dev < 0.05, "C {plant_c} F_R {f_r}: {max_dev}");

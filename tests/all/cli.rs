@@ -373,11 +373,24 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
     let o = steplearn(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    let verdicts = stdout
-        .lines()
-        .filter(|l| l.starts_with("REPRODUCED") || l.starts_with("NOT REPRODUCED"))
-        .count();
-    assert_eq!(verdicts, 4, "{stdout}");
+    // One lead line per claim, each with both verdicts, in the paper's order.
+    let leads: Vec<&str> = stdout.lines().filter(|l| l.starts_with("Claim ")).collect();
+    assert_eq!(leads.len(), 4, "{stdout}");
+    for (i, l) in leads.iter().enumerate() {
+        assert!(l.starts_with(&format!("Claim {}", i + 1)), "{l}");
+        assert!(l.contains("strict per seed"), "{l}");
+    }
+    assert!(stdout.contains("index.html"), "{stdout}");
+    // Off a terminal: one progress line per run, with its count, the time elapsed and, until
+    // the last, an estimate of the time left.
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with('[')).collect();
+    assert_eq!(lines.len(), 4, "{stderr}");
+    for (k, l) in lines.iter().enumerate() {
+        assert!(l.starts_with(&format!("[{}/4] ", k + 1)), "{l}");
+        assert!(l.contains("elapsed"), "{l}");
+        assert_eq!(l.contains("left)"), k < 3, "{l}");
+    }
     for kind in ["tracking", "disturbance", "stability", "robustness"] {
         let summary = out.join(format!("{kind}__lwpr__pendulum-cart__s0/summary.json"));
         assert!(summary.exists(), "{kind}");

@@ -85,7 +85,10 @@ fn capture_step_walker_tracks_the_reference_step() {
         assert!((mean - f_r).abs() < 0.02, "F_R {f_r}: mean step {mean}");
         // Single steps scatter around the mean by a few cm at most (measured: mean |error|
         // 2.6, 0.65 and 1.8 cm).
-        assert!(mean_abs_err < 0.04, "F_R {f_r}: mean |error| {mean_abs_err}");
+        assert!(
+            mean_abs_err < 0.04,
+            "F_R {f_r}: mean |error| {mean_abs_err}"
+        );
         assert!(theta_e.abs() < 0.03, "F_R {f_r}: mean theta_E {theta_e}");
     }
 }
