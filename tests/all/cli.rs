@@ -38,7 +38,7 @@ fn stability_run_writes_summary_and_figures() {
     // index.html: the figure inlined, the summary, the command and the configuration
     let page = std::fs::read_to_string(dir.join("index.html")).unwrap();
     assert_eq!(page.matches("<svg").count(), 1);
-    assert!(page.contains("Experiment C: fall probability against push impulse"));
+    assert!(page.contains("Experiment C (paper Fig. 6): fall probability against push impulse"));
     assert!(page.contains("&quot;experiment&quot;: &quot;stability&quot;"));
     assert!(page.contains("experiment stability --pushes 3 --seed 4"));
     assert!(page.contains("[protocols.stability]"));
