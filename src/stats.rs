@@ -75,6 +75,24 @@ impl MeanStd {
             n => (self.m2 / (n - 1) as f64).max(0.0).sqrt(),
         }
     }
+
+    /// Half-width of the two-sided 95% Student-t interval of the mean; `None` with fewer than
+    /// two values.
+    #[cfg(feature = "experiments")]
+    pub fn ci95_half_width(&self) -> Option<f64> {
+        (self.n >= 2)
+            .then(|| t_quantile_975(self.n - 1) * self.sample_std() / (self.n as f64).sqrt())
+    }
+}
+
+/// The 97.5% quantile of Student's t with `df` degrees of freedom (`df >= 1`).
+#[cfg(feature = "experiments")]
+fn t_quantile_975(df: usize) -> f64 {
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    // df >= 1 and the location/scale are valid constants: the distribution always exists.
+    StudentsT::new(0.0, 1.0, df as f64)
+        .map(|t| t.inverse_cdf(0.975))
+        .unwrap_or(f64::NAN)
 }
 
 /// `n` evenly spaced values from `lo` to `hi` (the midpoint when `n == 1`).
@@ -91,6 +109,18 @@ pub fn linspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(feature = "experiments")]
+    #[test]
+    fn t_quantiles_match_the_tables() {
+        for (df, t) in [(1, 12.706), (4, 2.776), (9, 2.262), (30, 2.042)] {
+            assert!((t_quantile_975(df) - t).abs() < 1e-3, "df {df}");
+        }
+        // Sample std 1, n 3: half width t(2) / sqrt(3) = 4.303 / 1.732; none from one value.
+        let s = MeanStd::of([1.0, 2.0, 3.0]);
+        assert!((s.ci95_half_width().unwrap() - 4.303 / 3f64.sqrt()).abs() < 1e-3);
+        assert_eq!(MeanStd::of([1.0]).ci95_half_width(), None);
+    }
 
     #[test]
     fn agrees_with_two_pass_formulas() {

@@ -613,12 +613,7 @@ impl StepInProgress {
         }
         for [lo, hi] in &self.reach {
             let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
-            if lo.is_nan()
-                || hi.is_nan()
-                || lo > hi
-                || lo == f64::INFINITY
-                || hi == f64::NEG_INFINITY
-            {
+            if !is_reach(lo, hi) {
                 return corrupt(format!("reach [{lo}, {hi}] is not an interval"));
             }
         }
@@ -629,6 +624,11 @@ impl StepInProgress {
 /// A reach bound as saved: `None` for an infinite side.
 fn finite_or_none(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
+}
+
+/// Whether `[lo, hi]` is a reach: a non-empty interval, bounds possibly infinite.
+fn is_reach(lo: f64, hi: f64) -> bool {
+    lo <= hi && lo < f64::INFINITY && hi > f64::NEG_INFINITY
 }
 
 impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
@@ -880,7 +880,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     /// step range is exhausted). The walker calls this every tick after [`Self::query`].
     /// Errors (NaN, `lo > hi`, or an empty interval at infinity) leave the learner unchanged.
     pub fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        if lo.is_nan() || hi.is_nan() || lo > hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
+        if !is_reach(lo, hi) {
             return Err(LearnerError::config(
                 "reach",
                 format!("needs lo <= hi, got [{lo}, {hi}]"),
@@ -1181,6 +1181,11 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
     /// learner that wrote it, mid-step included.
     pub fn from_checkpoint(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
         saved.check_invariants().map_err(LearnerError::approx)?;
+        Self::from_checked(saved, rule)
+    }
+
+    /// [`Self::from_checkpoint`] of a checkpoint whose invariants hold.
+    fn from_checked(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
         let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
         let step = saved.step;
         learner.trained = saved.trained;
@@ -1208,7 +1213,8 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
     /// saved one was, mid-step included. A corrupt file or a wrongly shaped approximator is an
     /// error.
     pub fn load(path: impl AsRef<Path>, rule: R) -> Result<Self, LearnerError> {
+        // `Persist::load` has checked the invariants.
         let saved = SavedLearner::<A>::load(path).map_err(LearnerError::approx)?;
-        Self::from_checkpoint(saved, rule)
+        Self::from_checked(saved, rule)
     }
 }

@@ -3,7 +3,6 @@
 use super::ReportError;
 use super::figures::{LinePlot, Series, line_plot_ticks};
 use crate::stats::MeanStd;
-use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::ops::Range;
 use std::path::Path;
 
@@ -29,15 +28,7 @@ pub fn band(x: &[f64], values: &[Vec<f64>]) -> Band {
         if n == 0 {
             continue;
         }
-        let half = if n < 2 {
-            0.0
-        } else {
-            StudentsT::new(0.0, 1.0, (n - 1) as f64)
-                .map(|t| t.inverse_cdf(0.975))
-                .unwrap_or(f64::NAN)
-                * s.sample_std()
-                / (n as f64).sqrt()
-        };
+        let half = s.ci95_half_width().unwrap_or(0.0);
         b.x.push(x);
         b.mean.push(s.mean());
         b.half.push(half);

@@ -1,7 +1,7 @@
 //! Persistence: the invariants a loaded [`Lwpr`] must satisfy.
 
 use super::linalg::{cholesky_upper, metric_from_factor};
-use super::model::{Lwpr, SubModel};
+use super::model::Lwpr;
 use super::receptive_field::ReceptiveField;
 use crate::approx::{ApproxError, Persist};
 
@@ -172,9 +172,7 @@ impl Persist for Lwpr {
                     config.max_rfs
                 )));
             }
-        }
-        for (k, SubModel { rfs, .. }) in sub.iter().enumerate() {
-            for (i, rf) in rfs.iter().enumerate() {
+            for (i, rf) in s.rfs.iter().enumerate() {
                 check_rf(rf, self, &format!("output {k} rf {i}"))?;
             }
         }
