@@ -59,7 +59,7 @@ enum Command {
         /// Output directory [default: results/paper, or results/quick with --quick].
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Seeds 0..N [default: 5, or 2 with --quick].
+        /// Seeds 0..N [default: 10, or 2 with --quick].
         #[arg(long)]
         seeds: Option<u64>,
         /// A fast look: every experiment at a tenth of its length.
@@ -278,7 +278,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             if quick {
                 config.settings.scale = 0.1;
             }
-            let seeds = seeds.unwrap_or(if quick { 2 } else { 5 });
+            let seeds = seeds.unwrap_or(if quick { 2 } else { 10 });
             if seeds == 0 || seeds > MAX_SEEDS {
                 return Err(format!("--seeds must be in [1, {MAX_SEEDS}], got {seeds}"));
             }

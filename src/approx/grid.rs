@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 /// Settings of a [`Grid`].
 ///
-/// Recommended settings (measured by `examples/compare_approximators.rs`, 100,000 samples):
+/// Recommended settings (measured by `probes/src/bin/compare_approximators.rs`, 100,000 samples):
 /// - cross 2D on [-1, 1]^2, noise 0.1: `resolution = [31, 31]`, `learning_rate = 0.1`
 ///   (nMSE 0.005);
 /// - the 3-input step-offset map (theta, theta_dot, F_R), noise 0.01: `resolution = [11, 5, 5]`,

@@ -9,7 +9,7 @@ const JITTER: f64 = 1e-8;
 
 /// Settings of a [`KernelRidge`] model.
 ///
-/// Recommended settings (measured by `examples/compare_approximators.rs`, 100,000 samples):
+/// Recommended settings (measured by `probes/src/bin/compare_approximators.rs`, 100,000 samples):
 /// - cross 2D on [-1, 1]^2, noise 0.1: `length_scales = [0.25, 0.25]`, `regularisation =
 ///   0.01` (the noise variance), defaults otherwise (budget 100, novelty threshold 0.02):
 ///   nMSE 0.015;

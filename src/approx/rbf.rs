@@ -34,7 +34,7 @@ pub enum RbfUpdate {
 
 /// Settings of an [`Rbf`] network.
 ///
-/// Recommended settings (measured by `examples/compare_approximators.rs`, 100,000 samples):
+/// Recommended settings (measured by `probes/src/bin/compare_approximators.rs`, 100,000 samples):
 /// - cross 2D on [-1, 1]^2, noise 0.1: `centres = [21, 21]`, `widths = [0.07, 0.07]`
 ///   (0.7 x the spacing), `update = RbfUpdate::Nlms { learning_rate: 0.1 }` (nMSE 0.004), or
 ///   `RbfUpdate::Rls { forgetting: 1.0, prior_variance: 100.0 }` (nMSE 0.0006 at about 200x

@@ -93,7 +93,7 @@ impl Registry {
     /// The built-ins: the approximators `lwpr`, `rbf`, `grid`, `kernel-ridge`; the rules
     /// `pendulum-cart`, `balance-only`, `tracking-only`, `linear`, `rate-damped` (each with
     /// its default parameters); the experiments `tracking`, `disturbance`, `stability`,
-    /// `robustness` (A-D, in the paper's order).
+    /// `robustness` (A-D, in the paper's order) and `omnidirectional` (beyond the paper).
     pub fn builtin() -> Self {
         let mut r = Registry::new();
         for &kind in <ApproxKind as strum::VariantArray>::VARIANTS {
@@ -108,7 +108,7 @@ impl Registry {
             .rule("tracking-only", TrackingOnly::default)
             .rule("linear", Linear::default)
             .rule("rate-damped", RateDamped::default);
-        for e in suite::paper() {
+        for e in suite::paper().into_iter().chain(suite::beyond()) {
             r.add_experiment(e);
         }
         r

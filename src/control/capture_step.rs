@@ -277,6 +277,8 @@ pub struct StepDecision {
     pub step: [f64; 2],
     /// The learned sagittal offset that was added (m).
     pub learned_offset: f64,
+    /// The learned lateral offset that was added to the step's y (m, positive to the left).
+    pub lateral_offset: f64,
     /// The sagittal step without the learned offset and before the step limit (m; 0 when the
     /// analytic footstep is off): the step is `clamp(analytic_step_x + learned_offset)`.
     pub analytic_step_x: f64,
@@ -393,7 +395,25 @@ impl CaptureStep {
         reference: &GaitReference,
         learned_offset: f64,
     ) -> Result<StepDecision, CaptureStepError> {
+        self.update_with_offsets(com, reference, [learned_offset, 0.0])
+    }
+
+    /// [`Self::update`] with learned offsets in both planes: `offsets[0]` is the sagittal `dF`
+    /// added to the footstep's x, `offsets[1]` a lateral offset added to its y (m, heading
+    /// frame, positive to the left; 0 without a lateral learner).
+    pub fn update_with_offsets(
+        &mut self,
+        com: &ComState,
+        reference: &GaitReference,
+        offsets: [f64; 2],
+    ) -> Result<StepDecision, CaptureStepError> {
+        let [learned_offset, lateral_offset] = offsets;
         check_inputs(com, reference, learned_offset)?;
+        if !lateral_offset.is_finite() {
+            return Err(CaptureStepError::InvalidInput(format!(
+                "non-finite lateral offset {lateral_offset}"
+            )));
+        }
         if let Some(m) = &self.memory
             && com.time < m.time
         {
@@ -503,8 +523,8 @@ impl CaptureStep {
             0.0
         };
         let step_x = (analytic_step_x + learned_offset).clamp(-cfg.max_step_x, cfg.max_step_x);
-        let footstep = [step_x - end[0].pos, fy];
-        let step = [step_x, end[1].pos + fy];
+        let footstep = [step_x - end[0].pos, fy + lateral_offset];
+        let step = [step_x, end[1].pos + fy + lateral_offset];
 
         self.memory = Some(mem);
         Ok(StepDecision {
@@ -516,6 +536,7 @@ impl CaptureStep {
             footstep,
             step,
             learned_offset,
+            lateral_offset,
             analytic_step_x,
             crossing,
         })

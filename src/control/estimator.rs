@@ -143,6 +143,11 @@ pub struct Estimate {
     pub theta_e: f64,
     /// Its rate (rad/s), from the gyro.
     pub theta_e_rate: f64,
+    /// Trunk roll from the IMU (rad, about the forward axis: positive tilts the trunk's top to
+    /// the right).
+    pub roll: f64,
+    /// Its rate (rad/s), from the gyro.
+    pub roll_rate: f64,
     /// The support exchange that happened this tick, if any.
     pub touch_down: Option<TouchDown>,
 }
@@ -282,6 +287,8 @@ impl StateEstimator {
         let p = com_rel[support.index()];
         let [_, gy, gz] = sensors.imu.gyro;
         let pitch_rate = gy * roll.cos() - gz * roll.sin();
+        let [gx, ..] = sensors.imu.gyro;
+        let roll_rate = gx + (gy * roll.sin() + gz * roll.cos()) * pitch.tan();
         let feet = com_rel.map(|r| [-r.x, -r.y, -r.z]);
 
         self.memory = Some(Memory {
@@ -304,6 +311,8 @@ impl StateEstimator {
             pitch,
             theta_e: pitch - theta_reference,
             theta_e_rate: pitch_rate,
+            roll,
+            roll_rate,
             touch_down,
         })
     }

@@ -9,6 +9,7 @@ pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
 pub mod motion;
+pub mod two_planes;
 pub mod walker;
 
 // The robot interface, re-exported where control's users look for it.

@@ -191,6 +191,38 @@ pub trait FootstepPolicy {
     fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError>;
     /// Forget the current step without learning.
     fn discard_step(&mut self);
+
+    /// The lateral learner's step-width offset dW for this tick (m, towards the swing leg's
+    /// side), if the policy has one; its input is the frontal plane's, mirrored (see
+    /// [`Walker::tick`]). Default: no lateral learner.
+    fn lateral_offset(&mut self, input: LearnerInput) -> Result<Option<f64>, LearnerError> {
+        let _ = input;
+        Ok(None)
+    }
+    /// The width offsets that could change the step at this tick (after
+    /// [`Self::lateral_offset`]).
+    fn set_lateral_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
+        let _ = (lo, hi);
+        Ok(())
+    }
+    /// The step that just ended, in the frontal plane (mirrored): learn from it.
+    fn lateral_touch_down(
+        &mut self,
+        outcome: &StepOutcome,
+    ) -> Result<Option<TouchDownReport>, LearnerError> {
+        let _ = outcome;
+        Ok(None)
+    }
+    /// The step in progress ended in a fall, in the frontal plane (mirrored).
+    fn lateral_fall(
+        &mut self,
+        outcome: &StepOutcome,
+    ) -> Result<Option<TouchDownReport>, LearnerError> {
+        let _ = outcome;
+        Ok(None)
+    }
+    /// Forget the current lateral step without learning.
+    fn discard_lateral_step(&mut self) {}
 }
 
 impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
@@ -227,10 +259,18 @@ pub struct Tick {
     pub f_r: f64,
     /// The learned offset used this tick (0 without a policy).
     pub learned_offset: f64,
+    /// The learned lateral offset added to the step's y this tick (m, heading frame, positive
+    /// to the left; 0 without a lateral learner).
+    pub lateral_offset: f64,
     /// The step that ended this tick, if a touch-down was detected.
     pub step: Option<StepOutcome>,
+    /// The same step in the frontal plane, mirrored to the side of the leg that landed (see
+    /// [`Walker::tick`]).
+    pub lateral_step: Option<StepOutcome>,
     /// What the learner did with that step, if it learned from it.
     pub learning: Option<TouchDownReport>,
+    /// What the lateral learner did with it, if there is one and it learned.
+    pub lateral_learning: Option<TouchDownReport>,
 }
 
 /// The walker: estimator, balance controller and motion generator, ticked together.
@@ -314,7 +354,13 @@ impl Walker {
             f_e: td.step[0] - f_r,
             f_r,
         });
+        // The frontal plane, mirrored to the side of the leg that landed.
+        let lateral_step = estimate.touch_down.map(|td| {
+            let width = td.support.sign() * td.step[1];
+            self.lateral_outcome(&estimate, td.support, width)
+        });
         let mut learning = None;
+        let mut lateral_learning = None;
         let always =
             self.config.learner_during_fade_in || self.config.mode == WalkerMode::LearnerOnly;
         let engaged = always || self.generator.fade() >= 1.0;
@@ -332,8 +378,16 @@ impl Walker {
                 p.discard_step();
             }
         }
+        if let (Some(outcome), Some(p)) = (&lateral_step, policy.as_deref_mut()) {
+            if engaged {
+                lateral_learning = p.lateral_touch_down(outcome)?;
+            } else {
+                p.discard_lateral_step();
+            }
+        }
 
         let mut learned_offset = 0.0;
+        let mut lateral_offset = 0.0;
         let (command, decision) = match self.config.mode {
             WalkerMode::OpenLoop => (self.generator.open_loop(f_r), None),
             WalkerMode::CaptureStep | WalkerMode::LearnerOnly => {
@@ -346,6 +400,17 @@ impl Walker {
                     learned_offset *= engagement;
                 }
                 let support = self.generator.support();
+                // The lateral learner's width offset, towards the swing leg's side.
+                let swing_sign = support.other().sign();
+                if let Some(p) = policy.as_deref_mut()
+                    && let Some(dw) = p.lateral_offset(LearnerInput::new(
+                        -swing_sign * estimate.roll,
+                        -swing_sign * estimate.roll_rate,
+                        0.0,
+                    ))?
+                {
+                    lateral_offset = swing_sign * dw * engagement;
+                }
                 let com = com_relative_to(&estimate, support);
                 // In learner-only mode the offset is the whole sagittal step.
                 let into_reference = self.config.offset_target == OffsetTarget::Reference
@@ -359,7 +424,18 @@ impl Walker {
                     step_x: planned_f_r,
                     lateral: 0.0,
                 };
-                let d = self.controller.update(&com, &reference, footstep_offset)?;
+                let d = self.controller.update_with_offsets(
+                    &com,
+                    &reference,
+                    [footstep_offset, lateral_offset],
+                )?;
+                if let Some(p) = policy.as_deref_mut() {
+                    // The generator keeps the width within its range: offsets beyond that
+                    // range's ends cannot change the step.
+                    let width = swing_sign * (d.step[1] - lateral_offset);
+                    let [lo, hi] = m.step_y_range;
+                    p.set_lateral_reach(lo - width, hi - width)?;
+                }
                 if let Some(p) = policy {
                     // Offsets beyond these would be clamped away by the step range.
                     let cap = self.config.capture_step.max_step_x;
@@ -397,9 +473,41 @@ impl Walker {
             command,
             f_r,
             learned_offset,
+            lateral_offset,
             step,
+            lateral_step,
             learning,
+            lateral_learning,
         })
+    }
+
+    /// The reference step width (m): the Capture Step controller's stance in place, the feet
+    /// `2 delta` apart.
+    pub fn reference_width(&self) -> f64 {
+        2.0 * self.config.capture_step.delta
+    }
+
+    /// The frontal-plane outcome of a step of the leg on `side` with width `width` (m, towards
+    /// `side`), mirrored to that side: the trunk's lean and its rate towards `side` as theta_E
+    /// and its rate, the width error against [`Self::reference_width`] as F_E, and F_R 0.
+    fn lateral_outcome(&self, estimate: &Estimate, side: Side, width: f64) -> StepOutcome {
+        StepOutcome {
+            theta_e: -side.sign() * estimate.roll,
+            theta_e_dot: -side.sign() * estimate.roll_rate,
+            f_e: width - self.reference_width(),
+            f_r: 0.0,
+        }
+    }
+
+    /// [`Self::outcome_at`] in the frontal plane: the step in progress at `estimate` with the
+    /// swing foot's lateral distance from the support foot as its width, mirrored to the swing
+    /// leg's side.
+    pub fn lateral_outcome_at(&self, estimate: &Estimate) -> StepOutcome {
+        let support = estimate.support;
+        let swing = support.other();
+        let width =
+            swing.sign() * (estimate.feet[swing.index()][1] - estimate.feet[support.index()][1]);
+        self.lateral_outcome(estimate, swing, width)
     }
 
     /// The outcome of the step in progress at `estimate` (the last estimate before a fall):

@@ -11,6 +11,7 @@ pub mod experiment;
 pub mod fall_causes;
 pub mod index_page;
 mod kind;
+pub mod omnidirectional;
 pub mod paired;
 pub mod protocol;
 pub mod reproduce;

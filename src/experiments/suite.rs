@@ -1,8 +1,9 @@
-//! The paper's four experiments, A-D in the paper's order: the suite only collects; each
-//! experiment lives in its own file.
+//! The paper's four experiments, A-D in the paper's order, and those beyond the paper: the
+//! suite only collects; each experiment lives in its own file.
 
 use super::disturbance::Disturbance;
 use super::experiment::Experiment;
+use super::omnidirectional::Omnidirectional;
 use super::robustness::Robustness;
 use super::stability::Stability;
 use super::tracking::Tracking;
@@ -16,4 +17,9 @@ pub fn paper() -> Vec<Arc<dyn Experiment>> {
         Arc::new(Stability),
         Arc::new(Robustness),
     ]
+}
+
+/// The experiments beyond the paper: `omnidirectional`.
+pub fn beyond() -> Vec<Arc<dyn Experiment>> {
+    vec![Arc::new(Omnidirectional)]
 }

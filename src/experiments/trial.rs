@@ -277,6 +277,7 @@ pub fn run_trial(
     let mut push_ready_at = 0.0;
     // The step in progress as of the last walker tick (what a fall interrupts).
     let mut last_outcome = None;
+    let mut last_lateral = None;
 
     while offset + robot.time() < setup.duration_s {
         let sensors = robot.sensors();
@@ -297,6 +298,7 @@ pub fn run_trial(
         };
         if let Some(tick) = &tick {
             last_outcome = Some(Walker::outcome_at(&tick.estimate, tick.f_r));
+            last_lateral = Some(walker.lateral_outcome_at(&tick.estimate));
         }
         let targets = match &tick {
             Some(tick) => {
@@ -357,6 +359,12 @@ pub fn run_trial(
                         learning_gain = p.fall(&outcome).map_err(WalkerError::from)?.map(|r| r.gain)
                     }
                     None => p.discard_step(),
+                }
+                match last_lateral.take() {
+                    Some(outcome) => {
+                        p.lateral_fall(&outcome).map_err(WalkerError::from)?;
+                    }
+                    None => p.discard_lateral_step(),
                 }
             }
             let record = FallRecord {

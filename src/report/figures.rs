@@ -9,6 +9,7 @@
 //! - [`event_plot`]: series with vertical event lines (pushes) and a second y axis (Fig. 7).
 //! - [`fall_probability_plot`]: fall probability curves plus binned estimates (Fig. 6).
 //! - [`heat_map_grid`]: small multiples of 2-D maps with data-point crosses (Fig. 8).
+//! - [`polar_plot`]: values by push direction, seen from above.
 
 use super::{ReportError, write_atomic};
 use plotters::coord::Shift;
@@ -1050,4 +1051,123 @@ mod tests {
         assert_eq!(diverging_colour(-1.0).2, 255);
         cleanup(&dir);
     }
+}
+
+/// A polar plot of values by direction, seen from above: azimuth 0 points up (forward) and
+/// azimuths grow counter-clockwise (to the left), in degrees; each series is a closed line
+/// through its (azimuth, value) points, values >= 0 as radii.
+#[derive(Debug, Clone, Copy)]
+pub struct PolarPlot<'a> {
+    /// Title above the plot.
+    pub title: &'a str,
+    /// The radius's label, with its unit, written beside the rings.
+    pub radius_label: &'a str,
+    /// The series: `x` azimuths (degrees), `y` radii (finite, >= 0); `spread` is ignored.
+    pub series: &'a [Series<'a>],
+}
+
+/// Draws a [`PolarPlot`].
+pub fn polar_plot(path: &Path, plot: &PolarPlot) -> Result<(), ReportError> {
+    for s in plot.series {
+        s.validate()?;
+        if s.y.iter().any(|v| *v < 0.0) {
+            return Err(ReportError::invalid(format!(
+                "polar series {} has a negative radius",
+                s.name
+            )));
+        }
+    }
+    let max = plot
+        .series
+        .iter()
+        .flat_map(|s| s.y.iter().copied())
+        .fold(0.0, f64::max);
+    // Rings at a round step, at least one beyond the largest value.
+    let step = if max > 0.0 {
+        let raw = max / 4.0;
+        let p = 10f64.powf(raw.log10().floor());
+        [1.0, 2.0, 2.5, 5.0, 10.0]
+            .iter()
+            .map(|m| m * p)
+            .find(|s| *s >= raw)
+            .unwrap_or(10.0 * p)
+    } else {
+        1.0
+    };
+    let rings = (max / step).floor() as usize + 1;
+    let r = step * rings as f64;
+    let at = |azimuth_deg: f64, radius: f64| {
+        let a = azimuth_deg.to_radians();
+        (-radius * a.sin(), radius * a.cos())
+    };
+    render(path, (640, 640), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(plot.title, ("sans-serif", 22))
+            .margin(30)
+            .build_cartesian_2d(-1.15 * r..1.15 * r, -1.15 * r..1.15 * r)
+            .map_err(plot_err)?;
+        let grey = BLACK.mix(0.25);
+        for k in 1..=rings {
+            let radius = step * k as f64;
+            let ring: Vec<(f64, f64)> = (0..=72).map(|i| at(5.0 * i as f64, radius)).collect();
+            chart
+                .draw_series(std::iter::once(PathElement::new(ring, grey)))
+                .map_err(plot_err)?;
+            let (x, y) = at(22.5, radius);
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    tick(&radius),
+                    (x, y),
+                    ("sans-serif", 13).into_font().color(&BLACK.mix(0.6)),
+                )))
+                .map_err(plot_err)?;
+        }
+        for (k, name) in ["forward", "left", "backward", "right"].iter().enumerate() {
+            let az = 90.0 * k as f64;
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(0.0, 0.0), at(az, r)],
+                    grey,
+                )))
+                .map_err(plot_err)?;
+            let (x, y) = at(az, 1.08 * r);
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    name.to_string(),
+                    (x - 0.06 * r, y),
+                    ("sans-serif", 15).into_font(),
+                )))
+                .map_err(plot_err)?;
+        }
+        let (x, y) = at(0.0, -1.1 * r);
+        chart
+            .draw_series(std::iter::once(Text::new(
+                plot.radius_label.to_string(),
+                (x - 0.1 * r, y),
+                ("sans-serif", 14).into_font(),
+            )))
+            .map_err(plot_err)?;
+        for (i, s) in plot.series.iter().enumerate() {
+            let c = series_colour(s.name, i);
+            let mut points: Vec<(f64, f64)> =
+                s.x.iter().zip(s.y).map(|(a, v)| at(*a, *v)).collect();
+            if let Some(first) = points.first().copied() {
+                points.push(first);
+            }
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    points.clone(),
+                    c.stroke_width(2),
+                )))
+                .map_err(plot_err)?
+                .label(s.name)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                });
+            chart
+                .draw_series(points.iter().map(|p| Circle::new(*p, 3, c.filled())))
+                .map_err(plot_err)?;
+        }
+        draw_legend(&mut chart)
+    })
 }

@@ -55,7 +55,7 @@ fn capture_step_figures(f_r: f64, seconds: f64, settle: f64) -> (f64, f64, f64, 
 }
 
 /// Stepping in place (F_R = 0): this 15 s run measures mean F_hat +0.36 cm and mean |F_hat|
-/// 1.84 cm after 5 s (60 s: +0.4 cm, 1.9 cm; `examples/walk.rs`). Before the walker drove the
+/// 1.84 cm after 5 s (60 s: +0.4 cm, 1.9 cm; `probes/src/bin/walk.rs`). Before the walker drove the
 /// support leg with the reference instead of the controller's step, the robot walked backward
 /// with steps of -11.5 cm.
 #[test]
@@ -70,7 +70,7 @@ fn capture_step_walker_steps_in_place_on_the_spot() {
 /// Tracks the reference step size: the steady-state mean step error after 5 s of a 15 s run is
 /// within 2 cm for F_R in {-0.1, 0.1, 0.2} (measured: see the printed figures and the report).
 /// The trunk deviation theta_E is measured from the lean the generator gives the reference
-/// gait, so it stays small at every reference (30 s runs, `examples/walk.rs`: mean +0.001,
+/// gait, so it stays small at every reference (30 s runs, `probes/src/bin/walk.rs`: mean +0.001,
 /// -0.004, -0.011, -0.018 rad at F_R = -0.1, 0, 0.1, 0.2; measured from the halt lean alone:
 /// -0.019, -0.004, +0.009, +0.022, since the trunk leans about half of what is commanded).
 #[test]

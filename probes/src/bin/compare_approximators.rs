@@ -1,6 +1,6 @@
 //! Trains every approximator on the same seeded streams and prints one Markdown table.
 //!
-//! `cargo run --release --example compare_approximators [-- --samples N]`
+//! `cargo run --release -p steplearn-probes --bin compare_approximators [-- --samples N]`
 //!
 //! Problems (from `steplearn::approx::problems`): cross 2D (noiseless 41x41 test grid), the
 //! 3-input step-offset map (21^3 test grid) and cross 2D embedded in 10 inputs with 8

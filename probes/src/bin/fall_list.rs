@@ -4,7 +4,7 @@
 //! `falls.before_next_push` counts), the touch-downs since the previous fall, and the last four
 //! steps before it (F_hat / dF, m).
 //!
-//! `cargo run --release --example fall_list -- --seed 0 [--learned] [--config configs/mismatch.toml]`
+//! `cargo run --release -p steplearn-probes --bin fall_list -- --seed 0 [--learned] [--config configs/mismatch.toml]`
 
 use clap::Parser;
 use std::path::PathBuf;

@@ -1,8 +1,8 @@
 //! Walks the humanoid with a chosen walker (open-loop, Capture Step model) at a reference step
 //! size, optionally with forward pushes, and prints every step and fall.
 //!
-//! `cargo run --release --example walk -- --mode capture-step --step-x 0.1 --seconds 30 --push 8`
-//! `cargo run --release --example walk -- --learn --eta 0.2 --seconds 60 --push 6,8,10,12,14`
+//! `cargo run --release -p steplearn-probes --bin walk -- --mode capture-step --step-x 0.1 --seconds 30 --push 8`
+//! `cargo run --release -p steplearn-probes --bin walk -- --learn --eta 0.2 --seconds 60 --push 6,8,10,12,14`
 
 use clap::Parser;
 use steplearn::approx::{Lwpr, LwprConfig};

@@ -11,7 +11,7 @@
 //! and realised step of the five steps after pushes of 10-18 Ns. `--p-theta P` sets the
 //! pendulum-cart rule's trunk-angle tolerance (the paper's 0.15 by default).
 //!
-//! `cargo run --release --example learner_phases -- --seed 0 --pushes 200 --settle 60 --learn-steps 120`
+//! `cargo run --release -p steplearn-probes --bin learner_phases -- --seed 0 --pushes 200 --settle 60 --learn-steps 120`
 
 use clap::Parser;
 use rand::SeedableRng;

@@ -3,7 +3,7 @@
 //! the commanded vs realised step, step timing, estimated vs true CoM velocity and offset, the
 //! controller's predicted end-of-step velocity, theta_E and sole pitches (columns: `COLS`).
 //!
-//! `cargo run --release --example push_dip -- --seed 0 [--pushes 60] [--out FILE.csv]`
+//! `cargo run --release -p steplearn-probes --bin push_dip -- --seed 0 [--pushes 60] [--out FILE.csv]`
 
 use clap::Parser;
 use std::io::Write;

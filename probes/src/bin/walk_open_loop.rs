@@ -1,7 +1,7 @@
 //! Open-loop walking: the step motion generator commanded with a constant step size, no
 //! balance control. Prints drift, steps and whether (and when) the robot fell.
 //!
-//! `cargo run --release --example walk_open_loop -- --step-x 0.1 --seconds 30`
+//! `cargo run --release -p steplearn-probes --bin walk_open_loop -- --step-x 0.1 --seconds 30`
 //!
 //! `--gait open-loop` uses [`MotionConfig::open_loop_gait`], tuned to walk without balance
 //! control over the whole step range; the default gait is the one the Capture Step walker uses.
