@@ -231,16 +231,28 @@ impl<'r> Bench<'r> {
     }
 
     /// Refuses a directory whose runs used another configuration; records this one otherwise.
+    /// Another configuration means other settings, or another protocol table for an
+    /// experiment both records hold: an experiment registered since (or not any more) changes
+    /// nothing its runs measured, so its table joins the record.
     fn guard_config(&self, config_toml: &str) -> Result<(), BenchError> {
         let path = self.out.join(CONFIG_RECORD);
         match std::fs::read_to_string(&path) {
-            Ok(existing) if existing != config_toml => Err(BenchError::ConfigChanged(format!(
-                "{} holds runs of another configuration ({} differs from this run's settings \
-                 and protocols); choose another --out, or delete the directory to start over",
-                self.out.display(),
-                path.display()
-            ))),
-            Ok(_) => Ok(()),
+            Ok(existing) if existing == config_toml => Ok(()),
+            Ok(existing) => match merged_record(&existing, config_toml) {
+                Some(merged) => {
+                    if merged != existing {
+                        write_atomic(&path, merged.as_bytes())?;
+                    }
+                    Ok(())
+                }
+                None => Err(BenchError::ConfigChanged(format!(
+                    "{} holds runs of another configuration ({} differs from this run's \
+                     settings and protocols); choose another --out, or delete the directory to \
+                     start over",
+                    self.out.display(),
+                    path.display()
+                ))),
+            },
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                 std::fs::create_dir_all(&self.out)
                     .map_err(|e| crate::report::ReportError::io(&self.out, e))?;
@@ -298,5 +310,79 @@ impl<'r> Bench<'r> {
             leaderboard,
             out: self.out.clone(),
         })
+    }
+}
+
+/// The union of two configuration records (`existing` first, then what `new` adds), if they
+/// agree: the same settings (every key but `protocols`) and the same table for every protocol
+/// both hold. `None` if they differ or either does not parse.
+fn merged_record(existing: &str, new: &str) -> Option<String> {
+    let old: toml::Table = toml::from_str(existing).ok()?;
+    let new: toml::Table = toml::from_str(new).ok()?;
+    let without = |t: &toml::Table| {
+        let mut t = t.clone();
+        t.remove("protocols");
+        t
+    };
+    if without(&old) != without(&new) {
+        return None;
+    }
+    let tables = |t: &toml::Table| match t.get("protocols") {
+        Some(toml::Value::Table(p)) => Some(p.clone()),
+        None => Some(toml::Table::new()),
+        Some(_) => None,
+    };
+    let (mut merged, added) = (tables(&old)?, tables(&new)?);
+    for (name, table) in added {
+        match merged.get(&name) {
+            Some(t) if *t != table => return None,
+            Some(_) => {}
+            None => {
+                merged.insert(name, table);
+            }
+        }
+    }
+    let mut record = old;
+    if !merged.is_empty() {
+        record.insert("protocols".into(), toml::Value::Table(merged));
+    }
+    toml::to_string_pretty(&record).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::merged_record;
+
+    const OLD: &str = "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 3\n";
+
+    #[test]
+    fn a_record_takes_new_experiments_but_no_other_configuration() {
+        // The same configuration, and one with another experiment's table beside it.
+        assert!(merged_record(OLD, OLD).is_some());
+        let more = "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 3\n\n[protocols.b]\nn = 1\n";
+        let merged: toml::Table = toml::from_str(&merged_record(OLD, more).unwrap()).unwrap();
+        assert_eq!(merged["protocols"]["a"]["pushes"].as_integer(), Some(3));
+        assert_eq!(merged["protocols"]["b"]["n"].as_integer(), Some(1));
+        // An experiment no longer registered keeps its table in the record.
+        let fewer = "[settings]\nscale = 1.0\n";
+        let kept: toml::Table = toml::from_str(&merged_record(OLD, fewer).unwrap()).unwrap();
+        assert_eq!(kept["protocols"]["a"]["pushes"].as_integer(), Some(3));
+        // Other settings, another table for a shared experiment, or a damaged record: refused.
+        assert!(
+            merged_record(
+                OLD,
+                "[settings]\nscale = 0.5\n\n[protocols.a]\npushes = 3\n"
+            )
+            .is_none()
+        );
+        assert!(
+            merged_record(
+                OLD,
+                "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 4\n"
+            )
+            .is_none()
+        );
+        assert!(merged_record("[settings\n", OLD).is_none());
+        assert!(merged_record(OLD, "[settings]\nscale = 1.0\nextra = 1\n").is_none());
     }
 }

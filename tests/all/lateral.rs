@@ -1,0 +1,164 @@
+//! The lateral learner on the simulated humanoid: the frontal plane's mirrored quantities, the
+//! learner's offset within the step-width range, and the effect of learning on the width.
+
+use steplearn::approx::{AnyApproximator, ApproxKind};
+use steplearn::control::Side;
+use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::two_planes::TwoPlanes;
+use steplearn::control::walker::{FootstepPolicy, Walker, WalkerConfig, WalkerMode};
+use steplearn::rules::{PendulumCart, StepOutcome};
+use steplearn::sim::{Humanoid, SimConfig};
+
+fn learner() -> FootstepLearner<AnyApproximator, PendulumCart> {
+    let bounds = InputGrid::default().input_box().unwrap();
+    FootstepLearner::new(
+        ApproxKind::Lwpr.build(&bounds).unwrap(),
+        PendulumCart::default(),
+        LearnerConfig::default(),
+    )
+    .unwrap()
+}
+
+/// What one run saw: every touch-down's frontal outcome with the side that landed and its time,
+/// and the lateral offsets applied (heading frame).
+#[derive(Default)]
+struct Run {
+    steps: Vec<(Side, f64, StepOutcome)>,
+    offsets: Vec<f64>,
+    falls: usize,
+}
+
+/// Steps in place for `seconds` with `policy`, pushed with `push` (Ns, world frame) just
+/// after the first touch-down from 4 s on of the foot opposite the push's side (so that the
+/// foot on the pushed side is swinging).
+fn step_in_place(seconds: f64, push: [f64; 3], mut policy: Option<&mut dyn FootstepPolicy>) -> Run {
+    let stance_for_push = if push[1] >= 0.0 {
+        Side::Right
+    } else {
+        Side::Left
+    };
+    let mut robot = Humanoid::new(SimConfig::default()).unwrap();
+    let mut walker = Walker::new(
+        WalkerConfig::new(WalkerMode::CaptureStep),
+        robot.body().leg_geometry(),
+    )
+    .unwrap();
+    let mut run = Run::default();
+    let mut pushed = false;
+    while robot.time() < seconds {
+        let sensors = robot.sensors();
+        let tick = walker.tick(&sensors, 0.0, policy.as_deref_mut()).unwrap();
+        if let (Some(o), Some(td)) = (tick.lateral_step, tick.estimate.touch_down) {
+            run.steps.push((td.support, robot.time(), o));
+        }
+        run.offsets.push(tick.lateral_offset);
+        if !pushed
+            && robot.time() >= 4.0
+            && tick.estimate.support == stance_for_push
+            && tick.estimate.time_on_support < 0.05
+        {
+            robot.push(push).unwrap();
+            pushed = true;
+        }
+        robot.step(&tick.targets).unwrap();
+        if robot.fall().is_some() {
+            run.falls += 1;
+            break;
+        }
+    }
+    run
+}
+
+#[test]
+fn left_and_right_steps_are_mirrored_to_the_same_problem() {
+    let run = step_in_place(12.0, [0.0, 0.0, 0.0], None);
+    assert_eq!(run.falls, 0);
+    let width = 2.0 * steplearn::control::capture_step::CaptureStepConfig::default().delta;
+    let mean_width = |side: Side| {
+        let w: Vec<f64> = run
+            .steps
+            .iter()
+            .filter(|(s, t, _)| *s == side && *t > 4.0)
+            .map(|(_, _, o)| o.f_e + width)
+            .collect();
+        assert!(w.len() >= 5, "{} steps of {side:?}", w.len());
+        w.iter().sum::<f64>() / w.len() as f64
+    };
+    let (left, right) = (mean_width(Side::Left), mean_width(Side::Right));
+    // Both feet land on their own side at about the stance width: the same sign, close values.
+    assert!((0.12..0.36).contains(&left), "left steps {left:.3} m wide");
+    assert!(
+        (0.12..0.36).contains(&right),
+        "right steps {right:.3} m wide"
+    );
+    assert!(
+        (left - right).abs() < 0.03,
+        "left {left:.3}, right {right:.3}"
+    );
+    // Without a lateral learner no lateral offset is applied.
+    assert!(run.offsets.iter().all(|o| *o == 0.0));
+}
+
+#[test]
+fn a_push_to_one_side_leans_the_trunk_towards_the_leg_that_lands_on_that_side() {
+    for (push, side) in [
+        ([0.0, 4.0, 0.0], Side::Left),
+        ([0.0, -4.0, 0.0], Side::Right),
+    ] {
+        let run = step_in_place(7.0, push, None);
+        assert_eq!(run.falls, 0, "{push:?}");
+        // The first touch-down of the foot on the pushed side after the push: the trunk leans
+        // towards it, so the mirrored lean is positive whichever side was pushed.
+        let (_, t, o) = run
+            .steps
+            .iter()
+            .find(|(s, t, _)| *s == side && *t > 4.05)
+            .copied()
+            .unwrap_or_else(|| panic!("no {side:?} step after the push"));
+        assert!(
+            o.theta_e > 0.0,
+            "{side:?}: lean {:.3} at {t:.2} s",
+            o.theta_e
+        );
+    }
+}
+
+#[test]
+fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
+    let mut both = TwoPlanes {
+        sagittal: learner(),
+        lateral: learner(),
+    };
+    let learned = step_in_place(14.0, [0.0, 5.0, 0.0], Some(&mut both));
+    let model = step_in_place(14.0, [0.0, 5.0, 0.0], None);
+    assert_eq!(learned.falls + model.falls, 0);
+    let lo = steplearn::control::motion::MotionConfig::default().step_y_range[0];
+    let hi = steplearn::control::motion::MotionConfig::default().step_y_range[1];
+    let moved = learned.offsets.iter().filter(|o| **o != 0.0).count();
+    assert!(moved > 0, "the lateral learner never moved a step");
+    // The generator keeps every commanded width within its range; the offsets stay finite
+    // and smaller than the range.
+    assert!(
+        learned
+            .offsets
+            .iter()
+            .all(|o| o.is_finite() && o.abs() < hi - lo)
+    );
+    // The width error (against the controller's 2 delta) after the push has settled: the
+    // pendulum-cart rule's tracking term pulls the learned walker's width to the reference.
+    let err = |r: &Run| {
+        let e: Vec<f64> = r
+            .steps
+            .iter()
+            .filter(|(_, t, _)| *t > 8.0)
+            .map(|(_, _, o)| o.f_e.abs())
+            .collect();
+        e.iter().sum::<f64>() / e.len() as f64
+    };
+    assert!(
+        err(&learned) < 0.5 * err(&model),
+        "mean |width error| after 8 s: learned {:.4} m, model {:.4} m",
+        err(&learned),
+        err(&model)
+    );
+}

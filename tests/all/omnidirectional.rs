@@ -1,0 +1,81 @@
+//! Experiment `omnidirectional` through the bench, as a user's experiment would run: its
+//! summary's binding fields, its figure, its leaderboard rows, and the same bytes run twice.
+
+use steplearn::bench::{Bench, Registry};
+use steplearn::experiments::omnidirectional::{OmnidirectionalResult, SECTORS, WALKERS, direction};
+
+#[test]
+fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit() {
+    let dir = std::env::temp_dir().join(format!("steplearn-omni-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let registry = Registry::builtin();
+    assert!(registry.experiment_names().contains(&"omnidirectional"));
+    let run = |out: &std::path::Path| {
+        Bench::new(&registry)
+            .approximators(["lwpr"])
+            .rules(["pendulum-cart"])
+            .experiments(["omnidirectional"])
+            .seeds(1)
+            .scale(0.03)
+            .out(out)
+            .run()
+            .unwrap()
+    };
+    run(&dir.join("a"));
+    let run_dir = dir
+        .join("a")
+        .join("omnidirectional__lwpr__pendulum-cart__s0");
+    let summary = std::fs::read_to_string(run_dir.join("summary.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let sectors: Vec<f64> = serde_json::from_value(json["sectors_deg"].clone()).unwrap();
+    assert_eq!(
+        sectors,
+        [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]
+    );
+    for walker in ["open_loop", "model", "sagittal", "both"] {
+        let i50 = json["i50_ns"][walker].as_array().unwrap();
+        assert_eq!(i50.len(), SECTORS, "{walker}");
+        assert!(
+            i50.iter()
+                .all(|v| v.as_f64().is_some_and(|v| v.is_finite() && v >= 0.0))
+        );
+    }
+    let result: OmnidirectionalResult = serde_json::from_value(json.clone()).unwrap();
+    assert_eq!(result.pushes.len(), SECTORS);
+    assert!(result.pushes.iter().all(|n| *n >= 2));
+    for w in WALKERS {
+        // Every pushed fall has a cause; the counts add up to at least the falls.
+        for (k, causes) in result.fall_causes[w].iter().enumerate() {
+            let total: u32 = causes.values().sum();
+            assert!(total as usize >= result.falls[w][k], "{w} sector {k}");
+        }
+    }
+    assert!(run_dir.join("omnidirectional_i50.svg").is_file());
+    assert!(run_dir.join("omnidirectional_pushes.csv").is_file());
+    // The leaderboard compares both learners and the sagittal one with the model.
+    let board = std::fs::read_to_string(dir.join("a").join("leaderboard.json")).unwrap();
+    let board: serde_json::Value = serde_json::from_str(&board).unwrap();
+    let row = &board["rows"].as_array().unwrap()[0];
+    assert_eq!(row["experiment"], "omnidirectional");
+    assert!(row["vs_model"].as_array().unwrap().len() >= 2);
+    // The same seed gives the same bytes in another directory.
+    run(&dir.join("b"));
+    let again = std::fs::read_to_string(
+        dir.join("b")
+            .join("omnidirectional__lwpr__pendulum-cart__s0")
+            .join("summary.json"),
+    )
+    .unwrap();
+    assert_eq!(summary, again);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn sector_directions_are_unit_vectors_counter_clockwise_from_forward() {
+    assert_eq!(direction(0.0), [1.0, 0.0, 0.0]);
+    assert_eq!(direction(90.0), [0.0, 1.0, 0.0]);
+    assert_eq!(direction(180.0), [-1.0, 0.0, 0.0]);
+    assert_eq!(direction(270.0), [0.0, -1.0, 0.0]);
+    let d = direction(45.0);
+    assert!((d[0] - d[1]).abs() < 1e-15 && (d[0] * d[0] + d[1] * d[1] - 1.0).abs() < 1e-15);
+}
