@@ -162,3 +162,87 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
         err(&model)
     );
 }
+
+/// A policy that widens every step by a fixed amount and learns nothing.
+struct FixedWidth(f64);
+
+impl FootstepPolicy for FixedWidth {
+    fn offset(
+        &mut self,
+        _: steplearn::control::learner::LearnerInput,
+    ) -> Result<f64, steplearn::control::learner::LearnerError> {
+        Ok(0.0)
+    }
+    fn set_reach(
+        &mut self,
+        _: f64,
+        _: f64,
+    ) -> Result<(), steplearn::control::learner::LearnerError> {
+        Ok(())
+    }
+    fn touch_down(
+        &mut self,
+        _: &StepOutcome,
+    ) -> Result<
+        steplearn::control::learner::TouchDownReport,
+        steplearn::control::learner::LearnerError,
+    > {
+        Ok(Default::default())
+    }
+    fn fall(
+        &mut self,
+        _: &StepOutcome,
+    ) -> Result<
+        Option<steplearn::control::learner::TouchDownReport>,
+        steplearn::control::learner::LearnerError,
+    > {
+        Ok(None)
+    }
+    fn discard_step(&mut self) {}
+    fn lateral_offset(
+        &mut self,
+        _: steplearn::control::learner::LearnerInput,
+    ) -> Result<Option<f64>, steplearn::control::learner::LearnerError> {
+        Ok(Some(self.0))
+    }
+}
+
+/// The loop gain of the frontal-plane rule near the reference: a sustained width offset dW
+/// changes the width error by about dW and the mirrored lean by a small amount, so
+/// dG/dW = -(p_theta p_F + d lean / dW) ~ -p_theta p_F = -4.5 /m, as in the sagittal plane;
+/// the learner's gain guard (0.2) keeps the lateral learner below 1/k as well.
+#[test]
+fn a_sustained_width_offset_moves_the_width_and_barely_the_lean() {
+    let mean = |dw: f64| {
+        let run = step_in_place(12.0, [0.0, 0.0, 0.0], Some(&mut FixedWidth(dw)));
+        assert_eq!(run.falls, 0, "dW {dw}");
+        let late: Vec<StepOutcome> = run
+            .steps
+            .iter()
+            .filter(|(_, t, _)| *t > 6.0)
+            .map(|(_, _, o)| *o)
+            .collect();
+        let n = late.len() as f64;
+        (
+            late.iter().map(|o| o.f_e).sum::<f64>() / n,
+            late.iter().map(|o| o.theta_e).sum::<f64>() / n,
+        )
+    };
+    let (dw, (e_hi, lean_hi), (e_lo, lean_lo)) = (0.03, mean(0.03), mean(-0.03));
+    let width_slope = (e_hi - e_lo) / (2.0 * dw);
+    let lean_slope = (lean_hi - lean_lo) / (2.0 * dw);
+    // k = -dG/dW near the reference for the pendulum-cart rule: negative feedback (k > 0),
+    // and the gain guard's default 0.2 below 1/k, where the width error settles monotonically.
+    let pc = PendulumCart::default();
+    let k = pc.p_theta * pc.p_f * width_slope - lean_slope;
+    assert!(
+        (0.2..1.3).contains(&width_slope),
+        "d W_E / dW = {width_slope:.3}"
+    );
+    assert!(
+        lean_slope.abs() < 1.0,
+        "d lean / dW = {lean_slope:.3} rad/m"
+    );
+    let guard = LearnerConfig::default().max_gain.unwrap();
+    assert!(k > 0.0 && guard * k < 1.0, "k = {k:.2} /m, guard {guard}");
+}
