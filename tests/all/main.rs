@@ -32,6 +32,7 @@ mod lwpr_properties;
 mod model_files;
 mod motion_generator;
 mod rbf_properties;
+mod rules_policy_gradient;
 mod sim_body;
 mod sim_dynamics;
 mod sim_picture;
