@@ -418,3 +418,64 @@ fn policy_gradient_runs_experiment_d_on_the_humanoid_through_the_bench() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The tuning probe of docs/policy-gradient.md (ignored: minutes of simulation): experiment D
+/// (learning from scratch) with LWPR on seeds 0-4 at half length, for the paper's rule and a
+/// 3 x 3 grid of sigma and scale; prints each run's first absorbed push and falls.
+/// `cargo test --test all rules_policy_gradient::tuning_probe -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn tuning_probe() {
+    let mut registry = Registry::builtin();
+    let mut rules = vec!["pendulum-cart".to_string(), "policy-gradient".to_string()];
+    for sigma_mm in [10u32, 20, 40] {
+        for k in [3u32, 10, 30] {
+            if (sigma_mm, k) == (20, 10) {
+                continue; // the defaults: "policy-gradient"
+            }
+            let params = PolicyGradientParams {
+                sigma: f64::from(sigma_mm) / 1000.0,
+                scale: f64::from(k) * 1e-4,
+                ..PolicyGradientParams::default()
+            };
+            let name = format!("pg-s{sigma_mm}mm-k{k}e-4");
+            registry = registry.rule(&name, move || {
+                PolicyGradient::new(params).expect("valid parameters")
+            });
+            rules.push(name);
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let report = Bench::new(&registry)
+        .approximators(["lwpr"])
+        .rules(&rules)
+        .experiments(["robustness"])
+        .seeds(5)
+        .scale(0.5)
+        .threads(2)
+        .out(dir.path())
+        .run()
+        .unwrap();
+    println!("rule | seed | first absorbed push | falls");
+    for outcome in &report.outcomes {
+        assert!(
+            matches!(outcome.status, RunStatus::Done { .. }),
+            "{:?}",
+            outcome.status
+        );
+        let spec = &outcome.spec;
+        let summary = Summary::read(&dir.path().join(spec.id()).join("summary.json")).unwrap();
+        if let ExperimentResult::Robustness {
+            pushes_until_first_absorbed,
+            falls,
+            ..
+        } = summary.result
+        {
+            println!(
+                "{} | {} | {:?} | {falls}",
+                spec.rule, spec.seed, pushes_until_first_absorbed
+            );
+        }
+    }
+    println!("{}", report.leaderboard.to_markdown());
+}
