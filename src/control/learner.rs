@@ -634,6 +634,9 @@ impl StepInProgress {
         if self.last_recorded && n == 0 {
             return corrupt("the last query is recorded but nothing is".into());
         }
+        if self.exploration != 0.0 && self.queries == 0 {
+            return corrupt("an exploration perturbation before the step's first query".into());
+        }
         if !self.recorded.iter().flatten().all(|v| v.is_finite())
             || !self.last_offset.is_finite()
             || !self.exploration.is_finite()

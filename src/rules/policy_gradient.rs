@@ -23,7 +23,8 @@ pub struct PolicyGradientParams {
     pub s_theta: f64,
     /// Step size error scale of the reward (m; finite, > 0). Default 1/30 (1 / the paper's p_F).
     pub s_f: f64,
-    /// The reward of a step that ended in a fall is -`fall_penalty` (finite, >= 0). Default 10.
+    /// The reward of a step that ended in a fall is -`fall_penalty`, and no step costs more
+    /// (finite, > 0). Default 10.
     pub fall_penalty: f64,
     /// Rate of the baseline's exponential running mean of the reward (in (0, 1]). Default 0.1.
     pub baseline_rate: f64,
@@ -34,7 +35,7 @@ pub struct PolicyGradientParams {
 
 impl Default for PolicyGradientParams {
     /// sigma = 0.02 m, s_theta = 0.15 rad, s_F = 1/30 m, fall penalty 10, baseline rate 0.1,
-    /// scale 0.001.
+    /// scale 0.001 (docs/policy-gradient.md: how they were chosen).
     fn default() -> Self {
         PolicyGradientParams {
             sigma: 0.02,
@@ -62,18 +63,12 @@ impl PolicyGradientParams {
             ("sigma", self.sigma),
             ("s_theta", self.s_theta),
             ("s_f", self.s_f),
+            ("fall_penalty", self.fall_penalty),
             ("scale", self.scale),
         ] {
             if !(value.is_finite() && value > 0.0) {
                 return Err(invalid(param, "finite and > 0", value));
             }
-        }
-        if !(self.fall_penalty.is_finite() && self.fall_penalty >= 0.0) {
-            return Err(invalid(
-                "fall_penalty",
-                "finite and >= 0",
-                self.fall_penalty,
-            ));
         }
         if !(self.baseline_rate > 0.0 && self.baseline_rate <= 1.0) {
             return Err(invalid("baseline_rate", "in (0, 1]", self.baseline_rate));
@@ -100,8 +95,9 @@ pub struct PolicyGradientState {
 /// REINFORCE with a baseline (Williams 1992) on the Gaussian policy dF = mean(x) + eps,
 /// eps ~ N(0, sigma^2) drawn once per step, whose mean is the learner's approximator.
 ///
-/// The reward of a step is r = -(theta_E / s_theta)^2 - (F_E / s_F)^2, or -`fall_penalty` if
-/// it ended in a fall; the baseline b is the exponential running mean of r (the first reward
+/// The reward of a step is r = -min((theta_E / s_theta)^2 + (F_E / s_F)^2, fall_penalty), or
+/// -`fall_penalty` if it ended in a fall (no step is worse than a fall, and the bounded reward
+/// bounds G); the baseline b is the exponential running mean of r (the first reward
 /// initialises it). [`LearningRule::learn`] returns G = scale (r - b) eps / sigma^2, so that
 /// the learner's update (the mean at the step's inputs moves by eta G, gain-guarded) is the
 /// REINFORCE ascent on the expected reward. [`LearningRule::gradient`] alone is 0: the rule
@@ -170,15 +166,17 @@ impl PolicyGradient {
         (self.steps > 0).then_some(self.baseline)
     }
 
-    /// The reward of a step: -(theta_E / s_theta)^2 - (F_E / s_F)^2, or -`fall_penalty` if
-    /// `fell`.
+    /// The reward of a step: -min((theta_E / s_theta)^2 + (F_E / s_F)^2, fall_penalty), or
+    /// -`fall_penalty` if `fell` (NaN if the outcome is not finite).
     pub fn reward(&self, step: &StepOutcome, fell: bool) -> f64 {
         if fell {
             -self.params.fall_penalty
+        } else if !(step.theta_e.is_finite() && step.f_e.is_finite()) {
+            f64::NAN
         } else {
             let a = step.theta_e / self.params.s_theta;
             let e = step.f_e / self.params.s_f;
-            -(a * a) - e * e
+            -(a * a + e * e).min(self.params.fall_penalty)
         }
     }
 
@@ -268,7 +266,12 @@ mod tests {
 
     #[test]
     fn reward_and_gradient_by_hand() {
-        let mut pg = PolicyGradient::default();
+        let mut pg = PolicyGradient::new(PolicyGradientParams {
+            sigma: 0.02,
+            scale: 0.001,
+            ..PolicyGradientParams::default()
+        })
+        .unwrap();
         let step = StepOutcome {
             theta_e: 0.15,
             f_e: 1.0 / 30.0,
@@ -286,6 +289,12 @@ mod tests {
         assert!((pg.baseline().unwrap() + 0.2).abs() < 1e-12);
         // a fall with a negative perturbation asks for a larger offset
         assert!(pg.learn(&step, -0.01, true) > 0.0);
+        // no step costs more than a fall
+        let wild = StepOutcome {
+            f_e: 3.0,
+            ..StepOutcome::default()
+        };
+        assert_eq!(pg.reward(&wild, false), -10.0);
     }
 
     #[test]

@@ -167,8 +167,9 @@ fn same_seed_same_perturbations_different_seed_different() {
     }
     let mean = sum / n as f64;
     let std = (sq / n as f64 - mean * mean).sqrt();
-    assert!(mean.abs() < 0.001, "{mean}");
-    assert!((std - 0.02).abs() < 0.001, "{std}");
+    let sigma = PolicyGradientParams::default().sigma;
+    assert!(mean.abs() < 0.05 * sigma, "{mean}");
+    assert!((std - sigma).abs() < 0.05 * sigma, "{std}");
 
     // Through the learner: one perturbation held for a whole step, a new one the next step,
     // the same offsets for the same seed.
@@ -199,8 +200,12 @@ fn same_seed_same_perturbations_different_seed_different() {
 #[test]
 fn the_reinforce_estimate_is_unbiased_on_a_quadratic() {
     // r(a) = -((a - opt) / s_F)^2 with a = mu + eps: dE[r]/dmu = -2 (mu - opt) / s_F^2 exactly,
-    // and E[G] = scale * dE[r]/dmu for any baseline that does not see the step's eps.
-    let params = PolicyGradientParams::default();
+    // and E[G] = scale * dE[r]/dmu for any baseline that does not see the step's eps. The
+    // fall penalty, which caps the cost, is set out of reach so that r is the quadratic.
+    let params = PolicyGradientParams {
+        fall_penalty: 1e9,
+        ..PolicyGradientParams::default()
+    };
     let (mu, opt) = (0.0, 0.05);
     let exact = params.scale * -2.0 * (mu - opt) / (params.s_f * params.s_f);
     let mut pg = PolicyGradient::new(params).unwrap();
@@ -212,7 +217,7 @@ fn the_reinforce_estimate_is_unbiased_on_a_quadratic() {
         sum += pg.learn(&toy_outcome(mu + eps, opt), eps, false);
     }
     let mean = sum / n as f64;
-    // standard error ~ 0.09 / sqrt(2e5) ~ 2e-4, against an exact value of 0.09
+    // a relative standard error of ~0.3% at the defaults
     assert!(
         (mean - exact).abs() < 0.03 * exact.abs(),
         "{mean} vs {exact}"
@@ -223,7 +228,7 @@ fn the_reinforce_estimate_is_unbiased_on_a_quadratic() {
 
 #[test]
 fn the_learner_mean_converges_to_the_optimum_of_a_scalar_toy() {
-    let optimum = 0.1;
+    let optimum = 0.05;
     let mut learner =
         FootstepLearner::new(Scalar { value: 0.0 }, PolicyGradient::default(), plain()).unwrap();
     learner.reseed(4);
@@ -274,6 +279,13 @@ fn invalid_parameters_are_typed_errors() {
             "fall_penalty",
             PolicyGradientParams {
                 fall_penalty: -1.0,
+                ..base
+            },
+        ),
+        (
+            "fall_penalty",
+            PolicyGradientParams {
+                fall_penalty: 0.0,
                 ..base
             },
         ),
@@ -378,6 +390,19 @@ fn a_saved_learner_continues_bit_for_bit_mid_step() {
     let mut restored =
         PgLearner::from_checkpoint(again.checkpoint(), PolicyGradient::default()).unwrap();
     assert_eq!(continue_toy(&mut restored, 2, 30), want);
+    // a perturbation before any query, or a non-finite one, is a corrupt checkpoint
+    let mut early = PgLearner::new(Scalar { value: 0.0 }, PolicyGradient::default(), plain())
+        .unwrap()
+        .checkpoint();
+    early.step.exploration = 0.01;
+    let mut nan = again.checkpoint();
+    nan.step.exploration = f64::NAN;
+    for bad in [early, nan] {
+        assert!(matches!(
+            PgLearner::from_checkpoint(bad, PolicyGradient::default()),
+            Err(LearnerError::Approx { .. })
+        ));
+    }
     // a gradient rule cannot take the policy gradient's state
     assert!(matches!(
         FootstepLearner::<Scalar, PendulumCart>::load(&path, PendulumCart::default()),
@@ -421,15 +446,15 @@ fn policy_gradient_runs_experiment_d_on_the_humanoid_through_the_bench() {
 
 /// The tuning probe of docs/policy-gradient.md (ignored: minutes of simulation): experiment D
 /// (learning from scratch) with LWPR on seeds 0-4 at half length, for the paper's rule and a
-/// 3 x 3 grid of sigma and scale; prints each run's first absorbed push and falls.
+/// 4 x 4 grid of sigma and scale; prints each run's first absorbed push and falls.
 /// `cargo test --test all rules_policy_gradient::tuning_probe -- --ignored --nocapture`
 #[test]
 #[ignore]
 fn tuning_probe() {
     let mut registry = Registry::builtin();
     let mut rules = vec!["pendulum-cart".to_string(), "policy-gradient".to_string()];
-    for sigma_mm in [10u32, 20, 40] {
-        for k in [3u32, 10, 30] {
+    for sigma_mm in [10u32, 20, 40, 80] {
+        for k in [3u32, 10, 30, 100] {
             if (sigma_mm, k) == (20, 10) {
                 continue; // the defaults: "policy-gradient"
             }
