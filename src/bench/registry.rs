@@ -16,7 +16,9 @@ use crate::experiments::settings::Settings;
 use crate::experiments::suite;
 use crate::experiments::summary::{Summary, check_name};
 use crate::experiments::sweep::{RunError, RunSpec, Runner};
-use crate::rules::{BalanceOnly, LearningRule, Linear, PendulumCart, RateDamped, TrackingOnly};
+use crate::rules::{
+    BalanceOnly, LearningRule, Linear, PendulumCart, PolicyGradient, RateDamped, TrackingOnly,
+};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -91,9 +93,10 @@ impl Registry {
     }
 
     /// The built-ins: the approximators `lwpr`, `rbf`, `grid`, `kernel-ridge`; the rules
-    /// `pendulum-cart`, `balance-only`, `tracking-only`, `linear`, `rate-damped` (each with
-    /// its default parameters); the experiments `tracking`, `disturbance`, `stability`,
-    /// `robustness` (A-D, in the paper's order) and `omnidirectional` (beyond the paper).
+    /// `pendulum-cart`, `balance-only`, `tracking-only`, `linear`, `rate-damped`,
+    /// `policy-gradient` (each with its default parameters); the experiments `tracking`,
+    /// `disturbance`, `stability`, `robustness` (A-D, in the paper's order) and
+    /// `omnidirectional` (beyond the paper).
     pub fn builtin() -> Self {
         let mut r = Registry::new();
         for &kind in <ApproxKind as strum::VariantArray>::VARIANTS {
@@ -107,7 +110,8 @@ impl Registry {
             .rule("balance-only", || BalanceOnly)
             .rule("tracking-only", TrackingOnly::default)
             .rule("linear", Linear::default)
-            .rule("rate-damped", RateDamped::default);
+            .rule("rate-damped", RateDamped::default)
+            .rule("policy-gradient", PolicyGradient::default);
         for e in suite::paper().into_iter().chain(suite::beyond()) {
             r.add_experiment(e);
         }
@@ -260,7 +264,8 @@ impl Registry {
     }
 
     /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and CSV into `dir` and
-    /// returns its summary (the caller writes `summary.json`).
+    /// returns its summary (the caller writes `summary.json`). Every learner of the run has its
+    /// rule reseeded with the run's seed ([`FootstepLearner::reseed`]).
     pub fn run_spec(
         &self,
         spec: &RunSpec,
@@ -273,13 +278,20 @@ impl Registry {
         let build = self
             .learner_builder(&spec.approx, &spec.rule)
             .map_err(invalid)?;
+        // Every learner of the run explores with the run's seed, also in experiments that call
+        // the builder directly rather than `RunContext::make_learner`.
+        let seeded = |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
+            let mut learner = build(config)?;
+            learner.reseed(spec.seed);
+            Ok(learner)
+        };
         let ctx = RunContext {
             settings,
             protocols,
             seed: spec.seed,
             approx: &spec.approx,
             rule: &spec.rule,
-            learner: &build,
+            learner: &seeded,
         };
         let result = experiment.run(&ctx, dir)?;
         if result.name() != spec.experiment {

@@ -52,9 +52,17 @@
 //! [`LearnerConfig::literal`] is eq. (6) as written, without the four and without learning
 //! from falls.
 //!
+//! # Exploration
+//!
+//! A rule that explores ([`LearningRule::explore`], e.g. [`crate::rules::PolicyGradient`])
+//! gives a perturbation at the first query of every step; the learner adds it to every offset
+//! of that step (after the trust region, before the `max_offset` clamp) and hands it back to
+//! [`LearningRule::learn`] at the step's end. Gradient rules perturb nothing and learn exactly
+//! as before. The rule's state travels in the learner's checkpoint.
+//!
 
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
-use crate::rules::{LearningRule, StepOutcome};
+use crate::rules::{LearningRule, RuleError, StepOutcome};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use thiserror::Error;
@@ -105,6 +113,9 @@ pub enum LearnerError {
         /// Why, with the value.
         reason: String,
     },
+    /// The rule rejected a saved rule state (see [`LearningRule::set_state`]).
+    #[error("rule: {0}")]
+    Rule(#[from] RuleError),
     /// The approximator does not map 3 inputs to 1 output.
     #[error(
         "approximator must map {LEARNER_INPUTS} inputs to 1 output, it maps {inputs} to {outputs}"
@@ -533,9 +544,10 @@ impl Default for MapSpec {
     }
 }
 
-/// What [`FootstepLearner::save`] writes (JSON): everything the learner holds but the rule, so
-/// that a learner loaded mid-step continues exactly as the saved one would have. The rule is
-/// stateless and supplied by the caller on load.
+/// What [`FootstepLearner::save`] writes (JSON): everything the learner holds but the rule, and
+/// the rule's state if it keeps one ([`LearningRule::state`]), so that a learner loaded mid-step
+/// continues exactly as the saved one would have. The rule itself is supplied by the caller on
+/// load.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SavedLearner<A> {
@@ -550,6 +562,10 @@ pub struct SavedLearner<A> {
     /// The step in progress; an empty step in files from before checkpoints.
     #[serde(default)]
     pub step: StepInProgress,
+    /// The rule's state ([`LearningRule::state`]); absent for a stateless rule and in files
+    /// from before rules could keep one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rule_state: Option<serde_json::Value>,
 }
 
 /// The current step as the learner has seen it: the inputs recorded for the touch-down update,
@@ -569,6 +585,15 @@ pub struct StepInProgress {
     pub queries: usize,
     /// The offset the last query returned (m).
     pub last_offset: f64,
+    /// The rule's exploration perturbation of this step (m; [`LearningRule::explore`]);
+    /// absent when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub exploration: f64,
+}
+
+/// Whether `v` is 0 (either sign), the exploration left out of saved files.
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl Default for StepInProgress {
@@ -580,6 +605,7 @@ impl Default for StepInProgress {
             stride: 1,
             queries: 0,
             last_offset: 0.0,
+            exploration: 0.0,
         }
     }
 }
@@ -608,8 +634,16 @@ impl StepInProgress {
         if self.last_recorded && n == 0 {
             return corrupt("the last query is recorded but nothing is".into());
         }
-        if !self.recorded.iter().flatten().all(|v| v.is_finite()) || !self.last_offset.is_finite() {
-            return corrupt("a recorded input or the last offset is not finite".into());
+        if self.exploration != 0.0 && self.queries == 0 {
+            return corrupt("an exploration perturbation before the step's first query".into());
+        }
+        if !self.recorded.iter().flatten().all(|v| v.is_finite())
+            || !self.last_offset.is_finite()
+            || !self.exploration.is_finite()
+        {
+            return corrupt(
+                "a recorded input, the last offset or the exploration is not finite".into(),
+            );
         }
         for [lo, hi] in &self.reach {
             let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
@@ -678,6 +712,8 @@ pub struct FootstepLearner<A: FunctionApproximator, R: LearningRule> {
     trained: [MeanStd; LEARNER_INPUTS],
     /// The offset the last query returned.
     last_offset: f64,
+    /// The rule's exploration perturbation of the current step (drawn at its first query).
+    exploration: f64,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
@@ -717,6 +753,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
             targets: Vec::with_capacity(config.max_samples_per_step),
             trained: [MeanStd::new(); LEARNER_INPUTS],
             last_offset: 0.0,
+            exploration: 0.0,
         })
     }
 
@@ -733,6 +770,17 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     /// The rule.
     pub fn rule(&self) -> &R {
         &self.rule
+    }
+
+    /// Reseeds the rule's randomness ([`LearningRule::reseed`]); nothing else changes.
+    pub fn reseed(&mut self, seed: u64) {
+        self.rule.reseed(seed);
+    }
+
+    /// The rule's exploration perturbation of the current step (m; 0 before its first query
+    /// and for a rule that does not explore).
+    pub fn exploration(&self) -> f64 {
+        self.exploration
     }
 
     /// Takes the learner apart into its approximator and rule.
@@ -768,9 +816,11 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         Ok(y[0])
     }
 
-    /// The control-tick query: returns dF at `input` (clamped to `max_offset` if set) and
+    /// The control-tick query: returns dF at `input` plus the step's exploration perturbation
+    /// (drawn from the rule at the step's first query; clamped to `max_offset` if set) and
     /// records the input for the touch-down update (subject to the per-step bound). Does not
-    /// allocate. On error nothing is recorded.
+    /// allocate. On error nothing is recorded (a non-finite perturbation is an error; the rule
+    /// has then drawn it).
     pub fn query(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
         let x = input.to_array();
         for (what, v) in ["theta_e", "theta_e_dot", "f_r"].into_iter().zip(x) {
@@ -782,6 +832,19 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         let mut df = self.predict_array(&x)? * trust;
         if trust < 1.0 && self.config.trust_fallback == TrustFallback::Nominal {
             df += (1.0 - trust) * self.predict_array(&self.nominal_input(x[2]))?;
+        }
+        if self.queries == 0 {
+            let e = self.rule.explore();
+            if !e.is_finite() {
+                return Err(LearnerError::NonFinite {
+                    what: "exploration",
+                    value: e,
+                });
+            }
+            self.exploration = e;
+        }
+        if self.exploration != 0.0 {
+            df += self.exploration;
         }
         self.record(x);
         let df = match self.config.max_offset {
@@ -902,6 +965,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         self.last_recorded = false;
         self.stride = 1;
         self.queries = 0;
+        self.exploration = 0.0;
     }
 
     /// The learning metric of experiment D: the Euclidean norm of the approximator's outputs
@@ -976,7 +1040,19 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
     /// update, the updates already applied stay (each one is all-or-nothing by the
     /// [`FunctionApproximator`] contract, so the model is valid), the error reports how many
     /// were applied, and the step is discarded.
+    ///
+    /// The rule gives G through [`LearningRule::learn`] with the step's exploration
+    /// perturbation (for a gradient rule, [`LearningRule::gradient`]).
     pub fn touch_down(&mut self, step: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
+        self.end_step(step, false)
+    }
+
+    /// [`Self::touch_down`] of a step that ended in a fall (`fell`) or not.
+    fn end_step(
+        &mut self,
+        step: &StepOutcome,
+        fell: bool,
+    ) -> Result<TouchDownReport, LearnerError> {
         for (what, v) in [
             ("theta_e", step.theta_e),
             ("theta_e_dot", step.theta_e_dot),
@@ -995,7 +1071,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             self.discard_step();
             return Ok(TouchDownReport::default());
         }
-        let g = self.rule.gradient(step);
+        let g = self.rule.learn(step, self.exploration, fell);
         if !g.is_finite() {
             return Err(LearnerError::NonFinite {
                 what: "gradient G",
@@ -1145,7 +1221,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             theta_e_dot: step.theta_e_dot.clamp(-10.0 * lim, 10.0 * lim),
             ..*step
         };
-        match self.touch_down(&clamped) {
+        match self.end_step(&clamped, true) {
             Ok(r) => Ok(Some(r)),
             Err(e) => {
                 self.discard_step();
@@ -1156,7 +1232,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
 }
 
 impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner<A, R> {
-    /// Everything the learner holds but its rule, as [`Self::save`] writes it.
+    /// Everything the learner holds but its rule, with the rule's state, as [`Self::save`]
+    /// writes it.
     pub fn checkpoint(&self) -> SavedLearner<A> {
         SavedLearner {
             config: self.config,
@@ -1173,19 +1250,25 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
                 stride: self.stride,
                 queries: self.queries,
                 last_offset: self.last_offset,
+                exploration: self.exploration,
             },
+            rule_state: self.rule.state(),
         }
     }
 
     /// The learner of a checkpoint (checked) with `rule`: it continues bit for bit as the
-    /// learner that wrote it, mid-step included.
+    /// learner that wrote it, mid-step included. A saved rule state is restored into `rule`
+    /// (an error if `rule` cannot take it); without one, `rule` is used as given.
     pub fn from_checkpoint(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
         saved.check_invariants().map_err(LearnerError::approx)?;
         Self::from_checked(saved, rule)
     }
 
     /// [`Self::from_checkpoint`] of a checkpoint whose invariants hold.
-    fn from_checked(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
+    fn from_checked(saved: SavedLearner<A>, mut rule: R) -> Result<Self, LearnerError> {
+        if let Some(state) = &saved.rule_state {
+            rule.set_state(state)?;
+        }
         let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
         let step = saved.step;
         learner.trained = saved.trained;
@@ -1199,11 +1282,12 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
         learner.stride = step.stride;
         learner.queries = step.queries;
         learner.last_offset = step.last_offset;
+        learner.exploration = step.exploration;
         Ok(learner)
     }
 
-    /// Saves the learner to `path` as JSON: config, approximator, trust-region statistics and
-    /// the step in progress (atomically: temporary file and rename, so a failed save leaves an
+    /// Saves the learner to `path` as JSON: config, approximator, trust-region statistics, the
+    /// step in progress and the rule's state, if any (atomically: temporary file and rename, so a failed save leaves an
     /// existing file intact).
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), LearnerError> {
         self.checkpoint().save(path).map_err(LearnerError::approx)

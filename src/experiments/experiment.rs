@@ -41,9 +41,12 @@ pub struct RunContext<'a> {
 }
 
 impl RunContext<'_> {
-    /// A fresh learner with the settings' learner config.
+    /// A fresh learner with the settings' learner config, its rule reseeded with the run's
+    /// seed (so that a rule that explores explores differently per seed, reproducibly).
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
-        (self.learner)(self.settings.learner)
+        let mut learner = (self.learner)(self.settings.learner)?;
+        learner.reseed(self.seed);
+        Ok(learner)
     }
 }
 

@@ -1,6 +1,9 @@
 //! Choosing a rule by name and building it from a validated, serializable config.
 
-use super::{BalanceOnly, LearningRule, Linear, PendulumCart, RateDamped, TrackingOnly};
+use super::{
+    BalanceOnly, LearningRule, Linear, PendulumCart, PolicyGradient, PolicyGradientParams,
+    RateDamped, TrackingOnly,
+};
 use crate::Named;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -35,6 +38,8 @@ pub enum RuleKind {
     Linear,
     /// [`RateDamped`]: eq. (5) plus k theta_E_dot.
     RateDamped,
+    /// [`PolicyGradient`]: model-free REINFORCE with a baseline.
+    PolicyGradient,
 }
 
 impl std::str::FromStr for RuleKind {
@@ -58,6 +63,9 @@ pub enum RuleError {
         /// Why, with the value.
         reason: String,
     },
+    /// A rule's saved state (see [`LearningRule::state`]) does not fit the rule.
+    #[error("invalid rule state: {0}")]
+    InvalidState(String),
 }
 
 /// Any rule with its parameters: the serde form (`{"rule": "pendulum-cart", "p_theta": 0.15,
@@ -75,6 +83,8 @@ pub enum RuleConfig {
     Linear(Linear),
     /// See [`RateDamped`].
     RateDamped(RateDamped),
+    /// See [`PolicyGradient`].
+    PolicyGradient(PolicyGradientParams),
 }
 
 impl Default for RuleConfig {
@@ -93,6 +103,7 @@ impl From<RuleKind> for RuleConfig {
             RuleKind::TrackingOnly => RuleConfig::TrackingOnly(TrackingOnly::default()),
             RuleKind::Linear => RuleConfig::Linear(Linear::default()),
             RuleKind::RateDamped => RuleConfig::RateDamped(RateDamped::default()),
+            RuleKind::PolicyGradient => RuleConfig::PolicyGradient(PolicyGradientParams::default()),
         }
     }
 }
@@ -118,11 +129,13 @@ impl RuleConfig {
             RuleConfig::TrackingOnly(_) => RuleKind::TrackingOnly,
             RuleConfig::Linear(_) => RuleKind::Linear,
             RuleConfig::RateDamped(_) => RuleKind::RateDamped,
+            RuleConfig::PolicyGradient(_) => RuleKind::PolicyGradient,
         }
     }
 
     /// Checks every parameter: p_theta, p_F and k must be finite and >= 0 (a negative value
-    /// would flip the sign of a term and make the rule push the wrong way).
+    /// would flip the sign of a term and make the rule push the wrong way); see
+    /// [`PolicyGradientParams::validate`] for the policy gradient's.
     pub fn validate(&self) -> Result<(), RuleError> {
         match *self {
             RuleConfig::PendulumCart(PendulumCart { p_theta, p_f })
@@ -137,6 +150,7 @@ impl RuleConfig {
                 non_negative("p_f", p_f)?;
                 non_negative("k", k)
             }
+            RuleConfig::PolicyGradient(p) => p.validate(),
         }
     }
 
@@ -149,6 +163,7 @@ impl RuleConfig {
             RuleConfig::TrackingOnly(r) => Box::new(r),
             RuleConfig::Linear(r) => Box::new(r),
             RuleConfig::RateDamped(r) => Box::new(r),
+            RuleConfig::PolicyGradient(p) => Box::new(PolicyGradient::new(p)?),
         })
     }
 }
@@ -231,7 +246,8 @@ mod tests {
         for &kind in RuleKind::VARIANTS {
             let rule = RuleConfig::from(kind).build().unwrap();
             let g = rule.gradient(&step);
-            let expected = if kind == RuleKind::TrackingOnly {
+            // policy-gradient learns only through `learn`, with its perturbation
+            let expected = if matches!(kind, RuleKind::TrackingOnly | RuleKind::PolicyGradient) {
                 0.0
             } else {
                 0.1

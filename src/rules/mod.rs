@@ -12,6 +12,13 @@
 //! | [`TrackingOnly`] | -p_theta tanh(p_F F_E) | drops balance |
 //! | [`Linear`] | theta_E - p_theta p_F F_E | drops the saturation |
 //! | [`RateDamped`] | theta_E + k theta_E_dot - p_theta tanh(p_F F_E) | adds the trunk rate |
+//! | [`PolicyGradient`] | (r - b) eps / sigma^2 * scale | model-free baseline (REINFORCE) |
+//!
+//! A gradient rule implements only [`LearningRule::gradient`]. A rule that explores (a
+//! reinforcement-learning rule such as [`PolicyGradient`]) also implements the provided methods
+//! [`LearningRule::reseed`], [`LearningRule::explore`], [`LearningRule::learn`] and, so that a
+//! saved learner continues bit for bit, [`LearningRule::state`] and
+//! [`LearningRule::set_state`]; their defaults leave a gradient rule exactly as it was.
 //!
 //! [`RuleConfig`] is the serde form of any of them (selected by a [`RuleKind`] name on the
 //! command line) and builds a validated `Box<dyn LearningRule>`.
@@ -20,6 +27,7 @@ mod balance_only;
 mod config;
 mod linear;
 mod pendulum_cart;
+mod policy_gradient;
 mod rate_damped;
 mod tracking_only;
 
@@ -27,6 +35,7 @@ pub use balance_only::BalanceOnly;
 pub use config::{RuleConfig, RuleError, RuleKind};
 pub use linear::Linear;
 pub use pendulum_cart::PendulumCart;
+pub use policy_gradient::{PolicyGradient, PolicyGradientParams, PolicyGradientState};
 pub use rate_damped::RateDamped;
 pub use tracking_only::TrackingOnly;
 
@@ -46,14 +55,68 @@ pub struct StepOutcome {
 }
 
 /// A rule that turns a step's outcome into the learning gradient G.
+///
+/// Only [`Self::gradient`] is required. The provided methods let a rule explore: the learner
+/// calls [`Self::explore`] once at the first query of every step and adds the perturbation it
+/// returns to every offset of that step, then calls [`Self::learn`] at the step's end with the
+/// outcome, that perturbation and whether the step ended in a fall. Their defaults (no
+/// perturbation, G = [`Self::gradient`], no state) keep a gradient rule unchanged bit for bit.
 pub trait LearningRule: Send + Sync {
     /// The gradient G for the step that just ended.
     fn gradient(&self, step: &StepOutcome) -> f64;
+
+    /// Seeds the rule's randomness (the learner of a run passes the run's seed). Default: none.
+    fn reseed(&mut self, seed: u64) {
+        let _ = seed;
+    }
+
+    /// The perturbation of the offset (m) for the step that starts now, held for the whole
+    /// step. Default: 0 (no exploration).
+    fn explore(&mut self) -> f64 {
+        0.0
+    }
+
+    /// The G to train with for the step that just ended: `exploration` is the perturbation
+    /// [`Self::explore`] returned for it (0 if the step made no query) and `fell` whether it
+    /// ended in a fall. Default: [`Self::gradient`].
+    fn learn(&mut self, step: &StepOutcome, exploration: f64, fell: bool) -> f64 {
+        let _ = (exploration, fell);
+        self.gradient(step)
+    }
+
+    /// The rule's state (e.g. its baseline and random generator) for a learner's checkpoint;
+    /// `None` for a stateless rule (the default).
+    fn state(&self) -> Option<serde_json::Value> {
+        None
+    }
+
+    /// Restores a state written by [`Self::state`]. Default: an error, the rule keeps none.
+    fn set_state(&mut self, state: &serde_json::Value) -> Result<(), RuleError> {
+        let _ = state;
+        Err(RuleError::InvalidState(
+            "this rule keeps no state".to_string(),
+        ))
+    }
 }
 
 impl<R: LearningRule + ?Sized> LearningRule for Box<R> {
     fn gradient(&self, step: &StepOutcome) -> f64 {
         (**self).gradient(step)
+    }
+    fn reseed(&mut self, seed: u64) {
+        (**self).reseed(seed)
+    }
+    fn explore(&mut self) -> f64 {
+        (**self).explore()
+    }
+    fn learn(&mut self, step: &StepOutcome, exploration: f64, fell: bool) -> f64 {
+        (**self).learn(step, exploration, fell)
+    }
+    fn state(&self) -> Option<serde_json::Value> {
+        (**self).state()
+    }
+    fn set_state(&mut self, state: &serde_json::Value) -> Result<(), RuleError> {
+        (**self).set_state(state)
     }
 }
 
