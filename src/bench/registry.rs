@@ -112,7 +112,7 @@ impl Registry {
             .rule("linear", Linear::default)
             .rule("rate-damped", RateDamped::default)
             .rule("policy-gradient", PolicyGradient::default);
-        for e in suite::paper().into_iter().chain(suite::beyond()) {
+        for e in suite::builtin() {
             r.add_experiment(e);
         }
         r

@@ -52,7 +52,7 @@ impl ConfigFile {
         Ok(config)
     }
 
-    /// Parses and validates TOML text (against the paper's experiments).
+    /// Parses and validates TOML text (against the built-in experiments).
     pub fn parse_toml(text: &str) -> Result<Self, ConfigError> {
         let config = Self::from_toml(text)?;
         config.validate()?;
@@ -60,10 +60,10 @@ impl ConfigFile {
     }
 
     /// Reads, parses (JSON if the name ends in `.json`, TOML otherwise) and validates a file
-    /// against the paper's experiments. The message names the file and the offending key or
+    /// against the built-in experiments. The message names the file and the offending key or
     /// field.
     pub fn load(path: &Path) -> Result<Self, String> {
-        Self::load_for(path, &suite::paper())
+        Self::load_for(path, &suite::builtin())
     }
 
     /// [`ConfigFile::load`] against `experiments` (a registry's): a protocol table is valid
@@ -83,9 +83,9 @@ impl ConfigFile {
         Ok(config)
     }
 
-    /// Checks every value of the settings and of the paper's experiments' protocols.
+    /// Checks every value of the settings and of the built-in experiments' protocols.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        self.validate_for(&suite::paper())
+        self.validate_for(&suite::builtin())
     }
 
     /// Checks every value of the settings and every protocol table against `experiments`.
@@ -131,11 +131,11 @@ impl ConfigFile {
         toml::to_string_pretty(self).map_err(|e| ConfigError::new("", e.to_string()))
     }
 
-    /// The complete default configuration of the paper's experiments as TOML: every section
+    /// The complete default configuration of the built-in experiments as TOML: every section
     /// and key with its default value, optional keys that are unset by default as comments.
     /// Parsing it gives the defaults.
     pub fn default_toml() -> String {
-        Self::default_toml_for(&suite::paper()).expect("the paper's defaults are valid")
+        Self::default_toml_for(&suite::builtin()).expect("the built-in defaults are valid")
     }
 
     /// [`ConfigFile::default_toml`] with the protocol tables of `experiments`; an error if an
@@ -177,14 +177,22 @@ mod tests {
     #[test]
     fn default_toml_parses_back_to_the_defaults() {
         let parsed = ConfigFile::parse_toml(&ConfigFile::default_toml()).unwrap();
-        let defaults = ConfigFile::default().resolved_for(&suite::paper()).unwrap();
+        let defaults = ConfigFile::default()
+            .resolved_for(&suite::builtin())
+            .unwrap();
         assert_eq!(parsed, defaults);
-        // Resolving is idempotent, and the tables are those of the paper's experiments.
-        assert_eq!(parsed.resolved_for(&suite::paper()).unwrap(), defaults);
+        // Resolving is idempotent, and the tables are those of the built-in experiments.
+        assert_eq!(parsed.resolved_for(&suite::builtin()).unwrap(), defaults);
         let names: Vec<&str> = defaults.protocols.names().collect();
         assert_eq!(
             names,
-            ["disturbance", "robustness", "stability", "tracking"]
+            [
+                "disturbance",
+                "omnidirectional",
+                "robustness",
+                "stability",
+                "tracking"
+            ]
         );
     }
 

@@ -23,3 +23,9 @@ pub fn paper() -> Vec<Arc<dyn Experiment>> {
 pub fn beyond() -> Vec<Arc<dyn Experiment>> {
     vec![Arc::new(Omnidirectional)]
 }
+
+/// Every built-in experiment: [`paper`] then [`beyond`] (what `Registry::builtin` registers and
+/// what a config file without a registry is checked against).
+pub fn builtin() -> Vec<Arc<dyn Experiment>> {
+    paper().into_iter().chain(beyond()).collect()
+}

@@ -253,6 +253,7 @@ fn printed_defaults_round_trip_through_check_and_parse_to_the_defaults() {
         "[protocols.disturbance]",
         "[protocols.stability]",
         "[protocols.robustness.map]",
+        "[protocols.omnidirectional]",
     ] {
         assert!(text.lines().any(|l| l == section), "{section} missing");
     }
@@ -275,7 +276,7 @@ fn printed_defaults_round_trip_through_check_and_parse_to_the_defaults() {
         p.get::<RobustnessProtocol>("robustness"),
         Ok(RobustnessProtocol::default())
     );
-    let defaults = ConfigFile::default().resolved_for(&steplearn::experiments::suite::paper());
+    let defaults = ConfigFile::default().resolved_for(&steplearn::experiments::suite::builtin());
     assert_eq!(Ok(parsed), defaults);
     let (ok, out, err) = check(&text);
     assert!(ok, "{err}");
