@@ -278,8 +278,8 @@ impl Registry {
         let build = self
             .learner_builder(&spec.approx, &spec.rule)
             .map_err(invalid)?;
-        // Every learner of the run explores with the run's seed, also in experiments that call
-        // the builder directly rather than `RunContext::make_learner`.
+        // Every learner of the run explores with the run's seed, whichever way the experiment
+        // builds it (`RunContext::make_learner` or the builder itself).
         let seeded = |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
             let mut learner = build(config)?;
             learner.reseed(spec.seed);

@@ -407,13 +407,8 @@ impl CaptureStep {
         reference: &GaitReference,
         offsets: [f64; 2],
     ) -> Result<StepDecision, CaptureStepError> {
+        check_inputs(com, reference, offsets)?;
         let [learned_offset, lateral_offset] = offsets;
-        check_inputs(com, reference, learned_offset)?;
-        if !lateral_offset.is_finite() {
-            return Err(CaptureStepError::InvalidInput(format!(
-                "non-finite lateral offset {lateral_offset}"
-            )));
-        }
         if let Some(m) = &self.memory
             && com.time < m.time
         {
@@ -546,18 +541,18 @@ impl CaptureStep {
 fn check_inputs(
     com: &ComState,
     reference: &GaitReference,
-    learned_offset: f64,
+    learned_offsets: [f64; 2],
 ) -> Result<(), CaptureStepError> {
     let ok = com.time.is_finite()
         && com.axes.iter().all(LipmState::is_finite)
         && reference.step_x.is_finite()
         && reference.lateral.is_finite()
-        && learned_offset.is_finite();
+        && learned_offsets.iter().all(|v| v.is_finite());
     if ok {
         Ok(())
     } else {
         Err(CaptureStepError::InvalidInput(format!(
-            "non-finite value in {com:?}, {reference:?} or learned offset {learned_offset}"
+            "non-finite value in {com:?}, {reference:?} or learned offsets {learned_offsets:?}"
         )))
     }
 }

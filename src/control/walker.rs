@@ -402,12 +402,9 @@ impl Walker {
                 let support = self.generator.support();
                 // The lateral learner's width offset, towards the swing leg's side.
                 let swing_sign = support.other().sign();
+                let [lean, lean_rate] = lean_towards(&estimate, support.other());
                 if let Some(p) = policy.as_deref_mut()
-                    && let Some(dw) = p.lateral_offset(LearnerInput::new(
-                        -swing_sign * estimate.roll,
-                        -swing_sign * estimate.roll_rate,
-                        0.0,
-                    ))?
+                    && let Some(dw) = p.lateral_offset(LearnerInput::new(lean, lean_rate, 0.0))?
                 {
                     lateral_offset = swing_sign * dw * engagement;
                 }
@@ -491,9 +488,10 @@ impl Walker {
     /// `side`), mirrored to that side: the trunk's lean and its rate towards `side` as theta_E
     /// and its rate, the width error against [`Self::reference_width`] as F_E, and F_R 0.
     fn lateral_outcome(&self, estimate: &Estimate, side: Side, width: f64) -> StepOutcome {
+        let [lean, lean_rate] = lean_towards(estimate, side);
         StepOutcome {
-            theta_e: -side.sign() * estimate.roll,
-            theta_e_dot: -side.sign() * estimate.roll_rate,
+            theta_e: lean,
+            theta_e_dot: lean_rate,
             f_e: width - self.reference_width(),
             f_r: 0.0,
         }
@@ -523,6 +521,15 @@ impl Walker {
             f_r,
         }
     }
+}
+
+/// The trunk's lean towards `side` and its rate (rad, rad/s): the roll mirrored to that side
+/// (positive roll tilts the trunk's top to the right).
+fn lean_towards(estimate: &Estimate, side: Side) -> [f64; 2] {
+    [
+        -side.sign() * estimate.roll,
+        -side.sign() * estimate.roll_rate,
+    ]
 }
 
 /// The CoM state relative to the sole of `support` (the motion generator's support leg, which

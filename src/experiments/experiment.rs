@@ -36,17 +36,16 @@ pub struct RunContext<'a> {
     pub approx: &'a str,
     /// The rule's registered name.
     pub rule: &'a str,
-    /// Builds a fresh, untrained learner of the run's approximator and rule with `config`.
+    /// Builds a fresh, untrained learner of the run's approximator and rule with `config`, its
+    /// rule reseeded with the run's seed (so that a rule that explores explores differently per
+    /// seed, reproducibly).
     pub learner: &'a LearnerBuilder<'a>,
 }
 
 impl RunContext<'_> {
-    /// A fresh learner with the settings' learner config, its rule reseeded with the run's
-    /// seed (so that a rule that explores explores differently per seed, reproducibly).
+    /// A fresh learner with the settings' learner config.
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
-        let mut learner = (self.learner)(self.settings.learner)?;
-        learner.reseed(self.seed);
-        Ok(learner)
+        (self.learner)(self.settings.learner)
     }
 }
 

@@ -9,6 +9,8 @@ use steplearn::control::walker::{FootstepPolicy, Walker, WalkerConfig, WalkerMod
 use steplearn::rules::{PendulumCart, StepOutcome};
 use steplearn::sim::{Humanoid, SimConfig};
 
+use crate::walker_humanoid::FixedOffset;
+
 fn learner() -> FootstepLearner<AnyApproximator, PendulumCart> {
     let bounds = InputGrid::default().input_box().unwrap();
     FootstepLearner::new(
@@ -163,50 +165,6 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
     );
 }
 
-/// A policy that widens every step by a fixed amount and learns nothing.
-struct FixedWidth(f64);
-
-impl FootstepPolicy for FixedWidth {
-    fn offset(
-        &mut self,
-        _: steplearn::control::learner::LearnerInput,
-    ) -> Result<f64, steplearn::control::learner::LearnerError> {
-        Ok(0.0)
-    }
-    fn set_reach(
-        &mut self,
-        _: f64,
-        _: f64,
-    ) -> Result<(), steplearn::control::learner::LearnerError> {
-        Ok(())
-    }
-    fn touch_down(
-        &mut self,
-        _: &StepOutcome,
-    ) -> Result<
-        steplearn::control::learner::TouchDownReport,
-        steplearn::control::learner::LearnerError,
-    > {
-        Ok(Default::default())
-    }
-    fn fall(
-        &mut self,
-        _: &StepOutcome,
-    ) -> Result<
-        Option<steplearn::control::learner::TouchDownReport>,
-        steplearn::control::learner::LearnerError,
-    > {
-        Ok(None)
-    }
-    fn discard_step(&mut self) {}
-    fn lateral_offset(
-        &mut self,
-        _: steplearn::control::learner::LearnerInput,
-    ) -> Result<Option<f64>, steplearn::control::learner::LearnerError> {
-        Ok(Some(self.0))
-    }
-}
-
 /// The loop gain of the frontal-plane rule near the reference: a sustained width offset dW
 /// changes the width error by about dW and the mirrored lean by a small amount, so
 /// dG/dW = -(p_theta p_F + d lean / dW) ~ -p_theta p_F = -4.5 /m, as in the sagittal plane;
@@ -214,7 +172,15 @@ impl FootstepPolicy for FixedWidth {
 #[test]
 fn a_sustained_width_offset_moves_the_width_and_barely_the_lean() {
     let mean = |dw: f64| {
-        let run = step_in_place(12.0, [0.0, 0.0, 0.0], Some(&mut FixedWidth(dw)));
+        let run = step_in_place(
+            12.0,
+            [0.0, 0.0, 0.0],
+            Some(&mut FixedOffset {
+                offset: 0.0,
+                lateral: Some(dw),
+                reach: vec![],
+            }),
+        );
         assert_eq!(run.falls, 0, "dW {dw}");
         let late: Vec<StepOutcome> = run
             .steps

@@ -250,10 +250,12 @@ fn pushes_delayed_by_a_fall_wait_for_the_gait_and_trials_end_after_the_last_push
     );
 }
 
-/// A policy with one fixed offset that records the reach the walker reports.
-struct FixedOffset {
-    offset: f64,
-    reach: Vec<[f64; 2]>,
+/// A policy with one fixed sagittal offset and, if given, one fixed lateral width offset; it
+/// records the sagittal reach the walker reports and learns nothing.
+pub(crate) struct FixedOffset {
+    pub(crate) offset: f64,
+    pub(crate) lateral: Option<f64>,
+    pub(crate) reach: Vec<[f64; 2]>,
 }
 
 impl steplearn::control::walker::FootstepPolicy for FixedOffset {
@@ -296,6 +298,12 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
         Ok(None)
     }
     fn discard_step(&mut self) {}
+    fn lateral_offset(
+        &mut self,
+        _: steplearn::control::learner::LearnerInput,
+    ) -> Result<Option<f64>, steplearn::control::learner::LearnerError> {
+        Ok(self.lateral)
+    }
 }
 
 /// The learned offset enters the footstep (the paper) or the controller's reference: with
@@ -314,6 +322,7 @@ fn the_learned_offset_enters_the_footstep_or_the_reference() {
         let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
         let mut policy = FixedOffset {
             offset: d_f,
+            lateral: None,
             reach: vec![],
         };
         let mut checked = 0;
@@ -361,6 +370,7 @@ fn the_learned_offset_enters_the_footstep_or_the_reference() {
     let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
     let mut policy = FixedOffset {
         offset: d_f,
+        lateral: None,
         reach: vec![],
     };
     let tick = walker
