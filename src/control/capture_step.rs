@@ -360,6 +360,14 @@ impl CaptureStep {
         }
     }
 
+    /// The nominal width (m) of the step taken from `support` under `reference`: the feet
+    /// `2 xi` apart, `2 delta` in place and up to `2 omega` for steps towards a full lateral
+    /// command (the steps away from it keep `2 delta`, so a full command walks `omega - delta`
+    /// per step on average).
+    pub fn reference_width(&self, support: Side, reference: &GaitReference) -> f64 {
+        2.0 * self.exchange_offset(support, reference)
+    }
+
     /// Nominal half step time `tau = acosh(xi / alpha) / C` (s).
     pub fn half_step_time(&self, support: Side, reference: &GaitReference) -> f64 {
         (self.exchange_offset(support, reference) / self.alpha).acosh() / self.lipm.c()
@@ -560,6 +568,30 @@ fn check_inputs(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_reference_width_widens_only_the_steps_towards_a_lateral_command() {
+        let cs = CaptureStep::new(CaptureStepConfig::default()).unwrap();
+        let (delta, omega) = (cs.config.delta, cs.config.omega);
+        let place = GaitReference::default();
+        for support in Side::BOTH {
+            assert_eq!(cs.reference_width(support, &place), 2.0 * delta);
+        }
+        let left = GaitReference {
+            step_x: 0.0,
+            lateral: 0.5,
+        };
+        // The left foot swings from right support: towards the command.
+        let wide = 2.0 * (delta + 0.5 * (omega - delta));
+        assert!((cs.reference_width(Side::Right, &left) - wide).abs() < 1e-12);
+        assert_eq!(cs.reference_width(Side::Left, &left), 2.0 * delta);
+        let right = GaitReference {
+            step_x: 0.0,
+            lateral: -1.0,
+        };
+        assert!((cs.reference_width(Side::Left, &right) - 2.0 * omega).abs() < 1e-12);
+        assert_eq!(cs.reference_width(Side::Right, &right), 2.0 * delta);
+    }
 
     fn nominal(cs: &CaptureStep, support: Side, r: &GaitReference) -> ComState {
         // Start of step: mirror of the target (CoM behind the foot, moving towards the apex).

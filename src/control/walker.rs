@@ -257,6 +257,9 @@ pub struct Tick {
     /// The reference step the walker tracked this tick (m): the requested one, ramped in after
     /// a start ([`WalkerConfig::start_ramp_s`]).
     pub f_r: f64,
+    /// The lateral reference tracked this tick (m per step, positive to the left; ramped in
+    /// like `f_r`; 0 unless given to [`Walker::tick_2d`]).
+    pub f_r_y: f64,
     /// The learned offset used this tick (0 without a policy).
     pub learned_offset: f64,
     /// The learned lateral offset added to the step's y this tick (m, heading frame, positive
@@ -282,6 +285,8 @@ pub struct Walker {
     controller: CaptureStep,
     generator: MotionGenerator,
     last_time: Option<f64>,
+    /// The reference of the last tick (ramped), for the lateral reference width.
+    gait: GaitReference,
 }
 
 impl Walker {
@@ -297,6 +302,7 @@ impl Walker {
             controller: CaptureStep::new(capture_step)?,
             generator: MotionGenerator::new(config.motion, &geometry),
             last_time: None,
+            gait: GaitReference::default(),
         })
     }
 
@@ -321,6 +327,7 @@ impl Walker {
         self.controller.reset();
         self.generator = MotionGenerator::new(self.config.motion, &self.geometry);
         self.last_time = None;
+        self.gait = GaitReference::default();
     }
 
     /// One control tick: reads `sensors`, tracks the reference step size `f_r` (m), asks
@@ -332,13 +339,33 @@ impl Walker {
         &mut self,
         sensors: &Sensors,
         f_r: f64,
+        policy: Option<&mut (dyn FootstepPolicy + '_)>,
+    ) -> Result<Tick, WalkerError> {
+        self.tick_2d(sensors, [f_r, 0.0], policy)
+    }
+
+    /// [`Self::tick`] with a lateral reference as well: `reference = [F_R, F_R,y]`, the
+    /// sagittal step size and the lateral displacement per step (m, positive to the left;
+    /// the mean over a left and a right step). The controller walks sideways by widening every
+    /// step towards `F_R,y` ([`CaptureStep::reference_width`]; at most
+    /// [`Self::max_lateral_step`] per step); the open-loop walker ignores `F_R,y`.
+    pub fn tick_2d(
+        &mut self,
+        sensors: &Sensors,
+        reference: [f64; 2],
         mut policy: Option<&mut (dyn FootstepPolicy + '_)>,
     ) -> Result<Tick, WalkerError> {
-        let f_r = if self.config.start_ramp_s > 0.0 {
-            f_r * smooth(self.generator.time_since_start() / self.config.start_ramp_s)
+        let ramp = if self.config.start_ramp_s > 0.0 {
+            smooth(self.generator.time_since_start() / self.config.start_ramp_s)
         } else {
-            f_r
+            1.0
         };
+        let [f_r, f_r_y] = reference.map(|r| r * ramp);
+        let gait = GaitReference {
+            step_x: f_r,
+            lateral: self.lateral_command(f_r_y),
+        };
+        self.gait = gait;
         // The desired trunk pitch theta_R: the lean the generator gives the trunk for the
         // reference gait (its halt lean plus the lean with the nominal step, which follows F_R).
         let m = &self.config.motion;
@@ -403,8 +430,10 @@ impl Walker {
                 // The lateral learner's width offset, towards the swing leg's side.
                 let swing_sign = support.other().sign();
                 let [lean, lean_rate] = lean_towards(&estimate, support.other());
+                let width_r = self.width_reference(support.other()) - self.reference_width();
                 if let Some(p) = policy.as_deref_mut()
-                    && let Some(dw) = p.lateral_offset(LearnerInput::new(lean, lean_rate, 0.0))?
+                    && let Some(dw) =
+                        p.lateral_offset(LearnerInput::new(lean, lean_rate, width_r))?
                 {
                     lateral_offset = swing_sign * dw * engagement;
                 }
@@ -419,7 +448,7 @@ impl Walker {
                 };
                 let reference = GaitReference {
                     step_x: planned_f_r,
-                    lateral: 0.0,
+                    ..gait
                 };
                 let d = self.controller.update_with_offsets(
                     &com,
@@ -469,6 +498,7 @@ impl Walker {
             decision,
             command,
             f_r,
+            f_r_y,
             learned_offset,
             lateral_offset,
             step,
@@ -478,22 +508,47 @@ impl Walker {
         })
     }
 
-    /// The reference step width (m): the Capture Step controller's stance in place, the feet
+    /// The reference step width in place (m): the Capture Step controller's stance, the feet
     /// `2 delta` apart.
     pub fn reference_width(&self) -> f64 {
         2.0 * self.config.capture_step.delta
     }
 
+    /// The largest lateral reference `F_R,y` the controller realises (m per step): a full
+    /// lateral command, `omega - delta`.
+    pub fn max_lateral_step(&self) -> f64 {
+        self.config.capture_step.omega - self.config.capture_step.delta
+    }
+
+    /// The lateral command in [-1, 1] for a lateral reference `f_r_y` (m per step).
+    fn lateral_command(&self, f_r_y: f64) -> f64 {
+        let max = self.max_lateral_step();
+        if max > 0.0 {
+            (f_r_y / max).clamp(-1.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The reference width W_R (m) of a step of the leg on `side` under the lateral reference
+    /// of the last tick: [`Self::reference_width`] in place, wider for steps towards the
+    /// direction of a lateral walk.
+    pub fn width_reference(&self, side: Side) -> f64 {
+        self.controller.reference_width(side.other(), &self.gait)
+    }
+
     /// The frontal-plane outcome of a step of the leg on `side` with width `width` (m, towards
     /// `side`), mirrored to that side: the trunk's lean and its rate towards `side` as theta_E
-    /// and its rate, the width error against [`Self::reference_width`] as F_E, and F_R 0.
+    /// and its rate, the width error `W - W_R` ([`Self::width_reference`]) as F_E, and as F_R
+    /// the reference width beyond the stance in place, `W_R - 2 delta` (0 stepping in place).
     fn lateral_outcome(&self, estimate: &Estimate, side: Side, width: f64) -> StepOutcome {
         let [lean, lean_rate] = lean_towards(estimate, side);
+        let width_r = self.width_reference(side);
         StepOutcome {
             theta_e: lean,
             theta_e_dot: lean_rate,
-            f_e: width - self.reference_width(),
-            f_r: 0.0,
+            f_e: width - width_r,
+            f_r: width_r - self.reference_width(),
         }
     }
 

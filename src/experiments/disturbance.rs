@@ -278,6 +278,7 @@ pub fn trial_setup(settings: &Settings, protocol: &DisturbanceProtocol, seed: u6
         gap: protocol.gap_s,
     };
     TrialSetup {
+        lateral_reference: None,
         stop_after_last_push_s: Some(protocol.horizon_s.max(settings.push_window_s)),
         ..settings.push_trial(
             WalkerMode::CaptureStep,

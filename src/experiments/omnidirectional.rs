@@ -7,20 +7,28 @@
 //! model, the model with the paper's sagittal learner, and the model with both learners
 //! ([`TwoPlanes`]: the sagittal learner and a lateral one of the same approximator and rule).
 //! Each walker learns afresh in each sector. Per sector and walker: the impulse at 50% falls
-//! (I50, as in experiment C) and the falls per cause. Registered as `omnidirectional`; its
-//! result is a [`CustomResult`], as a user's experiment would write it.
+//! (I50, as in experiment C) and the falls per cause.
+//!
+//! Then an omnidirectional walk (the paper's Fig. 4 in two dimensions): the reference step
+//! `(F_R, F_R,y)` jumps to a point uniform over a disc every 4-8 s, the same sequence for the
+//! model and for both learners (learning as they walk). Every step's error is the sagittal
+//! step error and the width error against the reference width
+//! ([`crate::control::walker::Walker::width_reference`]); per direction sector of the reference,
+//! the mean of its norm. Registered as `omnidirectional`; its result is a [`CustomResult`], as
+//! a user's experiment would write it.
 
 use super::error::ExperimentError;
 use super::experiment::{Experiment, Headline, PushOptions, RunContext};
 use super::fall_causes::{count, run_classified};
 use super::paired::{Direction, Paired};
 use super::protocol::{Protocol, ProtocolTables, Table};
-use super::schedule::PushPlan;
+use super::schedule::{PushPlan, ReferenceSchedule};
 use super::summary::{CustomResult, ExperimentResult, Summary};
-use crate::config::limits::{MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES};
+use super::trial::{Observer, TrialLog, run_trial};
+use crate::config::limits::{MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MAX_TRIAL_S};
 use crate::config::{self, ConfigError};
 use crate::control::two_planes::TwoPlanes;
-use crate::control::walker::{FootstepPolicy, WalkerMode};
+use crate::control::walker::{FootstepPolicy, Tick, WalkerMode};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
 use rayon::prelude::*;
@@ -34,8 +42,13 @@ pub const SECTORS: usize = 8;
 /// The walkers compared, in the order of the summary's lists.
 pub const WALKERS: [&str; 4] = ["open_loop", "model", "sagittal", "both"];
 
+/// The walkers of the omnidirectional walk, in the order of the summary's lists.
+pub const WALK_WALKERS: [&str; 2] = ["model", "both"];
+
 /// The protocol: per sector, `pushes` pushes (scaled by the run's scale, at least 2) uniform
-/// in `impulse`, `gap_s` apart, walking in place.
+/// in `impulse`, `gap_s` apart, walking in place; then the walk: `walk_s` seconds (scaled, at
+/// least four of the longest holds) of references uniform over the disc of `walk_radius`,
+/// each held for a time uniform in `walk_hold_s`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct OmnidirectionalProtocol {
@@ -45,6 +58,13 @@ pub struct OmnidirectionalProtocol {
     pub impulse: (f64, f64),
     /// Time between pushes (s).
     pub gap_s: (f64, f64),
+    /// Simulated time of the walk per walker at scale 1 (s).
+    pub walk_s: f64,
+    /// Radius of the disc of references `(F_R, F_R,y)` (m); the lateral reference is realised
+    /// up to `omega - delta` (0.08 m with the default controller).
+    pub walk_radius: f64,
+    /// How long each reference of the walk is held (s).
+    pub walk_hold_s: (f64, f64),
 }
 
 impl Default for OmnidirectionalProtocol {
@@ -53,6 +73,9 @@ impl Default for OmnidirectionalProtocol {
             pushes: 100,
             impulse: (0.0, 20.0),
             gap_s: (3.0, 4.0),
+            walk_s: 450.0,
+            walk_radius: 0.08,
+            walk_hold_s: (4.0, 8.0),
         }
     }
 }
@@ -63,7 +86,11 @@ impl Protocol for OmnidirectionalProtocol {
         config::non_negative_range("impulse", self.impulse)?;
         config::range_in("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
         config::positive_range("gap_s", self.gap_s)?;
-        config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)
+        config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)?;
+        config::in_range("walk_s", self.walk_s, 1.0, MAX_TRIAL_S)?;
+        config::in_range("walk_radius", self.walk_radius, 0.0, MAX_STEP_M)?;
+        config::positive_range("walk_hold_s", self.walk_hold_s)?;
+        config::range_in("walk_hold_s", self.walk_hold_s, 0.0, MAX_GAP_S)
     }
 }
 
@@ -82,6 +109,22 @@ pub struct OmnidirectionalResult {
     pub falls: BTreeMap<String, Vec<usize>>,
     /// Falls per cause (experiment C's classes), per walker and sector.
     pub fall_causes: BTreeMap<String, Vec<BTreeMap<String, u32>>>,
+    /// The walk: mean norm of the step error `(F_E, W_E)` per walker (`model`, `both`) and
+    /// sector of the reference's direction (m; null where no step had its reference there).
+    #[serde(default)]
+    pub walk_error_m: BTreeMap<String, Vec<Option<f64>>>,
+    /// The walk: mean |F_E| (sagittal step error), per walker and sector (m).
+    #[serde(default)]
+    pub walk_step_error_m: BTreeMap<String, Vec<Option<f64>>>,
+    /// The walk: mean |W_E| (width error), per walker and sector (m).
+    #[serde(default)]
+    pub walk_width_error_m: BTreeMap<String, Vec<Option<f64>>>,
+    /// The walk: steps counted per walker and sector.
+    #[serde(default)]
+    pub walk_steps: BTreeMap<String, Vec<usize>>,
+    /// The walk: falls per walker.
+    #[serde(default)]
+    pub walk_falls: BTreeMap<String, usize>,
 }
 
 impl OmnidirectionalResult {
@@ -98,6 +141,59 @@ impl OmnidirectionalResult {
     }
 }
 
+/// The sector (0..[`SECTORS`]) of the direction of `(x, y)`: sector k is centred on the
+/// azimuth `45 k` degrees.
+pub fn sector_of(x: f64, y: f64) -> usize {
+    let deg = y.atan2(x).to_degrees().rem_euclid(360.0);
+    ((deg / 45.0).round() as usize) % SECTORS
+}
+
+/// References shorter than this (m) have no direction: their steps are not counted.
+const MIN_REFERENCE_M: f64 = 0.01;
+
+/// One step of the walk: the reference `(F_R, F_R,y)`, `F_E` and `W_E` (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct WalkStep {
+    time_s: f64,
+    f_r_m: f64,
+    f_r_y_m: f64,
+    f_e_m: f64,
+    w_e_m: f64,
+}
+
+/// Records the walk's steps: both planes' outcomes come on the tick of the touch-down.
+#[derive(Default)]
+struct WalkSteps(Vec<WalkStep>);
+
+impl Observer for WalkSteps {
+    fn on_tick(&mut self, time: f64, tick: &Tick) {
+        if let (Some(step), Some(lateral)) = (tick.step, tick.lateral_step) {
+            self.0.push(WalkStep {
+                time_s: time,
+                f_r_m: tick.f_r,
+                f_r_y_m: tick.f_r_y,
+                f_e_m: step.f_e,
+                w_e_m: lateral.f_e,
+            });
+        }
+    }
+}
+
+/// Per sector: the mean of `value` over the steps with a reference in that sector.
+fn by_sector(steps: &[WalkStep], value: impl Fn(&WalkStep) -> f64) -> Vec<Option<f64>> {
+    let mut sums = [(0.0, 0usize); SECTORS];
+    for s in steps {
+        if s.f_r_m.hypot(s.f_r_y_m) >= MIN_REFERENCE_M {
+            let k = sector_of(s.f_r_m, s.f_r_y_m);
+            sums[k].0 += value(s);
+            sums[k].1 += 1;
+        }
+    }
+    sums.iter()
+        .map(|&(sum, n)| (n > 0).then(|| sum / n as f64))
+        .collect()
+}
+
 /// One row of `omnidirectional_pushes.csv`.
 #[derive(Debug, Default, Serialize)]
 struct PushRow {
@@ -107,6 +203,20 @@ struct PushRow {
     impulse_ns: f64,
     fell: bool,
 }
+
+/// One row of `omnidirectional_walk.csv`.
+#[derive(Debug, Default, Serialize)]
+struct WalkRow {
+    walker: &'static str,
+    time_s: f64,
+    f_r_m: f64,
+    f_r_y_m: f64,
+    f_e_m: f64,
+    w_e_m: f64,
+}
+
+/// Added to the run's seed for the walk's references (the pushes use `seed * 8 + sector`).
+const WALK_SEED: u64 = 0x5741_4c4b;
 
 /// The unit push direction of azimuth `deg` (0 forward, 90 left).
 pub fn direction(deg: f64) -> [f64; 3] {
@@ -135,7 +245,8 @@ impl Experiment for Omnidirectional {
     }
 
     fn description(&self) -> &str {
-        "beyond the paper: I50 from 8 push directions, model vs sagittal vs both learners"
+        "beyond the paper: I50 from 8 push directions, model vs sagittal vs both learners; \
+         tracking a 2-D reference"
     }
 
     fn protocol(&self, tables: &ProtocolTables) -> Result<Option<Table>, ConfigError> {
@@ -212,13 +323,85 @@ impl Experiment for Omnidirectional {
                 Ok((log.pushes, i50, fell, count(&falls)))
             })
             .collect();
+        // The walk: the same references for the model and both learners.
+        let walk_s = (p.walk_s * ctx.settings.scale).max(4.0 * p.walk_hold_s.1);
+        let [walk_x, walk_y] = ReferenceSchedule::random_disc(
+            ctx.seed.wrapping_add(WALK_SEED),
+            walk_s,
+            p.walk_radius,
+            p.walk_hold_s,
+        )?;
+        let walks: Vec<Result<(TrialLog, Vec<WalkStep>), ExperimentError>> = WALK_WALKERS
+            .par_iter()
+            .map(|&walker| {
+                let mut setup = ctx.settings.trial(
+                    WalkerMode::CaptureStep,
+                    walk_x.clone(),
+                    Vec::new(),
+                    [1.0, 0.0, 0.0],
+                    walk_s,
+                );
+                setup.lateral_reference = Some(walk_y.clone());
+                let mut both;
+                let policy: Option<&mut dyn FootstepPolicy> = if walker == "both" {
+                    both = TwoPlanes {
+                        sagittal: ctx.make_learner()?,
+                        lateral: ctx.make_learner()?,
+                    };
+                    Some(&mut both)
+                } else {
+                    None
+                };
+                let mut steps = WalkSteps::default();
+                let log = run_trial(&setup, policy, &mut [&mut steps])?;
+                Ok((log, steps.0))
+            })
+            .collect();
         let mut result = OmnidirectionalResult {
             sectors_deg: sectors.clone(),
             pushes: vec![0; SECTORS],
             i50_ns: BTreeMap::new(),
             falls: BTreeMap::new(),
             fall_causes: BTreeMap::new(),
+            walk_error_m: BTreeMap::new(),
+            walk_step_error_m: BTreeMap::new(),
+            walk_width_error_m: BTreeMap::new(),
+            walk_steps: BTreeMap::new(),
+            walk_falls: BTreeMap::new(),
         };
+        let mut walk_rows = Vec::new();
+        for (walker, walk) in WALK_WALKERS.iter().zip(walks) {
+            let (log, steps) = walk?;
+            // Steps while the walker ramps its reference in after a start are left out.
+            let start = ctx.settings.walker.start_ramp_s;
+            let steps: Vec<WalkStep> = steps.into_iter().filter(|s| s.time_s > start).collect();
+            let name = walker.to_string();
+            result
+                .walk_error_m
+                .insert(name.clone(), by_sector(&steps, |s| s.f_e_m.hypot(s.w_e_m)));
+            result
+                .walk_step_error_m
+                .insert(name.clone(), by_sector(&steps, |s| s.f_e_m.abs()));
+            result
+                .walk_width_error_m
+                .insert(name.clone(), by_sector(&steps, |s| s.w_e_m.abs()));
+            let mut n = vec![0usize; SECTORS];
+            for s in &steps {
+                if s.f_r_m.hypot(s.f_r_y_m) >= MIN_REFERENCE_M {
+                    n[sector_of(s.f_r_m, s.f_r_y_m)] += 1;
+                }
+            }
+            result.walk_steps.insert(name.clone(), n);
+            result.walk_falls.insert(name, log.falls.len());
+            walk_rows.extend(steps.into_iter().map(|s| WalkRow {
+                walker,
+                time_s: s.time_s,
+                f_r_m: s.f_r_m,
+                f_r_y_m: s.f_r_y_m,
+                f_e_m: s.f_e_m,
+                w_e_m: s.w_e_m,
+            }));
+        }
         let mut rows: Vec<PushRow> = Vec::new();
         for (&(k, w), outcome) in jobs.iter().zip(outcomes) {
             let (pushes, i50, fell, causes) = outcome?;
@@ -236,6 +419,7 @@ impl Experiment for Omnidirectional {
             }));
         }
         crate::report::write_rows(&dir.join("omnidirectional_pushes.csv"), &rows)?;
+        crate::report::write_rows(&dir.join("omnidirectional_walk.csv"), &walk_rows)?;
         let series: Vec<(String, Vec<f64>)> = WALKERS
             .iter()
             .map(|w| {
@@ -260,6 +444,37 @@ impl Experiment for Omnidirectional {
                 series: &series,
             },
         )?;
+        let errors: Vec<(String, Vec<f64>, Vec<f64>)> = WALK_WALKERS
+            .iter()
+            .map(|w| {
+                let (x, y): (Vec<f64>, Vec<f64>) = result.walk_error_m[*w]
+                    .iter()
+                    .zip(&sectors)
+                    .filter_map(|(e, deg)| e.map(|e| (*deg, 100.0 * e)))
+                    .unzip();
+                (w.to_string(), x, y)
+            })
+            .collect();
+        let series: Vec<Series> = errors
+            .iter()
+            .filter(|(_, x, _)| !x.is_empty())
+            .map(|(name, x, y)| Series {
+                name,
+                x,
+                y,
+                spread: None,
+            })
+            .collect();
+        if !series.is_empty() {
+            polar_plot(
+                &dir.join("omnidirectional_walk_error.svg"),
+                &PolarPlot {
+                    title: "Walk: mean step error by reference direction",
+                    radius_label: "|(F_E, W_E)| (cm)",
+                    series: &series,
+                },
+            )?;
+        }
         Ok(ExperimentResult::Custom(CustomResult::new(
             self.name(),
             &result,
@@ -297,6 +512,25 @@ impl Experiment for Omnidirectional {
                 Direction::HigherIsBetter,
             ));
         }
+        // The walk: the sectors' mean error, both learners over the model.
+        let walk: Vec<f64> = runs
+            .iter()
+            .filter_map(|r| {
+                let mean = |w: &str| -> Option<f64> {
+                    let v: Vec<f64> = r.walk_error_m.get(w)?.iter().flatten().copied().collect();
+                    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+                };
+                Some(mean("both")? / mean("model")?)
+            })
+            .collect();
+        if !walk.is_empty() {
+            out.push(Paired::new(
+                "walk error both / model, sectors' mean",
+                &walk,
+                1.0,
+                Direction::LowerIsBetter,
+            ));
+        }
         out
     }
 
@@ -310,10 +544,26 @@ impl Experiment for Omnidirectional {
                 })
                 .collect()
         };
+        let walk_error = |w: &str| -> Vec<f64> {
+            runs.iter()
+                .filter_map(|r| {
+                    let v: Vec<f64> = r.walk_error_m.get(w)?.iter().flatten().copied().collect();
+                    (!v.is_empty()).then(|| 100.0 * v.iter().sum::<f64>() / v.len() as f64)
+                })
+                .collect()
+        };
         vec![
             Headline::mean_of("I50 model, mean over sectors (Ns)", mean_i50("model")),
             Headline::mean_of("I50 sagittal, mean over sectors (Ns)", mean_i50("sagittal")),
             Headline::mean_of("I50 both, mean over sectors (Ns)", mean_i50("both")),
+            Headline::mean_of(
+                "walk error model, mean over sectors (cm)",
+                walk_error("model"),
+            ),
+            Headline::mean_of(
+                "walk error both, mean over sectors (cm)",
+                walk_error("both"),
+            ),
         ]
     }
 }

@@ -65,6 +65,43 @@ impl ReferenceSchedule {
         Ok(ReferenceSchedule { segments })
     }
 
+    /// Random two-dimensional references `[F_R, F_R,y]` uniform over the disc of `radius` (m)
+    /// around 0, each held for a time uniform in `hold` (s), covering `[0, duration]`: the
+    /// sagittal and the lateral schedule, changing together.
+    ///
+    /// # Errors
+    /// [`ExperimentError::Invalid`] if `radius` is not finite and non-negative, or `hold` or
+    /// `duration` are invalid as for [`ReferenceSchedule::random`].
+    pub fn random_disc(
+        seed: u64,
+        duration: f64,
+        radius: f64,
+        hold: (f64, f64),
+    ) -> Result<[Self; 2], ExperimentError> {
+        if !(radius.is_finite() && radius >= 0.0) {
+            return Err(ExperimentError::Invalid(format!(
+                "reference radius {radius} m must be finite and non-negative"
+            )));
+        }
+        // The hold and the duration are checked as for a one-dimensional schedule.
+        Self::random(seed, duration, (0.0, 0.0), hold)?;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let [mut x, mut y] = [Vec::new(), Vec::new()];
+        let mut t = 0.0;
+        while t < duration {
+            // Uniform over the disc's area.
+            let r = radius * uniform(&mut rng, (0.0, 1.0)).sqrt();
+            let a = uniform(&mut rng, (0.0, std::f64::consts::TAU));
+            x.push((t, r * a.cos()));
+            y.push((t, r * a.sin()));
+            t += uniform(&mut rng, hold);
+        }
+        Ok([
+            ReferenceSchedule { segments: x },
+            ReferenceSchedule { segments: y },
+        ])
+    }
+
     /// The reference in force at time `t`.
     pub fn at(&self, t: f64) -> f64 {
         let i = self.segments.partition_point(|&(start, _)| start <= t);
@@ -135,6 +172,34 @@ fn uniform(rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn disc_references_stay_in_the_disc_and_change_together() {
+        let [x, y] = ReferenceSchedule::random_disc(3, 200.0, 0.08, (4.0, 8.0)).unwrap();
+        assert_eq!(x.change_times(), y.change_times());
+        assert!(x.segments.len() >= 25, "{}", x.segments.len());
+        let radii: Vec<f64> = x
+            .segments
+            .iter()
+            .zip(&y.segments)
+            .map(|(a, b)| a.1.hypot(b.1))
+            .collect();
+        assert!(radii.iter().all(|r| *r <= 0.08 + 1e-12));
+        // Uniform over the area: about a quarter inside half the radius.
+        let inner = radii.iter().filter(|r| **r < 0.04).count() as f64 / radii.len() as f64;
+        assert!((0.05..0.5).contains(&inner), "{inner}");
+        // Every quadrant is visited.
+        for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+            assert!(
+                x.segments
+                    .iter()
+                    .zip(&y.segments)
+                    .any(|(a, b)| a.1 * sx > 0.0 && b.1 * sy > 0.0)
+            );
+        }
+        assert!(ReferenceSchedule::random_disc(3, 10.0, f64::NAN, (4.0, 8.0)).is_err());
+        assert!(ReferenceSchedule::random_disc(3, 10.0, 0.1, (0.0, 8.0)).is_err());
+    }
 
     #[test]
     fn unit_direction_check() {

@@ -88,6 +88,7 @@ impl Settings {
         duration_s: f64,
     ) -> TrialSetup {
         TrialSetup {
+            lateral_reference: None,
             sim: self.sim.clone(),
             walker: WalkerConfig {
                 mode,

@@ -37,6 +37,10 @@ pub struct TrialSetup {
     pub walker: WalkerConfig,
     /// The reference step size over trial time (falls do not rewind it).
     pub reference: ReferenceSchedule,
+    /// The lateral reference F_R,y over trial time (m per step, positive to the left; see
+    /// [`Walker::tick_2d`]); none: stepping in place laterally.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lateral_reference: Option<ReferenceSchedule>,
     /// Pushes in time order (trial time). A push due while the robot is getting up after a
     /// fall, or has not walked `resettle_s` since, is delayed until it has.
     pub pushes: Vec<Push>,
@@ -98,16 +102,17 @@ impl TrialSetup {
                 self.push_direction
             )));
         }
-        if self.reference.segments.is_empty()
-            || self
-                .reference
-                .segments
-                .iter()
-                .any(|(t, f)| !t.is_finite() || !f.is_finite())
-        {
-            return Err(TrialError::Invalid(
-                "the reference schedule needs at least one finite segment".into(),
-            ));
+        for reference in std::iter::once(&self.reference).chain(&self.lateral_reference) {
+            if reference.segments.is_empty()
+                || reference
+                    .segments
+                    .iter()
+                    .any(|(t, f)| !t.is_finite() || !f.is_finite())
+            {
+                return Err(TrialError::Invalid(
+                    "a reference schedule needs at least one finite segment".into(),
+                ));
+            }
         }
         if self
             .pushes
@@ -290,11 +295,12 @@ pub fn run_trial(
             break;
         }
         let f_r = setup.reference.at(t);
+        let f_r_y = setup.lateral_reference.as_ref().map_or(0.0, |r| r.at(t));
         let tick = if t < ready_at && !log.falls.is_empty() {
             // Getting up after a fall: hold the standing pose.
             None
         } else {
-            Some(walker.tick(&sensors, f_r, policy.as_deref_mut())?)
+            Some(walker.tick_2d(&sensors, [f_r, f_r_y], policy.as_deref_mut())?)
         };
         if let Some(tick) = &tick {
             last_outcome = Some(Walker::outcome_at(&tick.estimate, tick.f_r));

@@ -212,3 +212,72 @@ fn a_sustained_width_offset_moves_the_width_and_barely_the_lean() {
     let guard = LearnerConfig::default().max_gain.unwrap();
     assert!(k > 0.0 && guard * k < 1.0, "k = {k:.2} /m, guard {guard}");
 }
+
+/// Walks with the 2-D reference `[F_R, F_R,y]` for `seconds`; returns the CoM's displacement
+/// (world x, y), the mean |W_E| of the steps after `settle` s and the falls.
+fn walk_2d(
+    seconds: f64,
+    reference: [f64; 2],
+    settle: f64,
+    mut policy: Option<&mut dyn FootstepPolicy>,
+) -> ([f64; 2], f64, usize) {
+    let mut robot = Humanoid::new(SimConfig::default()).unwrap();
+    let mut walker = Walker::new(
+        WalkerConfig::new(WalkerMode::CaptureStep),
+        robot.body().leg_geometry(),
+    )
+    .unwrap();
+    let start = robot.ground_truth().com;
+    let (mut sum, mut n) = (0.0, 0usize);
+    while robot.time() < seconds {
+        let sensors = robot.sensors();
+        let tick = walker
+            .tick_2d(&sensors, reference, policy.as_deref_mut())
+            .unwrap();
+        if let Some(o) = tick.lateral_step
+            && robot.time() > settle
+        {
+            sum += o.f_e.abs();
+            n += 1;
+        }
+        robot.step(&tick.targets).unwrap();
+        if robot.fall().is_some() {
+            return ([0.0; 2], f64::NAN, 1);
+        }
+    }
+    let end = robot.ground_truth().com;
+    (
+        [end[0] - start[0], end[1] - start[1]],
+        sum / n.max(1) as f64,
+        0,
+    )
+}
+
+#[test]
+fn a_lateral_reference_walks_the_model_sideways_towards_it() {
+    for sign in [1.0, -1.0] {
+        let (moved, width_error, falls) = walk_2d(12.0, [0.0, sign * 0.04], 4.0, None);
+        assert_eq!(falls, 0);
+        // About 0.04 m per step at 2.5 steps per second once the reference has ramped in.
+        assert!(sign * moved[1] > 0.5, "{sign}: {moved:?}");
+        assert!(moved[0].abs() < 0.5 * moved[1].abs(), "{sign}: {moved:?}");
+        assert!(width_error < 0.05, "{width_error}");
+    }
+    // Without a lateral reference it stays roughly where it was.
+    let (moved, _, falls) = walk_2d(12.0, [0.0, 0.0], 4.0, None);
+    assert_eq!(falls, 0);
+    assert!(moved[1].abs() < 0.3, "{moved:?}");
+}
+
+#[test]
+fn the_lateral_learner_tracks_the_width_of_a_sideways_walk_better_than_the_model() {
+    let (_, model, falls) = walk_2d(30.0, [0.05, 0.04], 15.0, None);
+    assert_eq!(falls, 0);
+    let mut both = TwoPlanes {
+        sagittal: learner(),
+        lateral: learner(),
+    };
+    let (_, learned, falls) = walk_2d(30.0, [0.05, 0.04], 15.0, Some(&mut both));
+    assert_eq!(falls, 0);
+    assert!(learned < 0.7 * model, "learned {learned} model {model}");
+}

@@ -2,7 +2,10 @@
 //! summary's binding fields, its figure, its leaderboard rows, and the same bytes run twice.
 
 use steplearn::bench::{Bench, Registry};
-use steplearn::experiments::omnidirectional::{OmnidirectionalResult, SECTORS, WALKERS, direction};
+use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::omnidirectional::{
+    OmnidirectionalResult, SECTORS, WALK_WALKERS, WALKERS, direction, sector_of,
+};
 
 #[test]
 fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit() {
@@ -10,8 +13,14 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
     let _ = std::fs::remove_dir_all(&dir);
     let registry = Registry::builtin();
     assert!(registry.experiment_names().contains(&"omnidirectional"));
+    // A short walk: 4 references of 2-3 s.
+    let config = ConfigFile::from_toml(
+        "[protocols.omnidirectional]\nwalk_s = 8.0\nwalk_hold_s = [2.0, 3.0]\n",
+    )
+    .unwrap();
     let run = |out: &std::path::Path| {
         Bench::new(&registry)
+            .config(config.clone())
             .approximators(["lwpr"])
             .rules(["pendulum-cart"])
             .experiments(["omnidirectional"])
@@ -50,6 +59,27 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
             assert!(total as usize >= result.falls[w][k], "{w} sector {k}");
         }
     }
+    // The walk: per walker a list over the sectors, null where no reference pointed.
+    for w in WALK_WALKERS {
+        let errors = &result.walk_error_m[w];
+        assert_eq!(errors.len(), SECTORS);
+        assert!(errors.iter().flatten().count() >= 1, "{w}: {errors:?}");
+        assert!(errors.iter().flatten().all(|e| e.is_finite() && *e >= 0.0));
+        let steps = &result.walk_steps[w];
+        for (k, e) in errors.iter().enumerate() {
+            assert_eq!(e.is_some(), steps[k] > 0, "{w} sector {k}");
+            // The norm of (F_E, W_E) is at least either part.
+            if let (Some(e), Some(f), Some(wd)) = (
+                e,
+                result.walk_step_error_m[w][k],
+                result.walk_width_error_m[w][k],
+            ) {
+                assert!(*e >= f.max(wd) - 1e-12 && *e <= f + wd + 1e-12);
+            }
+        }
+        assert!(result.walk_falls.contains_key(w));
+    }
+    assert!(run_dir.join("omnidirectional_walk.csv").is_file());
     assert!(run_dir.join("omnidirectional_i50.svg").is_file());
     assert!(run_dir.join("omnidirectional_pushes.csv").is_file());
     // The leaderboard compares both learners and the sagittal one with the model.
@@ -57,7 +87,14 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
     let board: serde_json::Value = serde_json::from_str(&board).unwrap();
     let row = &board["rows"].as_array().unwrap()[0];
     assert_eq!(row["experiment"], "omnidirectional");
-    assert!(row["vs_model"].as_array().unwrap().len() >= 2);
+    let quantities: Vec<&str> = row["vs_model"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["quantity"].as_str().unwrap())
+        .collect();
+    assert!(quantities.len() >= 5, "{quantities:?}");
+    assert!(quantities.contains(&"walk error both / model, sectors' mean"));
     // The same seed gives the same bytes in another directory.
     run(&dir.join("b"));
     let again = std::fs::read_to_string(
@@ -78,4 +115,16 @@ fn sector_directions_are_unit_vectors_counter_clockwise_from_forward() {
     assert_eq!(direction(270.0), [0.0, -1.0, 0.0]);
     let d = direction(45.0);
     assert!((d[0] - d[1]).abs() < 1e-15 && (d[0] * d[0] + d[1] * d[1] - 1.0).abs() < 1e-15);
+}
+
+#[test]
+fn reference_directions_fall_in_the_sector_of_the_nearest_azimuth() {
+    assert_eq!(sector_of(0.1, 0.0), 0);
+    assert_eq!(sector_of(0.1, 0.1), 1);
+    assert_eq!(sector_of(0.0, 0.05), 2);
+    assert_eq!(sector_of(-0.1, 0.001), 4);
+    assert_eq!(sector_of(-0.1, -0.001), 4);
+    assert_eq!(sector_of(0.0, -0.05), 6);
+    assert_eq!(sector_of(0.1, -0.03), 0);
+    assert_eq!(sector_of(0.1, -0.06), 7);
 }

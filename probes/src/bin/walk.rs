@@ -3,6 +3,7 @@
 //!
 //! `cargo run --release -p steplearn-probes --bin walk -- --mode capture-step --step-x 0.1 --seconds 30 --push 8`
 //! `cargo run --release -p steplearn-probes --bin walk -- --learn --eta 0.2 --seconds 60 --push 6,8,10,12,14`
+//! `cargo run --release -p steplearn-probes --bin walk -- --step-x 0.1 --step-y 0.04 --seconds 30`
 
 use clap::Parser;
 use steplearn::approx::{Lwpr, LwprConfig};
@@ -26,6 +27,9 @@ struct Args {
     /// Reference step size F_R (m).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     step_x: f64,
+    /// Lateral reference F_R,y (m per step, positive to the left).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    step_y: f64,
     /// Simulated seconds.
     #[arg(long, default_value_t = 30.0)]
     seconds: f64,
@@ -58,9 +62,32 @@ struct Args {
 
 struct Printer {
     verbose: bool,
+    /// (time, width error W - W_R, W_R) of every step.
+    widths: Vec<(f64, f64, f64)>,
+    /// The CoM's (x, y) at the first and the last tick (m, world).
+    com: Option<([f64; 2], [f64; 2])>,
 }
 
 impl Observer for Printer {
+    fn on_tick(&mut self, time: f64, tick: &Tick) {
+        if let Some(l) = tick.lateral_step {
+            let w_r = l.f_r + 0.24;
+            self.widths.push((time, l.f_e, w_r));
+            if self.verbose {
+                println!(
+                    "t {time:7.2}  W_R {w_r:.3}  W_E {:+.3}  lean {:+.3}",
+                    l.f_e, l.theta_e
+                );
+            }
+        }
+    }
+    fn wants_truth(&self) -> bool {
+        true
+    }
+    fn on_truth(&mut self, _time: f64, truth: &GroundTruth) {
+        let xy = [truth.com[0], truth.com[1]];
+        self.com = Some((self.com.map_or(xy, |c| c.0), xy));
+    }
     fn on_step(&mut self, s: &StepRecord) {
         if self.verbose {
             println!(
@@ -132,13 +159,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             impulse,
         })
         .collect();
-    let setup = settings.trial(
+    let mut setup = settings.trial(
         mode,
         ReferenceSchedule::constant(args.step_x),
         pushes,
         [1.0, 0.0, 0.0],
         args.seconds,
     );
+    setup.lateral_reference = Some(ReferenceSchedule::constant(args.step_y));
     let wall = std::time::Instant::now();
     // LWPR over (theta_E, theta_E_dot, F_R), inputs scaled by the learner grid's half-ranges.
     let grid = InputGrid::default();
@@ -161,7 +189,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     let mut printer = Printer {
         verbose: args.verbose,
+        widths: Vec::new(),
+        com: None,
     };
+
     let mut picture = Picture {
         record: RunRecord::new(&format!("{} walker, F_R {:+.2} m", args.mode, args.step_x)),
         decision: None,
@@ -202,6 +233,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         mean_step - args.step_x,
         mean_abs_err,
         log.sim_time_s / wall
+    );
+    let widths: Vec<_> = printer
+        .widths
+        .iter()
+        .filter(|w| w.0 > args.settle)
+        .collect();
+    let k = widths.len().max(1) as f64;
+    let (start, end) = printer.com.unwrap_or_default();
+    println!(
+        "lateral: mean |W_E| {:.4} m, mean W_E {:+.4} m over {} steps; the CoM moved ({:+.3}, {:+.3}) m in {:.1} s",
+        widths.iter().map(|w| w.1.abs()).sum::<f64>() / k,
+        widths.iter().map(|w| w.1).sum::<f64>() / k,
+        widths.len(),
+        end[0] - start[0],
+        end[1] - start[1],
+        log.sim_time_s,
     );
     Ok(())
 }
