@@ -117,9 +117,12 @@ enum Command {
         /// Experiments, comma-separated [default: every registered one].
         #[arg(long, value_delimiter = ',')]
         experiments: Vec<String>,
-        /// Seeds 0..N.
+        /// Number of seeds: FIRST..FIRST+N.
         #[arg(long, default_value_t = 5)]
         seeds: u64,
+        /// The first seed (seeds other than 0-4 judge parameters chosen on 0-4).
+        #[arg(long, default_value_t = 0)]
+        first_seed: u64,
         /// Protocol length as a fraction of the paper's, in (0, 1] [default: the config's, 1].
         #[arg(long)]
         scale: Option<f64>,
@@ -422,6 +425,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             rule,
             experiments,
             seeds,
+            first_seed,
             scale,
             config,
             baseline,
@@ -432,6 +436,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             let config = load_config(registry, config)?;
             let mut bench = Bench::new(registry)
                 .seeds(seeds)
+                .first_seed(first_seed)
                 .config(config)
                 .out(&out)
                 .command(&command_line());

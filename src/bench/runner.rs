@@ -26,6 +26,7 @@ pub struct Bench<'r> {
     rules: Option<Vec<String>>,
     experiments: Option<Vec<String>>,
     seeds: u64,
+    first_seed: u64,
     scale: Option<f64>,
     out: PathBuf,
     config: ConfigFile,
@@ -83,6 +84,7 @@ impl<'r> Bench<'r> {
             rules: None,
             experiments: None,
             seeds: 5,
+            first_seed: 0,
             scale: None,
             out: PathBuf::from("results/bench"),
             config: ConfigFile::default(),
@@ -112,9 +114,16 @@ impl<'r> Bench<'r> {
         self
     }
 
-    /// Seeds `0..n` (at least 1).
+    /// `n` seeds (at least 1): `0..n`, or from [`Bench::first_seed`] on.
     pub fn seeds(mut self, n: u64) -> Self {
         self.seeds = n;
+        self
+    }
+
+    /// The first seed (default 0): the seeds are `first..first + n`, so that a combination
+    /// can be judged on seeds other than those its parameters were chosen on.
+    pub fn first_seed(mut self, first: u64) -> Self {
+        self.first_seed = first;
         self
     }
 
@@ -193,11 +202,17 @@ impl<'r> Bench<'r> {
                 self.seeds
             )));
         }
+        let end = self.first_seed.checked_add(self.seeds).ok_or_else(|| {
+            BenchError::Selection(format!(
+                "first seed {} + {} seeds overflows",
+                self.first_seed, self.seeds
+            ))
+        })?;
         Ok(SweepGrid {
             experiments,
             approx,
             rules,
-            seeds: (0..self.seeds).collect(),
+            seeds: (self.first_seed..end).collect(),
         })
     }
 

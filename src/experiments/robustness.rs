@@ -438,8 +438,47 @@ impl Experiment for Robustness {
         tables.resolve::<RobustnessProtocol>(self.name())
     }
 
+    /// The claim's comparison (pushes absorbed), then the falls while learning and the pushes
+    /// until the first absorbed one (a run without any counts as one more than its pushes),
+    /// each learned minus without learning.
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
-        claim(runs).over_seeds
+        let mut out = claim(runs).over_seeds;
+        let (mut falls, mut first) = (Vec::new(), Vec::new());
+        for (_, result) in by_seed(runs, |s| {
+            matches!(s.result, ExperimentResult::Robustness { .. }).then_some(&s.result)
+        }) {
+            if let ExperimentResult::Robustness {
+                pushes_until_first_absorbed,
+                falls: learned_falls,
+                absorbed_by_push,
+                no_learning: Some(b),
+                ..
+            } = result
+            {
+                falls.push(f64::from(*learned_falls) - f64::from(b.falls));
+                let learned_first =
+                    pushes_until_first_absorbed.map_or(absorbed_by_push.len() + 1, |n| n as usize);
+                let b_first = b
+                    .absorbed_by_push
+                    .iter()
+                    .position(|&a| a)
+                    .map_or(b.absorbed_by_push.len() + 1, |i| i + 1);
+                first.push(learned_first as f64 - b_first as f64);
+            }
+        }
+        out.push(Paired::new(
+            "falls, learned - without learning",
+            &falls,
+            0.0,
+            Direction::LowerIsBetter,
+        ));
+        out.push(Paired::new(
+            "pushes until the first absorbed, learned - without learning",
+            &first,
+            0.0,
+            Direction::LowerIsBetter,
+        ));
+        out
     }
 
     fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {

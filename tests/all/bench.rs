@@ -130,6 +130,7 @@ fn bad_registrations_and_selections_are_typed_errors_before_anything_runs() {
         (base().approximators(["lwpr", "lwpr"]), "twice"),
         (base().experiments(Vec::<String>::new()), "no experiment"),
         (base().seeds(0), "seeds"),
+        (base().first_seed(u64::MAX).seeds(2), "overflows"),
         (base().scale(0.0), "scale"),
         (base().scale(f64::NAN), "scale"),
         (base().baseline("lwpr", "doubled"), "baseline"),
@@ -138,6 +139,10 @@ fn bad_registrations_and_selections_are_typed_errors_before_anything_runs() {
         assert!(e.to_string().contains(what), "{what}: {e}");
     }
     assert!(!dir.exists(), "nothing was written");
+    // Seeds from a first seed on.
+    let grid = base().first_seed(5).seeds(3).grid().unwrap();
+    assert_eq!(grid.seeds, [5, 6, 7]);
+    assert_eq!(base().seeds(2).grid().unwrap().seeds, [0, 1]);
 }
 
 #[test]
