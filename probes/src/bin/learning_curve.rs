@@ -15,6 +15,9 @@ use std::path::PathBuf;
 use steplearn::report::figures::{LinePlot, Series, line_plot};
 use steplearn::stats::MeanStd;
 
+/// One seed's pushes: absorbed by push with learning, and without.
+type SeedRun = (Vec<bool>, Vec<bool>);
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let dir = PathBuf::from(
@@ -26,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Err("BLOCK must be at least 1".into());
     }
     // Per "approx + rule": per seed, absorbed by push (learned, without learning).
-    let mut runs: BTreeMap<String, Vec<(Vec<bool>, Vec<bool>)>> = BTreeMap::new();
+    let mut runs: BTreeMap<String, Vec<SeedRun>> = BTreeMap::new();
     for entry in std::fs::read_dir(&dir)? {
         let path = entry?.path().join("summary.json");
         let Ok(text) = std::fs::read_to_string(&path) else {
