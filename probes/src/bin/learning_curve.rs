@@ -18,6 +18,9 @@ use steplearn::stats::MeanStd;
 /// One seed's pushes: absorbed by push with learning, and without.
 type SeedRun = (Vec<bool>, Vec<bool>);
 
+/// A curve: its name, block ends, mean shares and their 95% half-widths.
+type Curve = (String, Vec<f64>, Vec<f64>, Vec<f64>);
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let dir = PathBuf::from(
@@ -57,7 +60,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if runs.is_empty() {
         return Err(format!("no robustness summaries in {}", dir.display()).into());
     }
-    let mut curves: Vec<(String, Vec<f64>, Vec<f64>, Vec<f64>)> = Vec::new();
+    let mut curves: Vec<Curve> = Vec::new();
     for (name, seeds) in &runs {
         for (label, pick) in [("learned", 0), ("without learning", 1)] {
             let pushes = seeds
