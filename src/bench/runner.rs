@@ -249,11 +249,11 @@ impl<'r> Bench<'r> {
     /// Another configuration means other settings, or another protocol table for an
     /// experiment both records hold: an experiment registered since (or not any more) changes
     /// nothing its runs measured, so its table joins the record.
-    fn guard_config(&self, config_toml: &str) -> Result<(), BenchError> {
+    fn guard_config(&self, config_toml: &str, selected: &[String]) -> Result<(), BenchError> {
         let path = self.out.join(CONFIG_RECORD);
         match std::fs::read_to_string(&path) {
             Ok(existing) if existing == config_toml => Ok(()),
-            Ok(existing) => match merged_record(&existing, config_toml) {
+            Ok(existing) => match merged_record(&existing, config_toml, selected) {
                 Some(merged) => {
                     if merged != existing {
                         write_atomic(&path, merged.as_bytes())?;
@@ -290,7 +290,7 @@ impl<'r> Bench<'r> {
             .to_toml()
             .map_err(|e| BenchError::Selection(e.to_string()))?;
         let runs = self.shard.select(&grid.runs()?);
-        self.guard_config(&config_toml)?;
+        self.guard_config(&config_toml, &grid.experiments)?;
         let runner = self.registry.runner(&config.settings, &config.protocols);
         let options = SweepOptions {
             threads: self.threads,
@@ -330,8 +330,10 @@ impl<'r> Bench<'r> {
 
 /// The union of two configuration records (`existing` first, then what `new` adds), if they
 /// agree: the same settings (every key but `protocols`) and the same table for every protocol
-/// both hold. `None` if they differ or either does not parse.
-fn merged_record(existing: &str, new: &str) -> Option<String> {
+/// both hold of the experiments `selected` (an experiment outside the selection keeps the
+/// existing record's table, which describes its runs there). `None` if they differ or either
+/// does not parse.
+fn merged_record(existing: &str, new: &str, selected: &[String]) -> Option<String> {
     let old: toml::Table = toml::from_str(existing).ok()?;
     let new: toml::Table = toml::from_str(new).ok()?;
     let without = |t: &toml::Table| {
@@ -350,7 +352,7 @@ fn merged_record(existing: &str, new: &str) -> Option<String> {
     let (mut merged, added) = (tables(&old)?, tables(&new)?);
     for (name, table) in added {
         match merged.get(&name) {
-            Some(t) if *t != table => return None,
+            Some(t) if *t != table && selected.contains(&name) => return None,
             Some(_) => {}
             None => {
                 merged.insert(name, table);
@@ -373,31 +375,45 @@ mod tests {
     #[test]
     fn a_record_takes_new_experiments_but_no_other_configuration() {
         // The same configuration, and one with another experiment's table beside it.
-        assert!(merged_record(OLD, OLD).is_some());
+        let a = ["a".to_string(), "b".to_string()];
+        assert!(merged_record(OLD, OLD, &a).is_some());
         let more = "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 3\n\n[protocols.b]\nn = 1\n";
-        let merged: toml::Table = toml::from_str(&merged_record(OLD, more).unwrap()).unwrap();
+        let merged: toml::Table = toml::from_str(&merged_record(OLD, more, &a).unwrap()).unwrap();
         assert_eq!(merged["protocols"]["a"]["pushes"].as_integer(), Some(3));
         assert_eq!(merged["protocols"]["b"]["n"].as_integer(), Some(1));
         // An experiment no longer registered keeps its table in the record.
         let fewer = "[settings]\nscale = 1.0\n";
-        let kept: toml::Table = toml::from_str(&merged_record(OLD, fewer).unwrap()).unwrap();
+        let kept: toml::Table = toml::from_str(&merged_record(OLD, fewer, &a).unwrap()).unwrap();
         assert_eq!(kept["protocols"]["a"]["pushes"].as_integer(), Some(3));
         // Other settings, another table for a shared experiment, or a damaged record: refused.
         assert!(
             merged_record(
                 OLD,
-                "[settings]\nscale = 0.5\n\n[protocols.a]\npushes = 3\n"
+                "[settings]\nscale = 0.5\n\n[protocols.a]\npushes = 3\n",
+                &a
             )
             .is_none()
         );
         assert!(
             merged_record(
                 OLD,
-                "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 4\n"
+                "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 4\n",
+                &a
             )
             .is_none()
         );
-        assert!(merged_record("[settings\n", OLD).is_none());
-        assert!(merged_record(OLD, "[settings]\nscale = 1.0\nextra = 1\n").is_none());
+        // Another table for an experiment outside the selection: the record keeps its own.
+        let other: toml::Table = toml::from_str(
+            &merged_record(
+                OLD,
+                "[settings]\nscale = 1.0\n\n[protocols.a]\npushes = 4\n",
+                &["b".to_string()],
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        assert_eq!(other["protocols"]["a"]["pushes"].as_integer(), Some(3));
+        assert!(merged_record("[settings\n", OLD, &a).is_none());
+        assert!(merged_record(OLD, "[settings]\nscale = 1.0\nextra = 1\n", &a).is_none());
     }
 }
