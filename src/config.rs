@@ -126,6 +126,22 @@ pub fn range_in(field: &str, (a, b): (f64, f64), lo: f64, hi: f64) -> Result<(),
     })
 }
 
+/// Checks a series of pushes as experiments C and `omnidirectional` take it: `pushes` in
+/// [1, [`limits::MAX_PUSHES`]], a non-negative ordered `impulse` range up to
+/// [`limits::MAX_IMPULSE_NS`] and a positive ordered `gap_s` range up to [`limits::MAX_GAP_S`];
+/// errors name the keys `pushes`, `impulse` and `gap_s`.
+pub fn push_series(
+    pushes: usize,
+    impulse: (f64, f64),
+    gap_s: (f64, f64),
+) -> Result<(), ConfigError> {
+    count_in("pushes", pushes, 1, limits::MAX_PUSHES)?;
+    non_negative_range("impulse", impulse)?;
+    range_in("impulse", impulse, 0.0, limits::MAX_IMPULSE_NS)?;
+    positive_range("gap_s", gap_s)?;
+    range_in("gap_s", gap_s, 0.0, limits::MAX_GAP_S)
+}
+
 /// The ranges of the experiments' counts, sizes, durations and magnitudes: what one run can
 /// do in bounded memory and time. A config or command line outside them is refused before
 /// anything runs.

@@ -25,7 +25,7 @@ use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::{PushPlan, ReferenceSchedule};
 use super::summary::{CustomResult, ExperimentResult, Summary};
 use super::trial::{Observer, TrialLog, run_trial};
-use crate::config::limits::{MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MAX_TRIAL_S};
+use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
 use crate::config::{self, ConfigError};
 use crate::control::two_planes::TwoPlanes;
 use crate::control::walker::{FootstepPolicy, Tick, WalkerMode};
@@ -82,11 +82,7 @@ impl Default for OmnidirectionalProtocol {
 
 impl Protocol for OmnidirectionalProtocol {
     fn validate(&self) -> Result<(), ConfigError> {
-        config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
-        config::non_negative_range("impulse", self.impulse)?;
-        config::range_in("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
-        config::positive_range("gap_s", self.gap_s)?;
-        config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)?;
+        config::push_series(self.pushes, self.impulse, self.gap_s)?;
         config::in_range("walk_s", self.walk_s, 1.0, MAX_TRIAL_S)?;
         config::in_range("walk_radius", self.walk_radius, 0.0, MAX_STEP_M)?;
         config::positive_range("walk_hold_s", self.walk_hold_s)?;
@@ -151,9 +147,11 @@ pub fn sector_of(x: f64, y: f64) -> usize {
 /// References shorter than this (m) have no direction: their steps are not counted.
 const MIN_REFERENCE_M: f64 = 0.01;
 
-/// One step of the walk: the reference `(F_R, F_R,y)`, `F_E` and `W_E` (m).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One step of the walk: the reference `(F_R, F_R,y)`, `F_E` and `W_E` (m); also a row of
+/// `omnidirectional_walk.csv`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 struct WalkStep {
+    walker: &'static str,
     time_s: f64,
     f_r_m: f64,
     f_r_y_m: f64,
@@ -161,14 +159,17 @@ struct WalkStep {
     w_e_m: f64,
 }
 
-/// Records the walk's steps: both planes' outcomes come on the tick of the touch-down.
-#[derive(Default)]
-struct WalkSteps(Vec<WalkStep>);
+/// Records `walker`'s steps: both planes' outcomes come on the tick of the touch-down.
+struct WalkSteps {
+    walker: &'static str,
+    steps: Vec<WalkStep>,
+}
 
 impl Observer for WalkSteps {
     fn on_tick(&mut self, time: f64, tick: &Tick) {
         if let (Some(step), Some(lateral)) = (tick.step, tick.lateral_step) {
-            self.0.push(WalkStep {
+            self.steps.push(WalkStep {
+                walker: self.walker,
                 time_s: time,
                 f_r_m: tick.f_r,
                 f_r_y_m: tick.f_r_y,
@@ -179,18 +180,33 @@ impl Observer for WalkSteps {
     }
 }
 
-/// Per sector: the mean of `value` over the steps with a reference in that sector.
-fn by_sector(steps: &[WalkStep], value: impl Fn(&WalkStep) -> f64) -> Vec<Option<f64>> {
-    let mut sums = [(0.0, 0usize); SECTORS];
+impl WalkStep {
+    /// The sector of the step's reference; none for a reference without a direction.
+    fn sector(&self) -> Option<usize> {
+        (self.f_r_m.hypot(self.f_r_y_m) >= MIN_REFERENCE_M)
+            .then(|| sector_of(self.f_r_m, self.f_r_y_m))
+    }
+}
+
+/// Per sector: the steps with a reference in that sector, and the mean of `value` over them.
+fn by_sector(steps: &[WalkStep], value: impl Fn(&WalkStep) -> f64) -> Vec<(usize, Option<f64>)> {
+    let mut sums = [(0usize, 0.0); SECTORS];
     for s in steps {
-        if s.f_r_m.hypot(s.f_r_y_m) >= MIN_REFERENCE_M {
-            let k = sector_of(s.f_r_m, s.f_r_y_m);
-            sums[k].0 += value(s);
-            sums[k].1 += 1;
+        if let Some(k) = s.sector() {
+            sums[k].0 += 1;
+            sums[k].1 += value(s);
         }
     }
     sums.iter()
-        .map(|&(sum, n)| (n > 0).then(|| sum / n as f64))
+        .map(|&(n, sum)| (n, (n > 0).then(|| sum / n as f64)))
+        .collect()
+}
+
+/// The means of [`by_sector`] alone.
+fn means_by_sector(steps: &[WalkStep], value: impl Fn(&WalkStep) -> f64) -> Vec<Option<f64>> {
+    by_sector(steps, value)
+        .into_iter()
+        .map(|(_, m)| m)
         .collect()
 }
 
@@ -202,17 +218,6 @@ struct PushRow {
     time_s: f64,
     impulse_ns: f64,
     fell: bool,
-}
-
-/// One row of `omnidirectional_walk.csv`.
-#[derive(Debug, Default, Serialize)]
-struct WalkRow {
-    walker: &'static str,
-    time_s: f64,
-    f_r_m: f64,
-    f_r_y_m: f64,
-    f_e_m: f64,
-    w_e_m: f64,
 }
 
 /// Added to the run's seed for the walk's references (the pushes use `seed * 8 + sector`).
@@ -352,9 +357,12 @@ impl Experiment for Omnidirectional {
                 } else {
                     None
                 };
-                let mut steps = WalkSteps::default();
+                let mut steps = WalkSteps {
+                    walker,
+                    steps: Vec::new(),
+                };
                 let log = run_trial(&setup, policy, &mut [&mut steps])?;
-                Ok((log, steps.0))
+                Ok((log, steps.steps))
             })
             .collect();
         let mut result = OmnidirectionalResult {
@@ -376,31 +384,19 @@ impl Experiment for Omnidirectional {
             let start = ctx.settings.walker.start_ramp_s;
             let steps: Vec<WalkStep> = steps.into_iter().filter(|s| s.time_s > start).collect();
             let name = walker.to_string();
-            result
-                .walk_error_m
-                .insert(name.clone(), by_sector(&steps, |s| s.f_e_m.hypot(s.w_e_m)));
+            let (counts, errors) = by_sector(&steps, |s| s.f_e_m.hypot(s.w_e_m))
+                .into_iter()
+                .unzip();
+            result.walk_steps.insert(name.clone(), counts);
+            result.walk_error_m.insert(name.clone(), errors);
             result
                 .walk_step_error_m
-                .insert(name.clone(), by_sector(&steps, |s| s.f_e_m.abs()));
+                .insert(name.clone(), means_by_sector(&steps, |s| s.f_e_m.abs()));
             result
                 .walk_width_error_m
-                .insert(name.clone(), by_sector(&steps, |s| s.w_e_m.abs()));
-            let mut n = vec![0usize; SECTORS];
-            for s in &steps {
-                if s.f_r_m.hypot(s.f_r_y_m) >= MIN_REFERENCE_M {
-                    n[sector_of(s.f_r_m, s.f_r_y_m)] += 1;
-                }
-            }
-            result.walk_steps.insert(name.clone(), n);
+                .insert(name.clone(), means_by_sector(&steps, |s| s.w_e_m.abs()));
             result.walk_falls.insert(name, log.falls.len());
-            walk_rows.extend(steps.into_iter().map(|s| WalkRow {
-                walker,
-                time_s: s.time_s,
-                f_r_m: s.f_r_m,
-                f_r_y_m: s.f_r_y_m,
-                f_e_m: s.f_e_m,
-                w_e_m: s.w_e_m,
-            }));
+            walk_rows.extend(steps);
         }
         let mut rows: Vec<PushRow> = Vec::new();
         for (&(k, w), outcome) in jobs.iter().zip(outcomes) {

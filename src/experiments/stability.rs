@@ -15,7 +15,6 @@ use super::settings::{LearnerFactory, Settings};
 use super::summary::FallCauseCounts;
 use super::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
-use crate::config::limits::{MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult, Summary};
@@ -59,11 +58,7 @@ impl Protocol for StabilityProtocol {
     /// Checks at least one push, a non-negative ordered impulse range, a positive ordered gap
     /// and a unit direction; errors name the field (relative to the protocol's section).
     fn validate(&self) -> Result<(), ConfigError> {
-        config::count_in("pushes", self.pushes, 1, MAX_PUSHES)?;
-        config::non_negative_range("impulse", self.impulse)?;
-        config::range_in("impulse", self.impulse, 0.0, MAX_IMPULSE_NS)?;
-        config::positive_range("gap_s", self.gap_s)?;
-        config::range_in("gap_s", self.gap_s, 0.0, MAX_GAP_S)?;
+        config::push_series(self.pushes, self.impulse, self.gap_s)?;
         config::unit_direction("direction", &self.direction)
     }
 }

@@ -280,9 +280,9 @@ pub fn run_trial(
     let mut offset = 0.0;
     let mut ready_at = 0.0;
     let mut push_ready_at = 0.0;
-    // The step in progress as of the last walker tick (what a fall interrupts).
-    let mut last_outcome = None;
-    let mut last_lateral = None;
+    // The estimate and reference of the last walker tick: the step in progress that a fall
+    // interrupts.
+    let mut last_tick = None;
 
     while offset + robot.time() < setup.duration_s {
         let sensors = robot.sensors();
@@ -303,8 +303,7 @@ pub fn run_trial(
             Some(walker.tick_2d(&sensors, [f_r, f_r_y], policy.as_deref_mut())?)
         };
         if let Some(tick) = &tick {
-            last_outcome = Some(Walker::outcome_at(&tick.estimate, tick.f_r));
-            last_lateral = Some(walker.lateral_outcome_at(&tick.estimate));
+            last_tick = Some((tick.estimate, tick.f_r));
         }
         let targets = match &tick {
             Some(tick) => {
@@ -360,17 +359,19 @@ pub fn run_trial(
             // The learner learns from the step in progress or forgets it (its setting).
             let mut learning_gain = None;
             if let Some(p) = policy.as_deref_mut() {
-                match last_outcome.take() {
-                    Some(outcome) => {
-                        learning_gain = p.fall(&outcome).map_err(WalkerError::from)?.map(|r| r.gain)
+                match last_tick.take() {
+                    Some((estimate, f_r)) => {
+                        let outcome = Walker::outcome_at(&estimate, f_r);
+                        learning_gain =
+                            p.fall(&outcome).map_err(WalkerError::from)?.map(|r| r.gain);
+                        // The walker is as it was at that tick: it is reset below.
+                        let lateral = walker.lateral_outcome_at(&estimate);
+                        p.lateral_fall(&lateral).map_err(WalkerError::from)?;
                     }
-                    None => p.discard_step(),
-                }
-                match last_lateral.take() {
-                    Some(outcome) => {
-                        p.lateral_fall(&outcome).map_err(WalkerError::from)?;
+                    None => {
+                        p.discard_step();
+                        p.discard_lateral_step();
                     }
-                    None => p.discard_lateral_step(),
                 }
             }
             let record = FallRecord {
