@@ -611,19 +611,27 @@ fn progress_bar(len: usize) -> Result<indicatif::ProgressBar, String> {
 }
 
 /// Advances `bar` by one finished run; off a terminal (CI, nohup, Slurm), prints one line per
-/// run instead: its count, status, the time elapsed and an estimate of the time left.
+/// run instead: its count, status, the time elapsed and an estimate of the time left. A run
+/// finished earlier is taken off the bar's length, so that the count and the estimate cover
+/// only the runs this command computes.
 fn progress(bar: &indicatif::ProgressBar, o: &RunOutcome) {
     bar.set_message(o.spec.id());
+    let status = match &o.status {
+        RunStatus::Done { wall_time_s } => format!("done in {wall_time_s:.1} s"),
+        RunStatus::Skipped => {
+            bar.dec_length(1);
+            if bar.is_hidden() {
+                eprintln!("{}: finished earlier", o.spec.id());
+            }
+            return;
+        }
+        RunStatus::Failed(_) => "failed".to_string(),
+    };
     bar.inc(1);
     if bar.is_hidden() {
-        let status = match &o.status {
-            RunStatus::Done { wall_time_s } => format!("done in {wall_time_s:.1} s"),
-            RunStatus::Skipped => "finished earlier".to_string(),
-            RunStatus::Failed(_) => "failed".to_string(),
-        };
         let (k, n) = (bar.position(), bar.length().unwrap_or(0));
         let elapsed = bar.elapsed().as_secs_f64();
-        // The mean time per finished run so far, for the runs still to come.
+        // The mean time per computed run so far, for the runs still to come.
         let left = if k < n && k > 0 {
             format!(
                 ", about {} left",

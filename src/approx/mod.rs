@@ -20,6 +20,7 @@ mod persist;
 pub mod problems;
 mod rbf;
 mod square_matrix;
+mod stacked;
 
 pub use any::{AnyApproximator, ApproxKind};
 pub use batch::BatchApproximator;
@@ -32,6 +33,7 @@ pub use kernel_ridge::{KernelRidge, KernelRidgeConfig};
 pub use lwpr::{Kernel, Lwpr, LwprConfig, MAX_INPUT, MAX_TARGET, ReceptiveField, SubModel};
 pub use persist::Persist;
 pub use rbf::{Rbf, RbfConfig, RbfUpdate};
+pub use stacked::Stacked;
 
 /// An online regressor from `input_dim` inputs to `output_dim` outputs.
 ///

@@ -4,13 +4,14 @@
 use super::BenchError;
 use crate::Named;
 use crate::approx::{
-    ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist,
+    ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist, Stacked,
 };
 use crate::config::ConfigError;
+use crate::control::coupled::{CoupledLearner, coupled_bounds};
 use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
 use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::experiment::{Experiment, RunContext, RunLearner};
+use crate::experiments::experiment::{CoupledRunLearner, Experiment, RunContext, RunLearner};
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::Settings;
 use crate::experiments::suite;
@@ -263,6 +264,31 @@ impl Registry {
         )
     }
 
+    /// A builder of coupled learners (both planes in one model) of approximator `approx` and
+    /// rule `rule`: the factory builds each of the two outputs' approximators over both
+    /// planes' inputs ([`coupled_bounds`]), and each plane gets a fresh rule.
+    pub fn coupled_learner_builder(
+        &self,
+        approx: &str,
+        rule: &str,
+    ) -> Result<
+        impl Fn(LearnerConfig) -> Result<CoupledRunLearner, LearnerError> + Sync + '_,
+        BenchError,
+    > {
+        let make_approx = find("approximator", &self.approximators, approx)?;
+        let make_rule = find("rule", &self.rules, rule)?;
+        let bounds =
+            coupled_bounds(&learner_bounds()?).map_err(|e| BenchError::Selection(e.to_string()))?;
+        Ok(
+            move |config: LearnerConfig| -> Result<CoupledRunLearner, LearnerError> {
+                let approx_error = |source| LearnerError::Approx { applied: 0, source };
+                let head = || make_approx(&bounds).map_err(approx_error);
+                let stacked = Stacked::new(vec![head()?, head()?]).map_err(approx_error)?;
+                CoupledLearner::new(stacked, [make_rule(), make_rule()], config)
+            },
+        )
+    }
+
     /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and CSV into `dir` and
     /// returns its summary (the caller writes `summary.json`). Every learner of the run has its
     /// rule reseeded with the run's seed ([`FootstepLearner::reseed`]).
@@ -285,6 +311,14 @@ impl Registry {
             learner.reseed(spec.seed);
             Ok(learner)
         };
+        let build_coupled = self
+            .coupled_learner_builder(&spec.approx, &spec.rule)
+            .map_err(invalid)?;
+        let seeded_coupled = |config: LearnerConfig| -> Result<CoupledRunLearner, LearnerError> {
+            let mut learner = build_coupled(config)?;
+            learner.reseed(spec.seed);
+            Ok(learner)
+        };
         let ctx = RunContext {
             settings,
             protocols,
@@ -292,6 +326,7 @@ impl Registry {
             approx: &spec.approx,
             rule: &spec.rule,
             learner: &seeded,
+            coupled_learner: &seeded_coupled,
         };
         let result = experiment.run(&ctx, dir)?;
         if result.name() != spec.experiment {

@@ -69,7 +69,7 @@ use thiserror::Error;
 
 /// Retries of the gain guard before it gives up on a touch-down (and leaves the model as it
 /// was).
-const GUARD_RETRIES: usize = 6;
+pub(crate) const GUARD_RETRIES: usize = 6;
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
 pub const LEARNER_INPUTS: usize = 3;
@@ -189,8 +189,7 @@ pub struct LearnerConfig {
     /// Learn from a step that ended in a fall ([`FootstepLearner::fall`]): the step in
     /// progress at the fall is treated as if it had touched down, with theta_E clamped to
     /// +-`fall_theta_limit`. On by default: the paper's robot "learned from this experience"
-    /// when its first pushes made it fall; measured both ways in the README (on the
-    /// calibrated robot level in C and fewer falls in B, on the mismatch robot a higher I50).
+    /// when its first pushes made it fall (both ways are compared in `docs/learner.md`).
     pub learn_from_falls: bool,
     /// |theta_E| and |theta_E_dot| / 10 at a fall are clamped to this before the rule sees them
     /// (rad, finite, > 0; default 0.3): past the fall threshold the angle says nothing more.
@@ -299,7 +298,7 @@ impl Prior {
 }
 
 /// The van der Corput radical inverse of `i` in `base`, in [0, 1).
-fn radical_inverse(mut i: usize, base: usize) -> f64 {
+pub(crate) fn radical_inverse(mut i: usize, base: usize) -> f64 {
     let (mut inv, mut f) = (0.0, 1.0 / base as f64);
     while i > 0 {
         inv += (i % base) as f64 * f;
@@ -655,13 +654,26 @@ impl StepInProgress {
     }
 }
 
+/// Anti-windup (conditional integration): `change` of a prediction `before` limited so that
+/// the target goes no further past an end of `reach` than the prediction already is (and is
+/// never pulled into it: outside the reach every offset has the same effect at that tick).
+pub(crate) fn windup(change: f64, before: f64, reach: [f64; 2]) -> f64 {
+    if change > 0.0 {
+        change.min((reach[1] - before).max(0.0))
+    } else if change < 0.0 {
+        change.max((reach[0] - before).min(0.0))
+    } else {
+        change
+    }
+}
+
 /// A reach bound as saved: `None` for an infinite side.
 fn finite_or_none(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
 }
 
 /// Whether `[lo, hi]` is a reach: a non-empty interval, bounds possibly infinite.
-fn is_reach(lo: f64, hi: f64) -> bool {
+pub(crate) fn is_reach(lo: f64, hi: f64) -> bool {
     lo <= hi && lo < f64::INFINITY && hi > f64::NEG_INFINITY
 }
 
@@ -1088,14 +1100,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             let before = self.predict_array(x)?;
             let mut change = step_size - self.config.leakage * before;
             if self.config.anti_windup {
-                // Conditional integration: never further past an end of the reach than the
-                // prediction already is (and never pulled into it: outside the reach every
-                // offset has the same effect at this tick).
-                if change > 0.0 {
-                    change = change.min((reach[1] - before).max(0.0));
-                } else if change < 0.0 {
-                    change = change.max((reach[0] - before).min(0.0));
-                }
+                change = windup(change, before, *reach);
             }
             let target = before + change;
             if !target.is_finite() {

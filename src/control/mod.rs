@@ -4,6 +4,7 @@
 //! footstep learner -> step motion generator -> [`JointTargets`].
 
 pub mod capture_step;
+pub mod coupled;
 pub mod estimator;
 pub mod learner;
 pub mod lipm;

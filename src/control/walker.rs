@@ -223,6 +223,38 @@ pub trait FootstepPolicy {
     }
     /// Forget the current lateral step without learning.
     fn discard_lateral_step(&mut self) {}
+
+    /// Both planes' offsets for this tick, `(dF, dW)`: what the walker calls. Default:
+    /// [`Self::offset`], then [`Self::lateral_offset`]. A policy that learns both planes in one
+    /// model (the [`CoupledLearner`](super::coupled::CoupledLearner)) answers here.
+    fn offsets(
+        &mut self,
+        sagittal: LearnerInput,
+        lateral: LearnerInput,
+    ) -> Result<(f64, Option<f64>), LearnerError> {
+        Ok((self.offset(sagittal)?, self.lateral_offset(lateral)?))
+    }
+    /// Both planes' step ended: what the walker calls. Default: [`Self::touch_down`], then
+    /// [`Self::lateral_touch_down`].
+    fn touch_downs(
+        &mut self,
+        sagittal: &StepOutcome,
+        lateral: &StepOutcome,
+    ) -> Result<(TouchDownReport, Option<TouchDownReport>), LearnerError> {
+        Ok((
+            self.touch_down(sagittal)?,
+            self.lateral_touch_down(lateral)?,
+        ))
+    }
+    /// Both planes' step in progress ended in a fall: what a trial calls. Default:
+    /// [`Self::fall`], then [`Self::lateral_fall`].
+    fn falls(
+        &mut self,
+        sagittal: &StepOutcome,
+        lateral: &StepOutcome,
+    ) -> Result<(Option<TouchDownReport>, Option<TouchDownReport>), LearnerError> {
+        Ok((self.fall(sagittal)?, self.lateral_fall(lateral)?))
+    }
 }
 
 impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
@@ -398,17 +430,15 @@ impl Walker {
         } else {
             self.generator.fade_after(self.config.motion.fade_in)
         };
-        if let (Some(outcome), Some(p)) = (&step, policy.as_deref_mut()) {
+        if let (Some(outcome), Some(lateral), Some(p)) =
+            (&step, &lateral_step, policy.as_deref_mut())
+        {
             if engaged {
-                learning = Some(p.touch_down(outcome)?);
+                let (s, l) = p.touch_downs(outcome, lateral)?;
+                learning = Some(s);
+                lateral_learning = l;
             } else {
                 p.discard_step();
-            }
-        }
-        if let (Some(outcome), Some(p)) = (&lateral_step, policy.as_deref_mut()) {
-            if engaged {
-                lateral_learning = p.lateral_touch_down(outcome)?;
-            } else {
                 p.discard_lateral_step();
             }
         }
@@ -418,24 +448,20 @@ impl Walker {
         let (command, decision) = match self.config.mode {
             WalkerMode::OpenLoop => (self.generator.open_loop(f_r), None),
             WalkerMode::CaptureStep | WalkerMode::LearnerOnly => {
-                if let Some(p) = policy.as_deref_mut() {
-                    learned_offset = p.offset(LearnerInput::new(
-                        estimate.theta_e,
-                        estimate.theta_e_rate,
-                        f_r,
-                    ))?;
-                    learned_offset *= engagement;
-                }
                 let support = self.generator.support();
-                // The lateral learner's width offset, towards the swing leg's side.
+                // The lateral learner's input and width offset, towards the swing leg's side.
                 let swing_sign = support.other().sign();
                 let [lean, lean_rate] = lean_towards(&estimate, support.other());
                 let width_r = self.width_reference(support.other()) - self.reference_width();
-                if let Some(p) = policy.as_deref_mut()
-                    && let Some(dw) =
-                        p.lateral_offset(LearnerInput::new(lean, lean_rate, width_r))?
-                {
-                    lateral_offset = swing_sign * dw * engagement;
+                if let Some(p) = policy.as_deref_mut() {
+                    let (df, dw) = p.offsets(
+                        LearnerInput::new(estimate.theta_e, estimate.theta_e_rate, f_r),
+                        LearnerInput::new(lean, lean_rate, width_r),
+                    )?;
+                    learned_offset = df * engagement;
+                    if let Some(dw) = dw {
+                        lateral_offset = swing_sign * dw * engagement;
+                    }
                 }
                 let com = com_relative_to(&estimate, support);
                 // In learner-only mode the offset is the whole sagittal step.

@@ -10,8 +10,9 @@ use super::error::ExperimentError;
 use super::paired::Paired;
 use super::protocol::{ProtocolTables, Table};
 use super::settings::Settings;
-use crate::approx::BoxedApproximator;
+use crate::approx::{BoxedApproximator, Stacked};
 use crate::config::ConfigError;
+use crate::control::coupled::CoupledLearner;
 use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::rules::LearningRule;
@@ -22,6 +23,14 @@ pub type RunLearner = FootstepLearner<BoxedApproximator, Box<dyn LearningRule>>;
 
 /// Builds a fresh, untrained learner of a run's approximator and rule with a learner config.
 pub type LearnerBuilder<'a> = dyn Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + 'a;
+
+/// The coupled learner of a run (both planes in one model): two of the run's approximators
+/// over both planes' inputs, one per output, and the run's rule for each plane.
+pub type CoupledRunLearner = CoupledLearner<Stacked<BoxedApproximator>, Box<dyn LearningRule>>;
+
+/// Builds a fresh, untrained coupled learner of a run's approximator and rule.
+pub type CoupledBuilder<'a> =
+    dyn Fn(LearnerConfig) -> Result<CoupledRunLearner, LearnerError> + Sync + 'a;
 
 /// What one run of an experiment is given.
 pub struct RunContext<'a> {
@@ -40,12 +49,20 @@ pub struct RunContext<'a> {
     /// rule reseeded with the run's seed (so that a rule that explores explores differently per
     /// seed, reproducibly).
     pub learner: &'a LearnerBuilder<'a>,
+    /// Builds a fresh coupled learner (both planes in one model) of the run's approximator and
+    /// rule with `config`, its rules reseeded with the run's seed.
+    pub coupled_learner: &'a CoupledBuilder<'a>,
 }
 
 impl RunContext<'_> {
     /// A fresh learner with the settings' learner config.
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
         (self.learner)(self.settings.learner)
+    }
+
+    /// A fresh coupled learner with the settings' learner config.
+    pub fn make_coupled_learner(&self) -> Result<CoupledRunLearner, LearnerError> {
+        (self.coupled_learner)(self.settings.learner)
     }
 }
 

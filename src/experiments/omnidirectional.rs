@@ -65,6 +65,44 @@ pub struct OmnidirectionalProtocol {
     pub walk_radius: f64,
     /// How long each reference of the walk is held (s).
     pub walk_hold_s: (f64, f64),
+    /// How the walker `both` learns the two planes: two uncoupled learners (the paper's
+    /// proposal, the default) or one coupled learner with two outputs over both planes' inputs.
+    #[serde(skip_serializing_if = "BothPlanes::is_uncoupled")]
+    pub both_planes: BothPlanes,
+}
+
+/// How the walker `both` learns its two planes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, strum::Display)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum BothPlanes {
+    /// Two learners, one per plane, each from its own plane only ([`TwoPlanes`]).
+    #[default]
+    Uncoupled,
+    /// One learner with two outputs (dF, dW) over both planes' inputs
+    /// ([`CoupledLearner`](crate::control::coupled::CoupledLearner)).
+    Coupled,
+}
+
+impl BothPlanes {
+    /// Whether this is the default, [`BothPlanes::Uncoupled`] (left out of written tables).
+    pub fn is_uncoupled(&self) -> bool {
+        *self == BothPlanes::Uncoupled
+    }
+}
+
+/// The learners of the walker `both`, as the protocol's [`BothPlanes`] asks.
+fn both_learners(
+    ctx: &RunContext<'_>,
+    how: BothPlanes,
+) -> Result<Box<dyn FootstepPolicy>, ExperimentError> {
+    Ok(match how {
+        BothPlanes::Uncoupled => Box::new(TwoPlanes {
+            sagittal: ctx.make_learner()?,
+            lateral: ctx.make_learner()?,
+        }),
+        BothPlanes::Coupled => Box::new(ctx.make_coupled_learner()?),
+    })
 }
 
 impl Default for OmnidirectionalProtocol {
@@ -76,6 +114,7 @@ impl Default for OmnidirectionalProtocol {
             walk_s: 450.0,
             walk_radius: 0.08,
             walk_hold_s: (4.0, 8.0),
+            both_planes: BothPlanes::Uncoupled,
         }
     }
 }
@@ -121,6 +160,9 @@ pub struct OmnidirectionalResult {
     /// The walk: falls per walker.
     #[serde(default)]
     pub walk_falls: BTreeMap<String, usize>,
+    /// How the walker `both` learned its two planes (left out when uncoupled).
+    #[serde(default, skip_serializing_if = "BothPlanes::is_uncoupled")]
+    pub both_planes: BothPlanes,
 }
 
 impl OmnidirectionalResult {
@@ -304,22 +346,12 @@ impl Experiment for Omnidirectional {
                 let setup = ctx
                     .settings
                     .push_trial(mode, 0.0, &plan, seed, direction(sectors[k]));
-                let mut sagittal;
-                let mut both;
-                let policy: Option<&mut dyn FootstepPolicy> = match w {
-                    2 => {
-                        sagittal = ctx.make_learner()?;
-                        Some(&mut sagittal)
-                    }
-                    3 => {
-                        both = TwoPlanes {
-                            sagittal: ctx.make_learner()?,
-                            lateral: ctx.make_learner()?,
-                        };
-                        Some(&mut both)
-                    }
+                let mut learners: Option<Box<dyn FootstepPolicy>> = match w {
+                    2 => Some(Box::new(ctx.make_learner()?)),
+                    3 => Some(both_learners(ctx, p.both_planes)?),
                     _ => None,
                 };
+                let policy = learners.as_deref_mut();
                 let (log, falls) = run_classified(&setup, policy)?;
                 let samples: Vec<PushResult> =
                     log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
@@ -347,16 +379,12 @@ impl Experiment for Omnidirectional {
                     walk_s,
                 );
                 setup.lateral_reference = Some(walk_y.clone());
-                let mut both;
-                let policy: Option<&mut dyn FootstepPolicy> = if walker == "both" {
-                    both = TwoPlanes {
-                        sagittal: ctx.make_learner()?,
-                        lateral: ctx.make_learner()?,
-                    };
-                    Some(&mut both)
+                let mut learners = if walker == "both" {
+                    Some(both_learners(ctx, p.both_planes)?)
                 } else {
                     None
                 };
+                let policy = learners.as_deref_mut();
                 let mut steps = WalkSteps {
                     walker,
                     steps: Vec::new(),
@@ -376,6 +404,7 @@ impl Experiment for Omnidirectional {
             walk_width_error_m: BTreeMap::new(),
             walk_steps: BTreeMap::new(),
             walk_falls: BTreeMap::new(),
+            both_planes: p.both_planes,
         };
         let mut walk_rows = Vec::new();
         for (walker, walk) in WALK_WALKERS.iter().zip(walks) {

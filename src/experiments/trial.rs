@@ -362,11 +362,11 @@ pub fn run_trial(
                 match last_tick.take() {
                     Some((estimate, f_r)) => {
                         let outcome = Walker::outcome_at(&estimate, f_r);
-                        learning_gain =
-                            p.fall(&outcome).map_err(WalkerError::from)?.map(|r| r.gain);
                         // The walker is as it was at that tick: it is reset below.
                         let lateral = walker.lateral_outcome_at(&estimate);
-                        p.lateral_fall(&lateral).map_err(WalkerError::from)?;
+                        let (sagittal, _) =
+                            p.falls(&outcome, &lateral).map_err(WalkerError::from)?;
+                        learning_gain = sagittal.map(|r| r.gain);
                     }
                     None => {
                         p.discard_step();

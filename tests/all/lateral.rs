@@ -24,16 +24,20 @@ fn learner() -> FootstepLearner<AnyApproximator, PendulumCart> {
 /// What one run saw: every touch-down's frontal outcome with the side that landed and its time,
 /// and the lateral offsets applied (heading frame).
 #[derive(Default)]
-struct Run {
-    steps: Vec<(Side, f64, StepOutcome)>,
-    offsets: Vec<f64>,
-    falls: usize,
+pub(crate) struct Run {
+    pub(crate) steps: Vec<(Side, f64, StepOutcome)>,
+    pub(crate) offsets: Vec<f64>,
+    pub(crate) falls: usize,
 }
 
 /// Steps in place for `seconds` with `policy`, pushed with `push` (Ns, world frame) just
 /// after the first touch-down from 4 s on of the foot opposite the push's side (so that the
 /// foot on the pushed side is swinging).
-fn step_in_place(seconds: f64, push: [f64; 3], mut policy: Option<&mut dyn FootstepPolicy>) -> Run {
+pub(crate) fn step_in_place(
+    seconds: f64,
+    push: [f64; 3],
+    mut policy: Option<&mut dyn FootstepPolicy>,
+) -> Run {
     let stance_for_push = if push[1] >= 0.0 {
         Side::Right
     } else {

@@ -12,6 +12,8 @@ mod conformance_kernel_ridge;
 mod conformance_lwpr;
 mod conformance_rbf;
 mod conformance_smoke;
+mod conformance_stacked;
+mod coupled;
 mod estimator_scripted;
 mod exact_kernel_ridge;
 mod experiment_stability;

@@ -1,0 +1,276 @@
+//! The coupled learner: one approximator with two outputs (dF, dW) over both planes' inputs,
+//! each plane's rule teaching its own output, with the sagittal learner's safeguards; on the
+//! humanoid and in experiment `omnidirectional` as its `both_planes = "coupled"` setting.
+
+use steplearn::approx::{AnyApproximator, ApproxKind, Stacked};
+use steplearn::bench::{Bench, Registry};
+use steplearn::control::coupled::{CoupledLearner, coupled_bounds};
+use steplearn::control::learner::{
+    InputGrid, LearnerConfig, LearnerError, LearnerInput, TrustFallback,
+};
+use steplearn::control::walker::FootstepPolicy;
+use steplearn::experiments::config_file::ConfigFile;
+use steplearn::rules::{PendulumCart, StepOutcome};
+
+use crate::lateral::step_in_place;
+
+fn heads() -> Stacked<AnyApproximator> {
+    let bounds = coupled_bounds(&InputGrid::default().input_box().unwrap()).unwrap();
+    assert_eq!(bounds.dim(), 6);
+    let head = || ApproxKind::Lwpr.build(&bounds).unwrap();
+    Stacked::new(vec![head(), head()]).unwrap()
+}
+
+fn coupled(config: LearnerConfig) -> CoupledLearner<Stacked<AnyApproximator>, PendulumCart> {
+    CoupledLearner::new(heads(), [PendulumCart::default(); 2], config).unwrap()
+}
+
+fn outcome(theta_e: f64, f_e: f64) -> StepOutcome {
+    StepOutcome {
+        theta_e,
+        theta_e_dot: 0.0,
+        f_e,
+        f_r: 0.0,
+    }
+}
+
+const SAGITTAL: LearnerInput = LearnerInput {
+    theta_e: 0.05,
+    theta_e_dot: 0.2,
+    f_r: 0.0,
+};
+const LATERAL: LearnerInput = LearnerInput {
+    theta_e: 0.02,
+    theta_e_dot: -0.1,
+    f_r: 0.0,
+};
+
+fn at(s: LearnerInput, l: LearnerInput) -> [f64; 6] {
+    [
+        s.theta_e,
+        s.theta_e_dot,
+        s.f_r,
+        l.theta_e,
+        l.theta_e_dot,
+        l.f_r,
+    ]
+}
+
+#[test]
+fn each_plane_teaches_its_own_output_within_the_gain_guard() {
+    let config = LearnerConfig {
+        trust_region: None,
+        ..LearnerConfig::default()
+    };
+    let mut learner = coupled(config);
+    let x = at(SAGITTAL, LATERAL);
+    let prior = learner.predict(&x).unwrap();
+    assert!(prior.iter().all(|v| v.abs() < 1e-3), "{prior:?}");
+    // A trunk still pitched forward asks for a longer step (G > 0); a step wider than the
+    // reference asks for a narrower one (G < 0).
+    for _ in 0..3 {
+        learner.query(SAGITTAL, LATERAL).unwrap();
+        let [s, l] = learner
+            .touch_down([&outcome(0.1, 0.0), &outcome(0.0, 0.05)])
+            .unwrap();
+        assert!(s.gradient > 0.0 && l.gradient < 0.0);
+        for r in [s, l] {
+            assert_eq!(r.samples, 1);
+            assert!(r.gain.abs() <= 0.2 + 1e-12, "{r:?}");
+        }
+    }
+    let [df, dw] = learner.predict(&x).unwrap();
+    assert!(df > prior[0] + 1e-3, "dF {df}");
+    assert!(dw < prior[1] - 1e-3, "dW {dw}");
+    // One model over both planes: the same sagittal state with another lateral state is
+    // another input, where the sagittal output learned less.
+    let far = at(
+        SAGITTAL,
+        LearnerInput {
+            theta_e: -0.25,
+            theta_e_dot: 1.4,
+            f_r: 0.15,
+        },
+    );
+    let [df_far, _] = learner.predict(&far).unwrap();
+    assert!(
+        df_far.abs() < 0.5 * df.abs(),
+        "dF {df} here, {df_far} there"
+    );
+}
+
+#[test]
+fn a_plane_whose_reach_is_exhausted_is_not_wound_up() {
+    let mut learner = coupled(LearnerConfig {
+        trust_region: None,
+        ..LearnerConfig::default()
+    });
+    let x = at(SAGITTAL, LATERAL);
+    let [df_before, dw_before] = learner.predict(&x).unwrap();
+    learner.query(SAGITTAL, LATERAL).unwrap();
+    // No narrower width can change the step: the lateral target stays where it is.
+    learner.set_reach(1, dw_before, 1.0).unwrap();
+    learner
+        .touch_down([&outcome(0.1, 0.0), &outcome(0.0, 0.05)])
+        .unwrap();
+    let [df, dw] = learner.predict(&x).unwrap();
+    assert!(df > df_before + 1e-4, "{df_before} -> {df}");
+    assert!(
+        (dw - dw_before).abs() < 0.01 * (df - df_before),
+        "{dw_before} -> {dw}"
+    );
+    assert!(learner.set_reach(2, 0.0, 1.0).is_err());
+    assert!(learner.set_reach(1, 1.0, 0.0).is_err());
+}
+
+#[test]
+fn bad_input_and_unsupported_settings_are_refused_and_change_nothing() {
+    // Wrong shape: a one-output, three-input approximator.
+    let bounds = InputGrid::default().input_box().unwrap();
+    let small = Stacked::new(vec![ApproxKind::Lwpr.build(&bounds).unwrap()]).unwrap();
+    let err = CoupledLearner::new(
+        small,
+        [PendulumCart::default(); 2],
+        LearnerConfig::default(),
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("6 inputs and 2 outputs"), "{err}");
+    for config in [
+        LearnerConfig {
+            max_step_error: Some(0.1),
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            trust_fallback: TrustFallback::Nominal,
+            ..LearnerConfig::default()
+        },
+        LearnerConfig {
+            eta: f64::NAN,
+            ..LearnerConfig::default()
+        },
+    ] {
+        let r = CoupledLearner::new(heads(), [PendulumCart::default(); 2], config);
+        assert!(matches!(r, Err(LearnerError::InvalidConfig { .. })));
+    }
+    let mut learner = coupled(LearnerConfig::default());
+    let nan = LearnerInput {
+        theta_e: f64::NAN,
+        ..LATERAL
+    };
+    assert!(matches!(
+        learner.query(SAGITTAL, nan),
+        Err(LearnerError::NonFinite {
+            what: "lateral lean",
+            ..
+        })
+    ));
+    // Nothing was recorded: the next step teaches from its one query only.
+    learner.query(SAGITTAL, LATERAL).unwrap();
+    let bad = outcome(f64::INFINITY, 0.0);
+    assert!(learner.touch_down([&outcome(0.1, 0.0), &bad]).is_err());
+    let [s, _] = learner
+        .touch_down([&outcome(0.1, 0.0), &outcome(0.0, 0.0)])
+        .unwrap();
+    assert_eq!(s.samples, 1);
+}
+
+#[test]
+fn through_the_one_plane_methods_it_is_a_sagittal_learner_with_the_other_plane_at_rest() {
+    let mut learner = coupled(LearnerConfig {
+        trust_region: None,
+        ..LearnerConfig::default()
+    });
+    let df = FootstepPolicy::offset(&mut learner, SAGITTAL).unwrap();
+    assert_eq!(
+        df,
+        learner
+            .predict(&at(SAGITTAL, LearnerInput::default()))
+            .unwrap()[0]
+    );
+    assert_eq!(learner.lateral_offset(LATERAL).unwrap(), None);
+    let report = FootstepPolicy::touch_down(&mut learner, &outcome(0.1, 0.0)).unwrap();
+    assert!(report.gradient > 0.0 && report.samples == 1);
+    // Both planes at once: the walker's calls.
+    let (df, dw) = learner.offsets(SAGITTAL, LATERAL).unwrap();
+    assert!(df.is_finite() && dw.is_some());
+    let (s, l) = learner
+        .falls(&outcome(2.0, 0.0), &outcome(-2.0, 0.0))
+        .unwrap();
+    // Learning from falls clamps theta_E to the fall limit before the rule sees it.
+    let lim = LearnerConfig::default().fall_theta_limit;
+    assert_eq!(s.unwrap().gradient, lim);
+    assert_eq!(l.unwrap().gradient, -lim);
+}
+
+#[test]
+fn on_the_humanoid_the_coupled_learner_learns_the_width_after_a_side_push() {
+    let mut learner = coupled(LearnerConfig::default());
+    let learned = step_in_place(14.0, [0.0, 5.0, 0.0], Some(&mut learner));
+    let model = step_in_place(14.0, [0.0, 5.0, 0.0], None);
+    assert_eq!(learned.falls + model.falls, 0);
+    assert!(learned.offsets.iter().any(|o| *o != 0.0));
+    let err = |r: &crate::lateral::Run| {
+        let e: Vec<f64> = r
+            .steps
+            .iter()
+            .filter(|(_, t, _)| *t > 8.0)
+            .map(|(_, _, o)| o.f_e.abs())
+            .collect();
+        e.iter().sum::<f64>() / e.len() as f64
+    };
+    assert!(
+        err(&learned) < err(&model),
+        "mean |width error| after 8 s: coupled {:.4} m, model {:.4} m",
+        err(&learned),
+        err(&model)
+    );
+}
+
+#[test]
+fn experiment_omnidirectional_runs_both_planes_coupled_as_a_setting() {
+    let dir = std::env::temp_dir().join(format!("steplearn-coupled-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let config = ConfigFile::from_toml(
+        "[protocols.omnidirectional]\nboth_planes = \"coupled\"\nwalk_s = 8.0\n\
+         walk_hold_s = [2.0, 3.0]\n",
+    )
+    .unwrap();
+    Bench::new(&Registry::builtin())
+        .config(config)
+        .approximators(["lwpr"])
+        .rules(["pendulum-cart"])
+        .experiments(["omnidirectional"])
+        .seeds(1)
+        .scale(0.02)
+        .out(&dir)
+        .run()
+        .unwrap();
+    let run = dir.join("omnidirectional__lwpr__pendulum-cart__s0");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(run.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(json["both_planes"], "coupled");
+    let i50 = json["i50_ns"]["both"].as_array().unwrap();
+    assert_eq!(i50.len(), 8);
+    assert!(i50.iter().all(|v| v.as_f64().is_some_and(f64::is_finite)));
+    // A typo in the setting is an error naming it, never a silent default.
+    let err = match ConfigFile::from_toml("[protocols.omnidirectional]\nboth_planes = \"couple\"\n")
+    {
+        Err(e) => e.to_string(),
+        Ok(c) => Bench::new(&Registry::builtin())
+            .config(c)
+            .approximators(["lwpr"])
+            .rules(["pendulum-cart"])
+            .experiments(["omnidirectional"])
+            .seeds(1)
+            .scale(0.02)
+            .out(dir.join("bad"))
+            .run()
+            .unwrap_err()
+            .to_string(),
+    };
+    assert!(
+        err.contains("both_planes") || err.contains("couple"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
