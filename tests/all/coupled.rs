@@ -218,8 +218,13 @@ fn on_the_humanoid_the_coupled_learner_learns_the_width_after_a_side_push() {
             .collect();
         e.iter().sum::<f64>() / e.len() as f64
     };
+    eprintln!(
+        "mean |width error| from 8 to 14 s: coupled {:.5} m, model {:.5} m",
+        err(&learned),
+        err(&model)
+    );
     assert!(
-        err(&learned) < err(&model),
+        err(&learned) < 0.5 * err(&model),
         "mean |width error| after 8 s: coupled {:.4} m, model {:.4} m",
         err(&learned),
         err(&model)
