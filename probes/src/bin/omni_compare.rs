@@ -1,0 +1,96 @@
+//! Is one `both` walker better than another? Reads the `omnidirectional` summaries of two bench
+//! directories run on the same seeds (for example the uncoupled and the coupled learners) and
+//! prints, per sector, the mean I50 of the model and of each directory's walker `both`, then
+//! the second's `both` against the first's, paired by seed: the sectors' mean I50 ratio and
+//! the walk's mean step error ratio, each with its 95% Student-t interval.
+//!
+//! ```text
+//! cargo run --release -p steplearn-probes --bin omni_compare -- \
+//!     results-archive/omnidirectional results-archive/omnidirectional-coupled
+//! ```
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use steplearn::experiments::omnidirectional::{OmnidirectionalResult, SECTORS};
+use steplearn::experiments::paired::{Direction, Paired};
+
+/// The `omnidirectional` results of a bench directory, by seed (one approximator and rule).
+fn results(dir: &Path) -> Result<BTreeMap<u64, OmnidirectionalResult>, Box<dyn std::error::Error>> {
+    let mut by_seed = BTreeMap::new();
+    for entry in std::fs::read_dir(dir)? {
+        let path = entry?.path().join("summary.json");
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue;
+        };
+        let json: serde_json::Value = serde_json::from_str(&text)?;
+        if json["experiment"] != "omnidirectional" {
+            continue;
+        }
+        let seed = json["seed"]
+            .as_u64()
+            .ok_or_else(|| format!("{}: no seed", path.display()))?;
+        let result: OmnidirectionalResult = serde_json::from_value(json)?;
+        if by_seed.insert(seed, result).is_some() {
+            return Err(format!("{}: two runs of seed {seed}", dir.display()).into());
+        }
+    }
+    Ok(by_seed)
+}
+
+/// Mean of the finite values.
+fn mean(values: impl IntoIterator<Item = f64>) -> f64 {
+    let v: Vec<f64> = values.into_iter().filter(|v| v.is_finite()).collect();
+    v.iter().sum::<f64>() / v.len() as f64
+}
+
+/// The walk's mean step error of walker `both` over the sectors it visited (m).
+fn walk_error(r: &OmnidirectionalResult) -> f64 {
+    mean(r.walk_error_m["both"].iter().flatten().copied())
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let [first, second] = args.as_slice() else {
+        return Err("usage: omni_compare FIRST_BENCH_DIR SECOND_BENCH_DIR".into());
+    };
+    let (a, b) = (results(Path::new(first))?, results(Path::new(second))?);
+    let seeds: Vec<u64> = a.keys().filter(|s| b.contains_key(s)).copied().collect();
+    if seeds.len() < 2 {
+        return Err(format!("need two seeds in both directories, found {seeds:?}").into());
+    }
+    println!("seeds {seeds:?}; I50 (Ns), mean over the seeds");
+    println!("| azimuth | model | both, {first} | both, {second} | second / model |");
+    println!("|---|---|---|---|---|");
+    for k in 0..SECTORS {
+        let m = mean(seeds.iter().map(|s| b[s].i50_ns["model"][k]));
+        let x = mean(seeds.iter().map(|s| a[s].i50_ns["both"][k]));
+        let y = mean(seeds.iter().map(|s| b[s].i50_ns["both"][k]));
+        let deg = b[&seeds[0]].sectors_deg[k];
+        println!("| {deg:.0} | {m:.2} | {x:.2} | {y:.2} | {:.2} |", y / m);
+    }
+    let i50: Vec<f64> = seeds
+        .iter()
+        .map(|s| mean((0..SECTORS).map(|k| b[s].i50_ns["both"][k] / a[s].i50_ns["both"][k])))
+        .collect();
+    let walk: Vec<f64> = seeds
+        .iter()
+        .map(|s| walk_error(&b[s]) / walk_error(&a[s]))
+        .collect();
+    for p in [
+        Paired::new(
+            "I50 both, second / first, sectors' mean",
+            &i50,
+            1.0,
+            Direction::HigherIsBetter,
+        ),
+        Paired::new(
+            "walk error both, second / first, sectors' mean",
+            &walk,
+            1.0,
+            Direction::LowerIsBetter,
+        ),
+    ] {
+        println!("{}", p.describe(3));
+    }
+    Ok(())
+}
