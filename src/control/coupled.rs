@@ -19,9 +19,10 @@
 //! learner with the lateral plane at rest (its inputs and outcome zero, no width offset).
 
 use super::learner::{
-    GUARD_RETRIES, LearnerConfig, LearnerError, LearnerInput, TouchDownReport, TrustFallback,
-    is_reach, radical_inverse, windup,
+    GuardError, Guarded, LearnerConfig, LearnerError, LearnerInput, TouchDownReport, TrustFallback,
+    clamped_at_fall, guarded_update, is_reach, radical_inverse, windup,
 };
+use super::step_samples::{StepSamples, trust_share};
 use super::walker::FootstepPolicy;
 use crate::approx::{FunctionApproximator, InputBox};
 use crate::rules::{LearningRule, StepOutcome};
@@ -52,14 +53,9 @@ pub struct CoupledLearner<A: FunctionApproximator, R: LearningRule> {
     /// The sagittal and the lateral rule.
     rules: [R; PLANES],
     config: LearnerConfig,
-    /// Inputs recorded in this step (at most `max_samples_per_step`; thinned as the sagittal
-    /// learner's are).
-    recorded: Vec<[f64; COUPLED_INPUTS]>,
-    /// Per recorded input, each plane's reach.
-    reach: Vec<[[f64; 2]; PLANES]>,
-    last_recorded: bool,
-    stride: usize,
-    queries: usize,
+    /// Inputs recorded in this step (at most `max_samples_per_step`, thinned as the sagittal
+    /// learner's are), each with each plane's reach.
+    step: StepSamples<[f64; COUPLED_INPUTS], [[f64; 2]; PLANES]>,
     /// Mean and std of the trained inputs per axis (the trust region).
     trained: [MeanStd; COUPLED_INPUTS],
     /// Each plane's exploration perturbation of this step.
@@ -70,7 +66,7 @@ impl<A: FunctionApproximator, R: LearningRule> std::fmt::Debug for CoupledLearne
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("CoupledLearner")
             .field("config", &self.config)
-            .field("recorded", &self.recorded.len())
+            .field("recorded", &self.step.inputs.len())
             .finish_non_exhaustive()
     }
 }
@@ -112,16 +108,11 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
                 ),
             });
         }
-        let n = config.max_samples_per_step;
         let mut learner = CoupledLearner {
             approx,
             rules,
             config,
-            recorded: Vec::with_capacity(n),
-            reach: Vec::with_capacity(n),
-            last_recorded: false,
-            stride: 1,
-            queries: 0,
+            step: StepSamples::with_capacity(config.max_samples_per_step),
             trained: [MeanStd::new(); COUPLED_INPUTS],
             exploration: [0.0; PLANES],
         };
@@ -165,17 +156,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
 
     /// The raw outputs `(dF, dW)` at `x`.
     pub fn predict(&self, x: &[f64; COUPLED_INPUTS]) -> Result<[f64; PLANES], LearnerError> {
-        let mut y = [0.0; PLANES];
-        self.approx
-            .predict(x, &mut y)
-            .map_err(|source| LearnerError::Approx { applied: 0, source })?;
-        if let Some(v) = y.iter().find(|v| !v.is_finite()) {
-            return Err(LearnerError::NonFinite {
-                what: "approximator prediction",
-                value: *v,
-            });
-        }
-        Ok(y)
+        predict_at(&self.approx, x)
     }
 
     /// The control-tick query with both planes' inputs: returns `(dF, dW)` (each with its
@@ -195,7 +176,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
         }
         let trust = self.trust(&x);
         let mut y = self.predict(&x)?.map(|v| v * trust);
-        if self.queries == 0 {
+        if self.step.queries == 0 {
             for (e, rule) in self.exploration.iter_mut().zip(&mut self.rules) {
                 let v = rule.explore();
                 if !v.is_finite() {
@@ -213,7 +194,11 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
                 *v = v.clamp(-m, m);
             }
         }
-        self.record(x);
+        self.step.record(
+            x,
+            [[f64::NEG_INFINITY, f64::INFINITY]; PLANES],
+            self.config.max_samples_per_step,
+        );
         Ok(y)
     }
 
@@ -226,40 +211,11 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
             self.config.prior.lo.to_array(),
             self.config.prior.hi.to_array(),
         );
-        let mut z: f64 = 0.0;
-        for (a, (&xa, t)) in x.iter().zip(&self.trained).enumerate() {
-            if t.count() == 0 {
-                return 0.0;
-            }
-            let std = t.population_std().max(0.02 * (hi[a % 3] - lo[a % 3]));
-            z = z.max((xa - t.mean()).abs() / std);
-        }
-        ((1.5 * k - z) / (0.5 * k)).clamp(0.0, 1.0)
-    }
-
-    /// Records `x`, keeping at most `max_samples_per_step` evenly spread over the step.
-    fn record(&mut self, x: [f64; COUPLED_INPUTS]) {
-        self.last_recorded = false;
-        if self.queries.is_multiple_of(self.stride) {
-            if self.recorded.len() == self.config.max_samples_per_step {
-                let mut keep = 0;
-                for i in (0..self.recorded.len()).step_by(2) {
-                    self.recorded[keep] = self.recorded[i];
-                    self.reach[keep] = self.reach[i];
-                    keep += 1;
-                }
-                self.recorded.truncate(keep);
-                self.reach.truncate(keep);
-                self.stride *= 2;
-            }
-            if self.queries.is_multiple_of(self.stride) {
-                self.recorded.push(x);
-                self.reach
-                    .push([[f64::NEG_INFINITY, f64::INFINITY]; PLANES]);
-                self.last_recorded = true;
-            }
-        }
-        self.queries += 1;
+        trust_share(k, x, &self.trained, |a| {
+            self.trained[a]
+                .population_std()
+                .max(0.02 * (hi[a % 3] - lo[a % 3]))
+        })
     }
 
     /// The offsets of `plane` (0 sagittal, 1 lateral) that could change the step at the last
@@ -271,9 +227,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
                 reason: format!("needs plane 0 or 1 and lo <= hi, got {plane}: [{lo}, {hi}]"),
             });
         }
-        if self.last_recorded
-            && let Some(r) = self.reach.last_mut()
-        {
+        if let Some(r) = self.step.last_reach_mut() {
             r[plane] = [lo, hi];
         }
         Ok(())
@@ -281,11 +235,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
 
     /// Forgets the current step without learning.
     pub fn discard_step(&mut self) {
-        self.recorded.clear();
-        self.reach.clear();
-        self.last_recorded = false;
-        self.stride = 1;
-        self.queries = 0;
+        self.step.clear();
         self.exploration = [0.0; PLANES];
     }
 
@@ -307,16 +257,11 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
         &mut self,
         outcomes: [&StepOutcome; PLANES],
     ) -> Result<Option<[TouchDownReport; PLANES]>, LearnerError> {
-        if !self.config.learn_from_falls || self.recorded.is_empty() {
+        if !self.config.learn_from_falls || self.step.inputs.is_empty() {
             self.discard_step();
             return Ok(None);
         }
-        let lim = self.config.fall_theta_limit;
-        let clamped = outcomes.map(|o| StepOutcome {
-            theta_e: o.theta_e.clamp(-lim, lim),
-            theta_e_dot: o.theta_e_dot.clamp(-10.0 * lim, 10.0 * lim),
-            ..*o
-        });
+        let clamped = outcomes.map(|o| clamped_at_fall(o, self.config.fall_theta_limit));
         match self.end_step([&clamped[0], &clamped[1]], true) {
             Ok(r) => Ok(Some(r)),
             Err(e) => {
@@ -356,12 +301,14 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
         let dz = self.config.dead_zone;
         let g = raw.map(|g| g.signum() * (g.abs() - dz).max(0.0));
         let step = g.map(|g| self.config.eta * g);
-        let n = self.recorded.len();
-        let keep = ((n as f64 * self.config.train_share).ceil() as usize).clamp(1, n.max(1));
-        let first = n.saturating_sub(keep);
-        let mut before = Vec::with_capacity(n - first);
-        let mut desired = Vec::with_capacity(n - first);
-        for (x, reach) in self.recorded[first..].iter().zip(&self.reach[first..]) {
+        let first = self.step.first_trained(self.config.train_share);
+        let samples = self.step.inputs.len() - first;
+        let mut before = Vec::with_capacity(samples);
+        let mut desired = Vec::with_capacity(samples);
+        for (x, reach) in self.step.inputs[first..]
+            .iter()
+            .zip(&self.step.reach[first..])
+        {
             let b = self.predict(x)?;
             let mut d = [0.0; PLANES];
             for k in 0..PLANES {
@@ -393,44 +340,32 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
             .config
             .max_gain
             .filter(|_| asked.iter().any(|a| *a > 0.0));
-        let original = guard.map(|_| self.approx.clone());
-        let mut scale = 1.0;
-        let mut first_response = [0.0; PLANES];
-        let mut response = [0.0; PLANES];
-        for attempt in 0..=GUARD_RETRIES {
-            if attempt > 0
-                && let Some(o) = &original
-            {
-                self.approx = o.clone();
-            }
-            if let Err(e) = self.apply(first, &before, &desired, scale) {
+        let inputs = &self.step.inputs[first..];
+        let guarded = guarded_update(
+            &mut self.approx,
+            guard,
+            |approx, scale| train_towards(approx, inputs, &before, &desired, scale),
+            |approx| response(approx, inputs, &before, &desired, asked),
+            |r: &[f64; PLANES]| {
+                (0..PLANES)
+                    .map(|k| gain_of(k, r[k]).abs())
+                    .fold(0.0, f64::max)
+            },
+        );
+        let Guarded {
+            scale,
+            first: first_response,
+            applied: response,
+        } = match guarded {
+            Ok(g) => g,
+            Err(GuardError::Apply(e)) => {
                 self.discard_step();
                 return Err(e);
             }
-            response = self.response(first, &before, &desired, asked)?;
-            if attempt == 0 {
-                first_response = response;
-            }
-            let worst = (0..PLANES)
-                .map(|k| gain_of(k, response[k]).abs())
-                .fold(0.0, f64::max);
-            match guard {
-                Some(limit) if worst > limit => {
-                    if attempt == GUARD_RETRIES {
-                        if let Some(o) = original {
-                            self.approx = o;
-                        }
-                        scale = 0.0;
-                        response = [0.0; PLANES];
-                        break;
-                    }
-                    scale *= 0.95 * limit / worst;
-                }
-                _ => break,
-            }
-        }
+            Err(GuardError::Measure(e)) => return Err(e),
+        };
         if scale > 0.0 {
-            for x in &self.recorded[first..] {
+            for x in &self.step.inputs[first..] {
                 for (t, v) in self.trained.iter_mut().zip(x) {
                     t.push(*v);
                 }
@@ -439,58 +374,72 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
         self.discard_step();
         Ok(std::array::from_fn(|k| TouchDownReport {
             gradient: raw[k],
-            samples: n - first,
+            samples,
             response: first_response[k],
             gain: gain_of(k, response[k]),
             scale,
         }))
     }
+}
 
-    /// Trains towards `before + scale * desired` at the recorded inputs from `first` on.
-    fn apply(
-        &mut self,
-        first: usize,
-        before: &[[f64; PLANES]],
-        desired: &[[f64; PLANES]],
-        scale: f64,
-    ) -> Result<(), LearnerError> {
-        for (applied, ((x, b), d)) in self.recorded[first..]
-            .iter()
-            .zip(before)
-            .zip(desired)
-            .enumerate()
-        {
-            let target: [f64; PLANES] = std::array::from_fn(|k| b[k] + scale * d[k]);
-            self.approx
-                .update(x, &target)
-                .map_err(|source| LearnerError::Approx { applied, source })?;
-        }
-        Ok(())
+/// Trains `approx` towards `before + scale * desired` at every input.
+fn train_towards<A: FunctionApproximator>(
+    approx: &mut A,
+    inputs: &[[f64; COUPLED_INPUTS]],
+    before: &[[f64; PLANES]],
+    desired: &[[f64; PLANES]],
+    scale: f64,
+) -> Result<(), LearnerError> {
+    for (applied, ((x, b), d)) in inputs.iter().zip(before).zip(desired).enumerate() {
+        let target: [f64; PLANES] = std::array::from_fn(|k| b[k] + scale * d[k]);
+        approx
+            .update(x, &target)
+            .map_err(|source| LearnerError::Approx { applied, source })?;
     }
+    Ok(())
+}
 
-    /// Per output, the share `<dy, d> / <d, d>` of the desired change the predictions moved.
-    fn response(
-        &self,
-        first: usize,
-        before: &[[f64; PLANES]],
-        desired: &[[f64; PLANES]],
-        asked: [f64; PLANES],
-    ) -> Result<[f64; PLANES], LearnerError> {
-        let mut moved = [0.0; PLANES];
-        for ((x, b), d) in self.recorded[first..].iter().zip(before).zip(desired) {
-            let y = self.predict(x)?;
-            for k in 0..PLANES {
-                moved[k] += (y[k] - b[k]) * d[k];
-            }
+/// Per output, the share `<dy, d> / <d, d>` of the desired change the predictions at
+/// `inputs` moved (0 where nothing was asked).
+fn response<A: FunctionApproximator>(
+    approx: &A,
+    inputs: &[[f64; COUPLED_INPUTS]],
+    before: &[[f64; PLANES]],
+    desired: &[[f64; PLANES]],
+    asked: [f64; PLANES],
+) -> Result<[f64; PLANES], LearnerError> {
+    let mut moved = [0.0; PLANES];
+    for ((x, b), d) in inputs.iter().zip(before).zip(desired) {
+        let y = predict_at(approx, x)?;
+        for k in 0..PLANES {
+            moved[k] += (y[k] - b[k]) * d[k];
         }
-        Ok(std::array::from_fn(|k| {
-            if asked[k] == 0.0 {
-                0.0
-            } else {
-                moved[k] / asked[k]
-            }
-        }))
     }
+    Ok(std::array::from_fn(|k| {
+        if asked[k] == 0.0 {
+            0.0
+        } else {
+            moved[k] / asked[k]
+        }
+    }))
+}
+
+/// The outputs `(dF, dW)` of `approx` at `x`, checked to be finite.
+fn predict_at<A: FunctionApproximator>(
+    approx: &A,
+    x: &[f64; COUPLED_INPUTS],
+) -> Result<[f64; PLANES], LearnerError> {
+    let mut y = [0.0; PLANES];
+    approx
+        .predict(x, &mut y)
+        .map_err(|source| LearnerError::Approx { applied: 0, source })?;
+    if let Some(v) = y.iter().find(|v| !v.is_finite()) {
+        return Err(LearnerError::NonFinite {
+            what: "approximator prediction",
+            value: *v,
+        });
+    }
+    Ok(y)
 }
 
 /// A plane at rest: the outcome a one-plane call assumes for the other plane.

@@ -61,6 +61,7 @@
 //! as before. The rule's state travels in the learner's checkpoint.
 //!
 
+use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, RuleError, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -69,7 +70,7 @@ use thiserror::Error;
 
 /// Retries of the gain guard before it gives up on a touch-down (and leaves the model as it
 /// was).
-pub(crate) const GUARD_RETRIES: usize = 6;
+const GUARD_RETRIES: usize = 6;
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
 pub const LEARNER_INPUTS: usize = 3;
@@ -667,6 +668,144 @@ pub(crate) fn windup(change: f64, before: f64, reach: [f64; 2]) -> f64 {
     }
 }
 
+/// The prediction of a one-output `approx` at `x`, checked to be finite.
+fn predict_at<A: FunctionApproximator>(
+    approx: &A,
+    x: &[f64; LEARNER_INPUTS],
+) -> Result<f64, LearnerError> {
+    let mut y = [0.0];
+    approx.predict(x, &mut y).map_err(LearnerError::approx)?;
+    if !y[0].is_finite() {
+        return Err(LearnerError::NonFinite {
+            what: "approximator prediction",
+            value: y[0],
+        });
+    }
+    Ok(y[0])
+}
+
+/// Trains `approx` toward `before + scale * desired` at every input (`targets` is scratch).
+fn train_towards<A: FunctionApproximator>(
+    approx: &mut A,
+    inputs: &[[f64; LEARNER_INPUTS]],
+    before: &[f64],
+    desired: &[f64],
+    targets: &mut Vec<f64>,
+    scale: f64,
+) -> Result<(), LearnerError> {
+    targets.clear();
+    targets.extend(before.iter().zip(desired).map(|(b, d)| b + scale * d));
+    for (applied, (x, t)) in inputs.iter().zip(targets.iter()).enumerate() {
+        approx
+            .update(x, &[*t])
+            .map_err(|source| LearnerError::Approx { applied, source })?;
+    }
+    Ok(())
+}
+
+/// The share `<dy, d> / <d, d>` of the desired change the predictions at `inputs` moved (0 if
+/// `asked`, `<d, d>`, is 0).
+fn response<A: FunctionApproximator>(
+    approx: &A,
+    inputs: &[[f64; LEARNER_INPUTS]],
+    before: &[f64],
+    desired: &[f64],
+    asked: f64,
+) -> Result<f64, LearnerError> {
+    if asked == 0.0 {
+        return Ok(0.0);
+    }
+    let mut moved = 0.0;
+    for ((x, b), d) in inputs.iter().zip(before).zip(desired) {
+        moved += (predict_at(approx, x)? - b) * d;
+    }
+    Ok(moved / asked)
+}
+
+/// `step` as a learner sees it after a fall: theta_E clamped to +-`limit`, its rate to ten
+/// times that (past the fall threshold the angle says nothing more).
+pub(crate) fn clamped_at_fall(step: &StepOutcome, limit: f64) -> StepOutcome {
+    StepOutcome {
+        theta_e: step.theta_e.clamp(-limit, limit),
+        theta_e_dot: step.theta_e_dot.clamp(-10.0 * limit, 10.0 * limit),
+        ..*step
+    }
+}
+
+/// How a guarded update ended ([`guarded_update`]).
+pub(crate) struct Guarded<T> {
+    /// The factor the step was scaled by (1: not scaled; 0: no scale within the retries, the
+    /// approximator is as it was).
+    pub(crate) scale: f64,
+    /// The response to the full step (the first attempt).
+    pub(crate) first: T,
+    /// The response of the update finally applied (the default when none was).
+    pub(crate) applied: T,
+}
+
+/// Why a guarded update failed: while training (the caller discards the step) or while
+/// measuring the response.
+pub(crate) enum GuardError {
+    /// `apply` failed.
+    Apply(LearnerError),
+    /// `measure` failed.
+    Measure(LearnerError),
+}
+
+/// The gain guard (see the module docs), for any learner: `apply(approx, scale)` trains the
+/// step scaled by `scale`, `measure` gives the response and `gain` the largest |gain| it
+/// means. With `limit` set, while that gain exceeds it the step is scaled to just below the
+/// limit and applied again to the approximator as it was (a copy), at most [`GUARD_RETRIES`]
+/// times; then the approximator is restored and the scale is 0.
+pub(crate) fn guarded_update<A: Clone, T: Copy + Default>(
+    approx: &mut A,
+    limit: Option<f64>,
+    mut apply: impl FnMut(&mut A, f64) -> Result<(), LearnerError>,
+    mut measure: impl FnMut(&A) -> Result<T, LearnerError>,
+    gain: impl Fn(&T) -> f64,
+) -> Result<Guarded<T>, GuardError> {
+    let original = limit.map(|_| approx.clone());
+    let mut scale = 1.0;
+    let mut first = T::default();
+    let mut applied = T::default();
+    for attempt in 0..=GUARD_RETRIES {
+        if attempt > 0
+            && let Some(o) = &original
+        {
+            *approx = o.clone();
+        }
+        apply(approx, scale).map_err(GuardError::Apply)?;
+        applied = measure(approx).map_err(GuardError::Measure)?;
+        if attempt == 0 {
+            first = applied;
+        }
+        let g = gain(&applied);
+        match limit {
+            Some(limit) if g > limit => {
+                if attempt == GUARD_RETRIES {
+                    // No scale found within the retries: keep the model as it was.
+                    if let Some(o) = original {
+                        *approx = o;
+                    }
+                    return Ok(Guarded {
+                        scale: 0.0,
+                        first,
+                        applied: T::default(),
+                    });
+                }
+                // Aim a little below the limit: responses are not quite linear.
+                scale *= 0.95 * limit / g;
+            }
+            _ => break,
+        }
+    }
+    Ok(Guarded {
+        scale,
+        first,
+        applied,
+    })
+}
+
 /// A reach bound as saved: `None` for an infinite side.
 fn finite_or_none(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
@@ -705,17 +844,10 @@ pub struct FootstepLearner<A: FunctionApproximator, R: LearningRule> {
     approx: A,
     rule: R,
     config: LearnerConfig,
-    /// Inputs recorded in the current step (capacity `max_samples_per_step`, never grows).
-    recorded: Vec<[f64; LEARNER_INPUTS]>,
-    /// The reach (lowest, highest offset that can still change the step) of each recorded
-    /// input; unbounded unless told by [`FootstepLearner::set_reach`].
-    reach: Vec<[f64; 2]>,
-    /// Whether the last query was recorded (so that `set_reach` applies to it).
-    last_recorded: bool,
-    /// Record every `stride`-th query of this step.
-    stride: usize,
-    /// Queries seen in this step.
-    queries: usize,
+    /// Inputs recorded in the current step (at most `max_samples_per_step`), each with its
+    /// reach (lowest, highest offset that can still change the step; unbounded unless told by
+    /// [`FootstepLearner::set_reach`]).
+    step: StepSamples<[f64; LEARNER_INPUTS], [f64; 2]>,
     /// Scratch at touch-down: predictions before the update, desired changes, targets.
     before: Vec<f64>,
     desired: Vec<f64>,
@@ -755,11 +887,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
             approx,
             rule,
             config,
-            recorded: Vec::with_capacity(config.max_samples_per_step),
-            reach: Vec::with_capacity(config.max_samples_per_step),
-            last_recorded: false,
-            stride: 1,
-            queries: 0,
+            step: StepSamples::with_capacity(config.max_samples_per_step),
             before: Vec::with_capacity(config.max_samples_per_step),
             desired: Vec::with_capacity(config.max_samples_per_step),
             targets: Vec::with_capacity(config.max_samples_per_step),
@@ -802,7 +930,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
 
     /// The inputs recorded so far in the current step, in query order.
     pub fn recorded_inputs(&self) -> impl ExactSizeIterator<Item = LearnerInput> + '_ {
-        self.recorded.iter().map(|x| LearnerInput {
+        self.step.inputs.iter().map(|x| LearnerInput {
             theta_e: x[0],
             theta_e_dot: x[1],
             f_r: x[2],
@@ -815,17 +943,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     }
 
     fn predict_array(&self, x: &[f64; LEARNER_INPUTS]) -> Result<f64, LearnerError> {
-        let mut y = [0.0];
-        self.approx
-            .predict(x, &mut y)
-            .map_err(LearnerError::approx)?;
-        if !y[0].is_finite() {
-            return Err(LearnerError::NonFinite {
-                what: "approximator prediction",
-                value: y[0],
-            });
-        }
-        Ok(y[0])
+        predict_at(&self.approx, x)
     }
 
     /// The control-tick query: returns dF at `input` plus the step's exploration perturbation
@@ -845,7 +963,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         if trust < 1.0 && self.config.trust_fallback == TrustFallback::Nominal {
             df += (1.0 - trust) * self.predict_array(&self.nominal_input(x[2]))?;
         }
-        if self.queries == 0 {
+        if self.step.queries == 0 {
             let e = self.rule.explore();
             if !e.is_finite() {
                 return Err(LearnerError::NonFinite {
@@ -858,7 +976,11 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         if self.exploration != 0.0 {
             df += self.exploration;
         }
-        self.record(x);
+        self.step.record(
+            x,
+            [f64::NEG_INFINITY, f64::INFINITY],
+            self.config.max_samples_per_step,
+        );
         let df = match self.config.max_offset {
             Some(m) => df.clamp(-m, m),
             None => df,
@@ -869,9 +991,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
 
     /// Index of the first recorded input trained at touch-down (`train_share`).
     fn first_trained(&self) -> usize {
-        let n = self.recorded.len();
-        let keep = ((n as f64 * self.config.train_share).ceil() as usize).clamp(1, n.max(1));
-        n.saturating_sub(keep)
+        self.step.first_trained(self.config.train_share)
     }
 
     /// The nominal state for the reference `f_r`: the mean trained theta_E and theta_E_dot,
@@ -912,41 +1032,10 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
 
     /// The share of the offset applied at `x` (1 without a trust region).
     fn trust(&self, x: &[f64; LEARNER_INPUTS]) -> f64 {
-        let Some(k) = self.config.trust_region else {
-            return 1.0;
-        };
-        let mut z: f64 = 0.0;
-        for (a, (&xa, t)) in x.iter().zip(&self.trained).enumerate() {
-            if t.count() == 0 {
-                return 0.0;
-            }
-            z = z.max((xa - t.mean()).abs() / self.trust_std(a));
+        match self.config.trust_region {
+            Some(k) => trust_share(k, x, &self.trained, |a| self.trust_std(a)),
+            None => 1.0,
         }
-        ((1.5 * k - z) / (0.5 * k)).clamp(0.0, 1.0)
-    }
-
-    fn record(&mut self, x: [f64; LEARNER_INPUTS]) {
-        self.last_recorded = false;
-        if self.queries.is_multiple_of(self.stride) {
-            if self.recorded.len() == self.config.max_samples_per_step {
-                // Keep samples 0, 2, 4, ... (query indices that are multiples of 2 * stride).
-                let mut keep = 0;
-                for i in (0..self.recorded.len()).step_by(2) {
-                    self.recorded[keep] = self.recorded[i];
-                    self.reach[keep] = self.reach[i];
-                    keep += 1;
-                }
-                self.recorded.truncate(keep);
-                self.reach.truncate(keep);
-                self.stride *= 2;
-            }
-            if self.queries.is_multiple_of(self.stride) {
-                self.recorded.push(x);
-                self.reach.push([f64::NEG_INFINITY, f64::INFINITY]);
-                self.last_recorded = true;
-            }
-        }
-        self.queries += 1;
     }
 
     /// Tells the learner which offsets could change the step at the last query: `lo..=hi`
@@ -961,9 +1050,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
                 format!("needs lo <= hi, got [{lo}, {hi}]"),
             ));
         }
-        if self.last_recorded
-            && let Some(r) = self.reach.last_mut()
-        {
+        if let Some(r) = self.step.last_reach_mut() {
             *r = [lo, hi];
         }
         Ok(())
@@ -972,11 +1059,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     /// Forgets the inputs of the current step without learning from it (e.g. after a fall and
     /// reset, when the step never touched down).
     pub fn discard_step(&mut self) {
-        self.recorded.clear();
-        self.reach.clear();
-        self.last_recorded = false;
-        self.stride = 1;
-        self.queries = 0;
+        self.step.clear();
         self.exploration = 0.0;
     }
 
@@ -1096,7 +1179,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
         self.before.clear();
         self.desired.clear();
         let first = self.first_trained();
-        for (x, reach) in self.recorded[first..].iter().zip(&self.reach[first..]) {
+        for (x, reach) in self.step.inputs[first..]
+            .iter()
+            .zip(&self.step.reach[first..])
+        {
             let before = self.predict_array(x)?;
             let mut change = step_size - self.config.leakage * before;
             if self.config.anti_windup {
@@ -1112,7 +1198,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
             self.before.push(before);
             self.desired.push(target - before);
         }
-        let samples = self.recorded.len() - first;
+        let samples = self.step.inputs.len() - first;
         let asked: f64 = self.desired.iter().map(|d| d * d).sum();
         let gain_of = |response: f64| {
             if g == 0.0 {
@@ -1121,45 +1207,30 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
                 response * step_size / g
             }
         };
-        let mut scale = 1.0;
         let guard = self.config.max_gain.filter(|_| asked > 0.0);
-        let original = guard.map(|_| self.approx.clone());
-        let mut response = 0.0;
-        let mut applied_response = 0.0;
-        for attempt in 0..=GUARD_RETRIES {
-            if attempt > 0
-                && let Some(o) = &original
-            {
-                self.approx = o.clone();
-            }
-            if let Err(e) = self.apply(scale) {
+        let (inputs, before, desired) = (&self.step.inputs[first..], &self.before, &self.desired);
+        let targets = &mut self.targets;
+        let guarded = guarded_update(
+            &mut self.approx,
+            guard,
+            |approx, scale| train_towards(approx, inputs, before, desired, targets, scale),
+            |approx| response(approx, inputs, before, desired, asked),
+            |r| gain_of(*r).abs(),
+        );
+        let Guarded {
+            scale,
+            first: response,
+            applied: applied_response,
+        } = match guarded {
+            Ok(g) => g,
+            Err(GuardError::Apply(e)) => {
                 self.discard_step();
                 return Err(e);
             }
-            applied_response = self.response(asked)?;
-            if attempt == 0 {
-                response = applied_response;
-            }
-            let gain = gain_of(applied_response).abs();
-            match guard {
-                Some(limit) if gain > limit => {
-                    if attempt == GUARD_RETRIES {
-                        // No scale found within the retries: keep the model as it was.
-                        if let Some(o) = original {
-                            self.approx = o;
-                        }
-                        scale = 0.0;
-                        applied_response = 0.0;
-                        break;
-                    }
-                    // Aim a little below the limit: responses are not quite linear.
-                    scale *= 0.95 * limit / gain;
-                }
-                _ => break,
-            }
-        }
+            Err(GuardError::Measure(e)) => return Err(e),
+        };
         if scale > 0.0 {
-            for x in &self.recorded[first..] {
+            for x in &self.step.inputs[first..] {
                 for (t, v) in self.trained.iter_mut().zip(x) {
                     t.push(*v);
                 }
@@ -1175,57 +1246,16 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
         })
     }
 
-    /// Trains the approximator toward `before + scale * desired` at every recorded input.
-    fn apply(&mut self, scale: f64) -> Result<(), LearnerError> {
-        self.targets.clear();
-        self.targets.extend(
-            self.before
-                .iter()
-                .zip(&self.desired)
-                .map(|(b, d)| b + scale * d),
-        );
-        let first = self.first_trained();
-        for (applied, (x, t)) in self.recorded[first..].iter().zip(&self.targets).enumerate() {
-            self.approx
-                .update(x, &[*t])
-                .map_err(|source| LearnerError::Approx { applied, source })?;
-        }
-        Ok(())
-    }
-
-    /// The share `<dy, d> / <d, d>` of the desired change the predictions moved (0 if `asked`,
-    /// `<d, d>`, is 0).
-    fn response(&self, asked: f64) -> Result<f64, LearnerError> {
-        if asked == 0.0 {
-            return Ok(0.0);
-        }
-        let mut moved = 0.0;
-        let first = self.first_trained();
-        for ((x, b), d) in self.recorded[first..]
-            .iter()
-            .zip(&self.before)
-            .zip(&self.desired)
-        {
-            moved += (self.predict_array(x)? - b) * d;
-        }
-        Ok(moved / asked)
-    }
-
     /// A step that ended in a fall: with `learn_from_falls`, learns from `step` (the step in
     /// progress when the robot fell) as from a touch-down, with theta_E clamped to
     /// +-`fall_theta_limit` and theta_E_dot to ten times that; otherwise discards the step.
     /// Returns what the update did, if one was made.
     pub fn fall(&mut self, step: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
-        if !self.config.learn_from_falls || self.recorded.is_empty() {
+        if !self.config.learn_from_falls || self.step.inputs.is_empty() {
             self.discard_step();
             return Ok(None);
         }
-        let lim = self.config.fall_theta_limit;
-        let clamped = StepOutcome {
-            theta_e: step.theta_e.clamp(-lim, lim),
-            theta_e_dot: step.theta_e_dot.clamp(-10.0 * lim, 10.0 * lim),
-            ..*step
-        };
+        let clamped = clamped_at_fall(step, self.config.fall_theta_limit);
         match self.end_step(&clamped, true) {
             Ok(r) => Ok(Some(r)),
             Err(e) => {
@@ -1245,15 +1275,16 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
             approximator: self.approx.clone(),
             trained: self.trained,
             step: StepInProgress {
-                recorded: self.recorded.clone(),
+                recorded: self.step.inputs.clone(),
                 reach: self
+                    .step
                     .reach
                     .iter()
                     .map(|[lo, hi]| [finite_or_none(*lo), finite_or_none(*hi)])
                     .collect(),
-                last_recorded: self.last_recorded,
-                stride: self.stride,
-                queries: self.queries,
+                last_recorded: self.step.last_recorded,
+                stride: self.step.stride,
+                queries: self.step.queries,
                 last_offset: self.last_offset,
                 exploration: self.exploration,
             },
@@ -1277,15 +1308,15 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
         let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
         let step = saved.step;
         learner.trained = saved.trained;
-        learner.recorded.extend_from_slice(&step.recorded);
-        learner.reach.extend(
+        learner.step.inputs.extend_from_slice(&step.recorded);
+        learner.step.reach.extend(
             step.reach
                 .iter()
                 .map(|[lo, hi]| [lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)]),
         );
-        learner.last_recorded = step.last_recorded;
-        learner.stride = step.stride;
-        learner.queries = step.queries;
+        learner.step.last_recorded = step.last_recorded;
+        learner.step.stride = step.stride;
+        learner.step.queries = step.queries;
         learner.last_offset = step.last_offset;
         learner.exploration = step.exploration;
         Ok(learner)

@@ -10,6 +10,7 @@ pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
 pub mod motion;
+mod step_samples;
 pub mod two_planes;
 pub mod walker;
 

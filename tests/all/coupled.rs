@@ -209,15 +209,7 @@ fn on_the_humanoid_the_coupled_learner_learns_the_width_after_a_side_push() {
     let model = step_in_place(14.0, [0.0, 5.0, 0.0], None);
     assert_eq!(learned.falls + model.falls, 0);
     assert!(learned.offsets.iter().any(|o| *o != 0.0));
-    let err = |r: &crate::lateral::Run| {
-        let e: Vec<f64> = r
-            .steps
-            .iter()
-            .filter(|(_, t, _)| *t > 8.0)
-            .map(|(_, _, o)| o.f_e.abs())
-            .collect();
-        e.iter().sum::<f64>() / e.len() as f64
-    };
+    let err = |r: &crate::lateral::Run| r.mean_width_error_after(8.0);
     eprintln!(
         "mean |width error| from 8 to 14 s: coupled {:.5} m, model {:.5} m",
         err(&learned),

@@ -30,6 +30,19 @@ pub(crate) struct Run {
     pub(crate) falls: usize,
 }
 
+impl Run {
+    /// The mean |W - W_R| of the steps that touched down after `t` seconds (m).
+    pub(crate) fn mean_width_error_after(&self, t: f64) -> f64 {
+        let e: Vec<f64> = self
+            .steps
+            .iter()
+            .filter(|(_, time, _)| *time > t)
+            .map(|(_, _, o)| o.f_e.abs())
+            .collect();
+        e.iter().sum::<f64>() / e.len() as f64
+    }
+}
+
 /// Steps in place for `seconds` with `policy`, pushed with `push` (Ns, world frame) just
 /// after the first touch-down from 4 s on of the foot opposite the push's side (so that the
 /// foot on the pushed side is swinging).
@@ -152,15 +165,7 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
     );
     // The width error (against the controller's 2 delta) after the push has settled: the
     // pendulum-cart rule's tracking term pulls the learned walker's width to the reference.
-    let err = |r: &Run| {
-        let e: Vec<f64> = r
-            .steps
-            .iter()
-            .filter(|(_, t, _)| *t > 8.0)
-            .map(|(_, _, o)| o.f_e.abs())
-            .collect();
-        e.iter().sum::<f64>() / e.len() as f64
-    };
+    let err = |r: &Run| r.mean_width_error_after(8.0);
     assert!(
         err(&learned) < 0.5 * err(&model),
         "mean |width error| after 8 s: learned {:.4} m, model {:.4} m",
