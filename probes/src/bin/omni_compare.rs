@@ -2,7 +2,10 @@
 //! directories run on the same seeds (for example the uncoupled and the coupled learners) and
 //! prints, per sector, the mean I50 of the model and of each directory's walker `both`, then
 //! the second's `both` against the first's, paired by seed: the sectors' mean I50 ratio and
-//! the walk's mean step error ratio, each with its 95% Student-t interval.
+//! the walk's mean step error ratio, each with its 95% Student-t interval. Then, for each
+//! directory, the lateral pushes (the sectors at 90 and 270 degrees) paired against the model
+//! for the walkers `sagittal` and `both`, and the falls by cause per sector (summed over the
+//! seeds) of the model and of `both`.
 //!
 //! ```text
 //! cargo run --release -p steplearn-probes --bin omni_compare -- \
@@ -92,5 +95,58 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     ] {
         println!("{}", p.describe(3));
     }
+    for (name, runs) in [(first, &a), (second, &b)] {
+        println!(
+            "\n{name}: lateral pushes (90 and 270 degrees), I50 over the model's, paired by seed"
+        );
+        for walker in ["sagittal", "both"] {
+            let lateral: Vec<f64> = seeds
+                .iter()
+                .map(|s| {
+                    let ratio = runs[s].ratio_to_model(walker);
+                    (ratio[LEFT] + ratio[RIGHT]) / 2.0
+                })
+                .collect();
+            let label = format!("I50 {walker} / model, lateral");
+            println!(
+                "{}",
+                Paired::new(&label, &lateral, 1.0, Direction::HigherIsBetter).describe(3)
+            );
+        }
+        println!("{name}: falls by cause, summed over the seeds (model / both)");
+        println!("| azimuth | {} |", CAUSES.join(" | "));
+        println!("|---|{}", "---|".repeat(CAUSES.len()));
+        for k in 0..SECTORS {
+            let count = |walker: &str, cause: &str| -> u32 {
+                seeds
+                    .iter()
+                    .map(|s| {
+                        runs[s].fall_causes[walker][k]
+                            .get(cause)
+                            .copied()
+                            .unwrap_or(0)
+                    })
+                    .sum()
+            };
+            let cells: Vec<String> = CAUSES
+                .iter()
+                .map(|c| format!("{} / {}", count("model", c), count("both", c)))
+                .collect();
+            println!("| {} | {} |", k * 360 / SECTORS, cells.join(" | "));
+        }
+    }
     Ok(())
 }
+
+/// The sectors of the lateral pushes (90 and 270 degrees).
+const LEFT: usize = SECTORS / 4;
+const RIGHT: usize = 3 * SECTORS / 4;
+
+/// The fall causes reported, in the order of a push's course (experiment C's classes; the
+/// falls without a push are left out).
+const CAUSES: [&str; 4] = [
+    "before_touch_down",
+    "tipped_after_catch_step",
+    "catch_step_clamped",
+    "later_step_clamped",
+];
