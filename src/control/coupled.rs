@@ -365,11 +365,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> CoupledLearner<A, R> {
             Err(GuardError::Measure(e)) => return Err(e),
         };
         if scale > 0.0 {
-            for x in &self.step.inputs[first..] {
-                for (t, v) in self.trained.iter_mut().zip(x) {
-                    t.push(*v);
-                }
-            }
+            self.step.add_trained(first, &mut self.trained);
         }
         self.discard_step();
         Ok(std::array::from_fn(|k| TouchDownReport {

@@ -87,6 +87,18 @@ impl<X: Copy, R: Copy> StepSamples<X, R> {
     }
 }
 
+impl<const N: usize, R> StepSamples<[f64; N], R> {
+    /// Adds the inputs trained at touch-down (those from `first` on) to the per-axis
+    /// statistics of the trust region.
+    pub(crate) fn add_trained(&self, first: usize, trained: &mut [MeanStd; N]) {
+        for x in &self.inputs[first..] {
+            for (t, v) in trained.iter_mut().zip(x) {
+                t.push(*v);
+            }
+        }
+    }
+}
+
 /// The trust region's share of the offset at `x` for a region of `k` standard deviations:
 /// 1 where every input lies within `k` of the mean of the `trained` inputs (distances in
 /// `spread(axis)`), fading linearly to 0 at `1.5 k`; 0 before any training.

@@ -33,15 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     // Per "approx + rule": per seed, absorbed by push (learned, without learning).
     let mut runs: BTreeMap<String, Vec<SeedRun>> = BTreeMap::new();
-    for entry in std::fs::read_dir(&dir)? {
-        let path = entry?.path().join("summary.json");
-        let Ok(text) = std::fs::read_to_string(&path) else {
-            continue;
-        };
-        let json: serde_json::Value = serde_json::from_str(&text)?;
-        if json["experiment"] != "robustness" {
-            continue;
-        }
+    for (_, json) in steplearn_probes::summaries(&dir, "robustness")? {
         let flags = |v: &serde_json::Value| -> Vec<bool> {
             v.as_array()
                 .map(|a| a.iter().filter_map(|b| b.as_bool()).collect())

@@ -20,15 +20,7 @@ use steplearn::experiments::paired::{Direction, Paired};
 /// The `omnidirectional` results of a bench directory, by seed (one approximator and rule).
 fn results(dir: &Path) -> Result<BTreeMap<u64, OmnidirectionalResult>, Box<dyn std::error::Error>> {
     let mut by_seed = BTreeMap::new();
-    for entry in std::fs::read_dir(dir)? {
-        let path = entry?.path().join("summary.json");
-        let Ok(text) = std::fs::read_to_string(&path) else {
-            continue;
-        };
-        let json: serde_json::Value = serde_json::from_str(&text)?;
-        if json["experiment"] != "omnidirectional" {
-            continue;
-        }
+    for (path, json) in steplearn_probes::summaries(dir, "omnidirectional")? {
         let seed = json["seed"]
             .as_u64()
             .ok_or_else(|| format!("{}: no seed", path.display()))?;
