@@ -20,6 +20,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::config::{self, ConfigError};
 use crate::robot::kinematics::LegGeometry;
 use crate::robot::{JOINTS_PER_LEG, JointTargets, LegJoint, Side};
 
@@ -136,6 +137,29 @@ pub struct StepCommand {
     /// balance controller's footstep must not feed back into it (a backward catch step would
     /// drive the CoM further back). The open-loop walker sets it to `step_x`.
     pub gait_x: f64,
+    /// The trunk's measured tilt `[roll, pitch]` and its rate `[roll rate, pitch rate]` (rad,
+    /// rad/s; roll positive tilting the top to the right, pitch positive leaning forward), for
+    /// the [`Swing::Tracking`] swing. `None`: the trunk is assumed to hold the lean the
+    /// generator commands (the paper's swing never reads it).
+    pub tilt: Option<[[f64; 2]; 2]>,
+}
+
+/// How the swing leg reaches its placement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Swing {
+    /// The paper's open-loop swing: leg angles relative to the trunk, as if the trunk held its
+    /// commanded lean, at a fixed leg extension. When a push tilts the whole body, the swing
+    /// foot lands where the tilted legs put it, short of the command.
+    Paper,
+    /// The swing tracks the commanded footstep on the ground to touch-down: every tick it
+    /// re-targets the swing leg's end angle from the measured trunk tilt (predicted to
+    /// touch-down with its rate, [`MotionConfig::tilt_lead`]), so that with the support leg
+    /// tilted as the trunk is, the swing leg's angle in the world puts its sole at the
+    /// commanded distance ahead of the support sole, landing flat. The support leg and the
+    /// legs' extension are not changed.
+    #[default]
+    Tracking,
 }
 
 /// Settings of the step motion generator.
@@ -180,6 +204,14 @@ pub struct MotionConfig {
     /// robot that differs from the controller's model in a way the model does not absorb
     /// (`configs/mismatch.toml`). The estimator measures the real step.
     pub swing_step_scale: f64,
+    /// How the swing leg reaches its placement (see [`Swing`]).
+    pub swing: Swing,
+    /// [`Swing::Tracking`]: how far ahead the measured trunk tilt is predicted with its rate
+    /// (s; at most the time left in the step).
+    pub tilt_lead: f64,
+    /// [`Swing::Tracking`]: the share of the trunk's measured tilt (beyond the commanded
+    /// lean) the swing compensates (1: all of it; 0: only the leg length to the ground).
+    pub tilt_gain: f64,
 }
 
 impl Default for MotionConfig {
@@ -201,11 +233,20 @@ impl Default for MotionConfig {
             period: 0.4,
             fade_in: 1.0,
             swing_step_scale: 1.0,
+            swing: Swing::Tracking,
+            tilt_lead: 0.0,
+            tilt_gain: 1.0,
         }
     }
 }
 
 impl MotionConfig {
+    /// Checks the tracking swing's settings; errors name the field.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        config::non_negative("tilt_lead", self.tilt_lead)?;
+        config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)
+    }
+
     /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
     /// commanded step in [-0.1, 0.2] m (0.025 m apart) on ground friction 0.7, 0.8 and 1.0,
     /// and steps in place for 60 s, where [`MotionConfig::default`] falls at -0.10, -0.05,
@@ -224,6 +265,8 @@ impl MotionConfig {
             lift_window: [0.0874, 0.982],
             swing_window: [0.103, 0.8739],
             lean_per_step: -0.0582,
+            // Walking without feedback: the swing never reads the trunk's tilt.
+            swing: Swing::Paper,
             ..MotionConfig::default()
         }
     }
@@ -248,6 +291,10 @@ pub struct MotionGenerator {
     placement: [[f64; 3]; 2],
     /// Last commanded leg poses.
     legs: [LegPose; 2],
+    /// The trunk tilt `[roll, pitch]` predicted at touch-down from the last command's
+    /// measurement, if it had one.
+    #[serde(default)]
+    tilt: Option<[f64; 2]>,
 }
 
 /// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
@@ -275,6 +322,7 @@ impl MotionGenerator {
             start: [[0.0; 3]; 2],
             placement: [[0.0; 3]; 2],
             legs: [LegPose::default(); 2],
+            tilt: None,
         };
         g.legs = [g.halt_pose(); 2];
         g
@@ -364,6 +412,7 @@ impl MotionGenerator {
             turn: 0.0,
             step_time: (1.0 - self.phase) * self.config.period,
             gait_x: step_x,
+            tilt: None,
         }
     }
 
@@ -408,6 +457,15 @@ impl MotionGenerator {
         if dt > 0.0 {
             self.phase += dt * (1.0 - self.phase) / left.max(dt);
         }
+        self.tilt = match (c.swing, command.tilt) {
+            (Swing::Tracking, Some([tilt, rate]))
+                if tilt.iter().chain(&rate).all(|v| v.is_finite()) =>
+            {
+                let lead = c.tilt_lead.min(left).max(0.0);
+                Some([tilt[0] + lead * rate[0], tilt[1] + lead * rate[1]])
+            }
+            _ => None,
+        };
         if self.phase >= 1.0 - 1e-9 {
             self.exchange();
         }
@@ -455,6 +513,26 @@ impl MotionGenerator {
         let s_swing = smooth(window(p, c.swing_window));
         let lift = (std::f64::consts::PI * window(p, c.lift_window)).sin();
         let lean = c.halt_lean + c.lean_per_step * gx;
+        // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
+        // support sole on the ground, for the trunk's predicted tilt.
+        let tracking = self.tilt.map(|[roll, pitch]| {
+            let roll = c.tilt_gain * roll;
+            let pitch = lean + c.tilt_gain * (pitch - lean);
+            // The hip over the support sole at the end of the step, with the support leg
+            // tilted by the trunk's tilt beyond the commanded lean.
+            let support_world = end_support_pitch - lean + pitch;
+            let hip_x = d * support_world.sin();
+            let hip_z = d * support_world.cos();
+            // The swing leg's angle in the world that puts its sole `sx` ahead of the support
+            // sole, then in the trunk's frame.
+            let world = -(sx - hip_x).atan2(hip_z);
+            ([end_swing[0] - roll, world + lean - pitch], [roll, pitch])
+        });
+        let mut end_swing = end_swing;
+        if let Some((end, _)) = tracking {
+            end_swing[0] = end[0];
+            end_swing[1] = end[1];
+        }
         let sway = self.sway_roll(p) * fade;
         let mut out = [self.halt_pose(); 2];
         let mut placement = [[0.0; 3]; 2];
@@ -466,6 +544,13 @@ impl MotionGenerator {
             } else {
                 (end_support, p, -c.push_extension * lift * fade)
             };
+            let mut foot = [0.0, -lean];
+            if side == swing
+                && let Some((_, [roll, pitch])) = tracking
+            {
+                // Land the sole flat on the ground.
+                foot = [-s * roll, -lean - s * (pitch - lean)];
+            }
             let mut angle = [0.0; 3];
             for k in 0..3 {
                 angle[k] = start[k] + s * (end[k] - start[k]);
@@ -476,7 +561,7 @@ impl MotionGenerator {
             out[i] = LegPose {
                 extension: c.halt_extension + ext,
                 angle,
-                foot: [0.0, -lean],
+                foot,
             };
         }
         (placement, out)

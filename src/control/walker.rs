@@ -130,6 +130,7 @@ impl WalkerConfig {
     /// field relative to the walker's section.
     pub fn validate(&self) -> Result<(), ConfigError> {
         config::non_negative("start_ramp_s", self.start_ramp_s)?;
+        self.motion.validate().map_err(|e| e.within("motion"))?;
         self.capture_step
             .validate()
             .map_err(|e| ConfigError::new("capture_step", e.to_string()))?;
@@ -513,6 +514,10 @@ impl Walker {
                     turn: 0.0,
                     step_time: d.time_to_step,
                     gait_x,
+                    tilt: Some([
+                        [estimate.roll, estimate.pitch],
+                        [estimate.roll_rate, estimate.theta_e_rate],
+                    ]),
                 };
                 (command, Some(d))
             }

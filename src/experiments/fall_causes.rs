@@ -288,8 +288,24 @@ pub fn run_classified(
     setup: &TrialSetup,
     policy: Option<&mut (dyn FootstepPolicy + '_)>,
 ) -> Result<(TrialLog, Vec<ClassifiedFall>), TrialError> {
+    run_classified_with(setup, policy, &mut [])
+}
+
+/// [`run_classified`] with further observers of the same trial.
+pub fn run_classified_with(
+    setup: &TrialSetup,
+    policy: Option<&mut (dyn FootstepPolicy + '_)>,
+    observers: &mut [&mut dyn Observer],
+) -> Result<(TrialLog, Vec<ClassifiedFall>), TrialError> {
     let mut observer = FallCauseObserver::new();
-    let log = run_trial(setup, policy, &mut [&mut observer])?;
+    let log = {
+        let mut all: Vec<&mut dyn Observer> = Vec::with_capacity(observers.len() + 1);
+        all.push(&mut observer);
+        for o in observers.iter_mut() {
+            all.push(&mut **o);
+        }
+        run_trial(setup, policy, &mut all)?
+    };
     let falls = classify(
         observer.events(),
         &log.pushes,

@@ -2,6 +2,7 @@
 //! harness that runs and sweeps them.
 
 pub mod aligned;
+pub mod catch_step;
 pub mod claim;
 pub mod compare;
 pub mod config_file;

@@ -524,6 +524,7 @@ mod tests {
                         learned: falls(13.0),
                     },
                     fall_causes: Default::default(),
+                    catch_step_reach: None,
                 },
             ),
             // Stability: learned above the model, but the model not 1.5 x open-loop.
@@ -536,6 +537,7 @@ mod tests {
                         learned: falls(13.0),
                     },
                     fall_causes: Default::default(),
+                    catch_step_reach: None,
                 },
             ),
             // Robustness: seed 0 early and better than without learning; seed 1 too late;

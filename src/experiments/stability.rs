@@ -2,11 +2,12 @@
 //! walker, the Capture Step *model* and the *learned* walker, walking in place with forward
 //! pushes of random impulse at random gait phases.
 
+use super::catch_step::{CatchStepObserver, CatchStepReach};
 use super::claim::{Claim, by_seed};
 use super::error::ExperimentError;
 use super::experiment::{Experiment, Headline, PushOptions, RunContext};
 use super::fall_causes::{
-    ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified,
+    ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified_with,
 };
 use super::paired::{Direction, Paired};
 use super::protocol::{Protocol, ProtocolTables, Table};
@@ -17,7 +18,9 @@ use super::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
-use crate::experiments::summary::{ControllerFalls, Controllers, ExperimentResult, Summary};
+use crate::experiments::summary::{
+    CatchStepReaches, ControllerFalls, Controllers, ExperimentResult, Summary,
+};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::{number, read_rows};
@@ -73,13 +76,20 @@ pub struct ControllerPushes {
     /// Every fall of the trial (within a push window or not) with its cause, in time order.
     #[serde(default)]
     pub classified_falls: Vec<ClassifiedFall>,
+    /// The catch step's reach over the pushes (see [`super::catch_step`]).
+    pub catch_step: CatchStepReach,
 }
 
 impl ControllerPushes {
-    fn new(log: TrialLog, classified_falls: Vec<ClassifiedFall>) -> Result<Self, ExperimentError> {
+    fn new(
+        log: TrialLog,
+        classified_falls: Vec<ClassifiedFall>,
+        catch_step: &CatchStepObserver,
+    ) -> Result<Self, ExperimentError> {
         let samples: Vec<PushResult> = log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
         let fall50 = impulse_at_50pct_fall(&samples)?;
         Ok(ControllerPushes {
+            catch_step: catch_step.reach(&log.pushes),
             pushes: log.pushes,
             fall50,
             classified_falls,
@@ -160,8 +170,9 @@ fn observed(
     setup: TrialSetup,
     policy: Option<&mut (dyn FootstepPolicy + '_)>,
 ) -> Result<ControllerPushes, ExperimentError> {
-    let (log, falls) = run_classified(&setup, policy)?;
-    ControllerPushes::new(log, falls)
+    let mut catch_step = CatchStepObserver::new();
+    let (log, falls) = run_classified_with(&setup, policy, &mut [&mut catch_step])?;
+    ControllerPushes::new(log, falls, &catch_step)
 }
 
 impl StabilityResult {
@@ -321,6 +332,10 @@ impl Experiment for Stability {
                 learned: falls(&r.learned),
             },
             fall_causes: r.fall_cause_counts(),
+            catch_step_reach: Some(CatchStepReaches {
+                model: r.model.catch_step.reach,
+                learned: r.learned.catch_step.reach,
+            }),
         })
     }
 }

@@ -134,6 +134,10 @@ pub enum ExperimentResult {
         /// Falls per cause, per controller (empty in older summaries).
         #[serde(default)]
         fall_causes: FallCauseCounts,
+        /// The catch step's reach of the model and the learned walker (see
+        /// [`crate::experiments::catch_step`]); absent in older summaries.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        catch_step_reach: Option<CatchStepReaches>,
     },
     /// D: learning from scratch.
     Robustness {
@@ -202,6 +206,17 @@ impl ExperimentResult {
             ExperimentResult::Custom(c) => &c.experiment,
         }
     }
+}
+
+/// The catch step's mean reach (realised / commanded length) of the two Capture Step
+/// walkers; `null` where no push had a catch step that counts.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CatchStepReaches {
+    /// The Capture Step model.
+    pub model: Option<f64>,
+    /// The learned walker.
+    pub learned: Option<f64>,
 }
 
 /// The content of `summary.json`: the common fields, then `"experiment"` and the experiment's
@@ -459,6 +474,7 @@ impl Summary {
             ExperimentResult::Stability {
                 controllers,
                 fall_causes,
+                catch_step_reach,
             } => {
                 for (name, c, causes) in [
                     ("open_loop", &controllers.open_loop, &fall_causes.open_loop),
@@ -467,6 +483,16 @@ impl Summary {
                 ] {
                     c.validate(name)?;
                     check_causes(name, causes, c.falls)?;
+                }
+                if let Some(r) = catch_step_reach {
+                    for (name, v) in [
+                        ("catch_step_reach.model", r.model),
+                        ("catch_step_reach.learned", r.learned),
+                    ] {
+                        if v.is_some_and(|v| !v.is_finite()) {
+                            return Err(ReportError::invalid(format!("{name} must be finite")));
+                        }
+                    }
                 }
             }
             ExperimentResult::Robustness {
@@ -592,6 +618,10 @@ mod tests {
                     model: causes(0, [100, 20]),
                     learned: causes(1, [60, 30]),
                 },
+                catch_step_reach: Some(CatchStepReaches {
+                    model: Some(0.93),
+                    learned: None,
+                }),
             },
         }
     }

@@ -58,6 +58,7 @@ fn steps_take_the_commanded_time_and_alternate() {
             turn: 0.0,
             step_time: (1.0 - g.phase()) * 0.5,
             gait_x: 0.0,
+            tilt: None,
         };
         g.update(&cmd, dt);
         t += dt;
@@ -136,6 +137,7 @@ fn bad_command_values_are_ignored() {
         turn: f64::NAN,
         step_time: f64::NAN,
         gait_x: f64::NAN,
+        tilt: Some([[f64::NAN, 0.0], [0.0, f64::INFINITY]]),
     };
     for _ in 0..100 {
         let t = g.update(&cmd, 0.01);
