@@ -15,6 +15,7 @@
 
 use crate::bench::{Bench, BenchError, Registry};
 use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
+use crate::control::step_parameter::LearnSet;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::PushOptions;
 use crate::experiments::index_page::{INDEX_FILE, command_line, write_index};
@@ -65,6 +66,10 @@ enum Command {
         /// A fast look: every experiment at a tenth of its length.
         #[arg(long)]
         quick: bool,
+        /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
+        /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
+        #[arg(long)]
+        learn: Option<LearnSet>,
         /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
         #[arg(long)]
         config: Option<PathBuf>,
@@ -92,6 +97,10 @@ enum Command {
         /// sets `direction`).
         #[arg(long, value_enum)]
         push_direction: Option<Direction>,
+        /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
+        /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
+        #[arg(long)]
+        learn: Option<LearnSet>,
         /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
         #[arg(long)]
         config: Option<PathBuf>,
@@ -117,6 +126,10 @@ enum Command {
         /// Experiments, comma-separated [default: every registered one].
         #[arg(long, value_delimiter = ',')]
         experiments: Vec<String>,
+        /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
+        /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
+        #[arg(long)]
+        learn: Option<LearnSet>,
         /// Number of seeds: FIRST..FIRST+N.
         #[arg(long, default_value_t = 5)]
         seeds: u64,
@@ -275,11 +288,15 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             out,
             seeds,
             quick,
+            learn,
             config,
         } => {
             let mut config = load_config(registry, config)?;
             if quick {
                 config.settings.scale = 0.1;
+            }
+            if let Some(set) = learn {
+                config.settings.learner.learn = set;
             }
             let seeds = seeds.unwrap_or(if quick { 2 } else { 10 });
             if seeds == 0 || seeds > MAX_SEEDS {
@@ -352,11 +369,15 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             pushes,
             impulse_range,
             push_direction,
+            learn,
             config,
             out,
             overwrite,
         } => {
             let mut config = load_config(registry, config)?;
+            if let Some(set) = learn {
+                config.settings.learner.learn = set;
+            }
             registry
                 .check_combination(&approx, &rule)
                 .map_err(|e| e.to_string())?;
@@ -424,6 +445,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             approx,
             rule,
             experiments,
+            learn,
             seeds,
             first_seed,
             scale,
@@ -433,7 +455,10 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             threads,
             out,
         } => {
-            let config = load_config(registry, config)?;
+            let mut config = load_config(registry, config)?;
+            if let Some(set) = learn {
+                config.settings.learner.learn = set;
+            }
             let mut bench = Bench::new(registry)
                 .seeds(seeds)
                 .first_seed(first_seed)

@@ -340,6 +340,7 @@ impl Registry {
             approx: spec.approx.clone(),
             rule: spec.rule.clone(),
             seed: spec.seed,
+            learn: settings.learner.learn,
             result,
         })
     }

@@ -282,6 +282,14 @@ pub struct StepDecision {
     /// The sagittal step without the learned offset and before the step limit (m; 0 when the
     /// analytic footstep is off): the step is `clamp(analytic_step_x + learned_offset)`.
     pub analytic_step_x: f64,
+    /// The learned step-time offset that was added (s).
+    pub time_offset: f64,
+    /// The step time without the learned offset (s): `time_to_step` is it plus the offset,
+    /// kept within the step's time limits.
+    pub analytic_time_to_step: f64,
+    /// The step-time offsets `[lo, hi]` that can change the step time this tick (s): beyond
+    /// them the limits (the swing's shortest duration, the longest step time) clamp it away.
+    pub time_reach: [f64; 2],
     /// Whether the CoM is crossing towards the support leg (the step time is then the maximum).
     pub crossing: bool,
 }
@@ -403,20 +411,22 @@ impl CaptureStep {
         reference: &GaitReference,
         learned_offset: f64,
     ) -> Result<StepDecision, CaptureStepError> {
-        self.update_with_offsets(com, reference, [learned_offset, 0.0])
+        self.update_with_offsets(com, reference, [learned_offset, 0.0, 0.0])
     }
 
-    /// [`Self::update`] with learned offsets in both planes: `offsets[0]` is the sagittal `dF`
-    /// added to the footstep's x, `offsets[1]` a lateral offset added to its y (m, heading
-    /// frame, positive to the left; 0 without a lateral learner).
+    /// [`Self::update`] with learned offsets of every step parameter: `offsets[0]` is the
+    /// sagittal `dF` added to the footstep's x, `offsets[1]` a lateral offset added to its y
+    /// (m, heading frame, positive to the left), `offsets[2]` a step-time offset `dT` added to
+    /// the step time before its limits (s; the sagittal ZMP, the end-of-step state and the
+    /// footstep follow the offset time). 0 for a parameter without a learner.
     pub fn update_with_offsets(
         &mut self,
         com: &ComState,
         reference: &GaitReference,
-        offsets: [f64; 2],
+        offsets: [f64; 3],
     ) -> Result<StepDecision, CaptureStepError> {
         check_inputs(com, reference, offsets)?;
-        let [learned_offset, lateral_offset] = offsets;
+        let [learned_offset, lateral_offset, time_offset] = offsets;
         if let Some(m) = &self.memory
             && com.time < m.time
         {
@@ -502,6 +512,16 @@ impl CaptureStep {
         let min_left = cfg.min_step_duration - (com.time - mem.support_since);
         t_step = t_step.max(min_left).clamp(0.0, cfg.max_step_time);
         mem.time_to_step = t_step;
+        let analytic_time_to_step = t_step;
+        let time_reach = [
+            min_left.clamp(0.0, cfg.max_step_time) - t_step,
+            cfg.max_step_time - t_step,
+        ];
+        if time_offset != 0.0 {
+            t_step = (t_step + time_offset)
+                .max(min_left)
+                .clamp(0.0, cfg.max_step_time);
+        }
 
         // 3. Sagittal ZMP towards the target at the step time.
         let zx = lipm
@@ -541,6 +561,9 @@ impl CaptureStep {
             learned_offset,
             lateral_offset,
             analytic_step_x,
+            time_offset,
+            analytic_time_to_step,
+            time_reach,
             crossing,
         })
     }
@@ -549,7 +572,7 @@ impl CaptureStep {
 fn check_inputs(
     com: &ComState,
     reference: &GaitReference,
-    learned_offsets: [f64; 2],
+    learned_offsets: [f64; 3],
 ) -> Result<(), CaptureStepError> {
     let ok = com.time.is_finite()
         && com.axes.iter().all(LipmState::is_finite)

@@ -1,5 +1,5 @@
-//! The coupled variant of [`TwoPlanes`](super::two_planes::TwoPlanes): one learner for both
-//! planes, with two outputs (dF, dW) over both planes' inputs.
+//! The coupled variant of a [`StepLearner`](super::step_learner::StepLearner) of `step-x` and
+//! `step-y`: one learner for both planes, with two outputs (dF, dW) over both planes' inputs.
 //!
 //! Its input is the sagittal learner's `(theta_E, theta_E_dot, F_R)` followed by the lateral
 //! learner's mirrored `(lean, lean rate, W_R - 2 delta)`; its outputs are the sagittal offset
@@ -13,17 +13,15 @@
 //! trust region over all six inputs, learning from falls, dead zone, leakage and train share.
 //! It does not take `max_step_error` or [`TrustFallback::Nominal`]: it refuses them.
 //!
-//! The walker calls it through [`FootstepPolicy::offsets`], [`FootstepPolicy::touch_downs`] and
-//! [`FootstepPolicy::falls`], which hand over both planes at once. Through the one-plane
-//! methods ([`FootstepPolicy::offset`] and the others a sagittal walker calls) it is a sagittal
-//! learner with the lateral plane at rest (its inputs and outcome zero, no width offset).
+//! The walker calls it through [`FootstepPolicy`], which hands over both planes at once.
 
 use super::learner::{
     GuardError, Guarded, LearnerConfig, LearnerError, LearnerInput, TouchDownReport, TrustFallback,
     clamped_at_fall, guarded_update, is_reach, radical_inverse, windup,
 };
+use super::policy::{FootstepPolicy, StepReports};
+use super::step_parameter::{LearnSet, PerParameter, StepParameter};
 use super::step_samples::{StepSamples, trust_share};
-use super::walker::FootstepPolicy;
 use crate::approx::{FunctionApproximator, InputBox};
 use crate::rules::{LearningRule, StepOutcome};
 use crate::stats::MeanStd;
@@ -438,60 +436,55 @@ fn predict_at<A: FunctionApproximator>(
     Ok(y)
 }
 
-/// A plane at rest: the outcome a one-plane call assumes for the other plane.
-const AT_REST: StepOutcome = StepOutcome {
-    theta_e: 0.0,
-    theta_e_dot: 0.0,
-    f_e: 0.0,
-    f_r: 0.0,
-};
-
 impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for CoupledLearner<A, R> {
+    fn learns(&self) -> LearnSet {
+        LearnSet::of(&[StepParameter::StepX, StepParameter::StepY]).expect("two parameters")
+    }
     fn offsets(
         &mut self,
-        sagittal: LearnerInput,
-        lateral: LearnerInput,
-    ) -> Result<(f64, Option<f64>), LearnerError> {
-        let [df, dw] = self.query(sagittal, lateral)?;
-        Ok((df, Some(dw)))
+        inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError> {
+        let [df, dw] = self.query(inputs[StepParameter::StepX], inputs[StepParameter::StepY])?;
+        Ok(PerParameter([df, dw, 0.0]))
     }
-    fn touch_downs(
+    fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
+        for (plane, p) in [StepParameter::StepX, StepParameter::StepY]
+            .into_iter()
+            .enumerate()
+        {
+            let [lo, hi] = reach[p];
+            CoupledLearner::set_reach(self, plane, lo, hi)?;
+        }
+        Ok(())
+    }
+    fn touch_down(
         &mut self,
-        sagittal: &StepOutcome,
-        lateral: &StepOutcome,
-    ) -> Result<(TouchDownReport, Option<TouchDownReport>), LearnerError> {
-        let [s, l] = self.touch_down([sagittal, lateral])?;
-        Ok((s, Some(l)))
+        outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError> {
+        let [s, l] = CoupledLearner::touch_down(
+            self,
+            [
+                &outcomes[StepParameter::StepX],
+                &outcomes[StepParameter::StepY],
+            ],
+        )?;
+        Ok(PerParameter([Some(s), Some(l), None]))
     }
-    fn falls(
-        &mut self,
-        sagittal: &StepOutcome,
-        lateral: &StepOutcome,
-    ) -> Result<(Option<TouchDownReport>, Option<TouchDownReport>), LearnerError> {
-        Ok(match self.fall([sagittal, lateral])? {
-            Some([s, l]) => (Some(s), Some(l)),
-            None => (None, None),
-        })
-    }
-    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
-        Ok(self.query(input, LearnerInput::default())?[0])
-    }
-    fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        CoupledLearner::set_reach(self, 0, lo, hi)
-    }
-    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
-        Ok(CoupledLearner::touch_down(self, [outcome, &AT_REST])?[0])
-    }
-    fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
-        Ok(CoupledLearner::fall(self, [outcome, &AT_REST])?.map(|[s, _]| s))
+    fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
+        Ok(
+            match CoupledLearner::fall(
+                self,
+                [
+                    &outcomes[StepParameter::StepX],
+                    &outcomes[StepParameter::StepY],
+                ],
+            )? {
+                Some([s, l]) => PerParameter([Some(s), Some(l), None]),
+                None => StepReports::default(),
+            },
+        )
     }
     fn discard_step(&mut self) {
-        CoupledLearner::discard_step(self)
-    }
-    fn set_lateral_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        CoupledLearner::set_reach(self, 1, lo, hi)
-    }
-    fn discard_lateral_step(&mut self) {
         CoupledLearner::discard_step(self)
     }
 }

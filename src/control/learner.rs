@@ -61,6 +61,7 @@
 //! as before. The rule's state travels in the learner's checkpoint.
 //!
 
+use super::step_parameter::LearnSet;
 use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, RuleError, StepOutcome};
@@ -227,6 +228,11 @@ pub struct LearnerConfig {
     /// last commands put it (the generator filters the commanded placement over 0.05 s), so
     /// offsets queried early in a step barely move the step that G measures.
     pub train_share: f64,
+    /// The step parameters a walker's learner learns, each with a learner of these settings
+    /// ([`StepLearner`](super::step_learner::StepLearner)); default the paper's `step-x`
+    /// (left out of written configs).
+    #[serde(skip_serializing_if = "LearnSet::is_paper")]
+    pub learn: LearnSet,
 }
 
 /// What the learned offset fades to where the trust region does not cover the input.
@@ -328,6 +334,7 @@ impl Default for LearnerConfig {
             trust_region: Some(2.0),
             trust_fallback: TrustFallback::Zero,
             train_share: 1.0,
+            learn: LearnSet::default(),
         }
     }
 }

@@ -10,8 +10,10 @@ pub mod learner;
 pub mod lipm;
 pub mod lipm_plant;
 pub mod motion;
+pub mod policy;
+pub mod step_learner;
+pub mod step_parameter;
 mod step_samples;
-pub mod two_planes;
 pub mod walker;
 
 // The robot interface, re-exported where control's users look for it.

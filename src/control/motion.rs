@@ -187,9 +187,8 @@ pub struct MotionConfig {
     /// Time constant of the low-pass filter on the commanded placement (s; 0 = off).
     pub filter_time: f64,
     /// Sagittal step range (m): commanded steps are clamped to it. The default reaches
-    /// 0.45 m forward: with 0.3 m the Capture Step walker fell from most 8 Ns forward pushes
-    /// while walking with 0.2 m steps (experiment B), and its 50% fall impulse in place was
-    /// 12.3 instead of 13.9 Ns (seed 0, 100 pushes).
+    /// 0.45 m forward and backward (the paper's setup reached 0.15 m backward, which left
+    /// backward catch steps at a fifth of their command; see `docs/learner.md`).
     pub step_x_range: [f64; 2],
     /// Lateral foot distance range (m, magnitude).
     pub step_y_range: [f64; 2],
@@ -209,9 +208,18 @@ pub struct MotionConfig {
     /// [`Swing::Tracking`]: how far ahead the measured trunk tilt is predicted with its rate
     /// (s; at most the time left in the step).
     pub tilt_lead: f64,
-    /// [`Swing::Tracking`]: the share of the trunk's measured tilt (beyond the commanded
-    /// lean) the swing compensates (1: all of it; 0: only the leg length to the ground).
+    /// [`Swing::Tracking`]: the share of the trunk's tilt deviation the swing compensates
+    /// (1: all of it; 0: none, the end angle only from the support leg's geometry).
     pub tilt_gain: f64,
+    /// [`Swing::Tracking`]: time constant of the trunk's settled tilt (s, > 0): the swing
+    /// compensates the measured tilt's deviation from its low-pass filtered value, so a
+    /// steady lean (the trunk's sag on its hips, a lean the gait settles into) is left to the
+    /// balance controller and only the fast tilt of a push is compensated.
+    pub tilt_settle_s: f64,
+    /// [`Swing::Tracking`]: tilt deviations within this band are not compensated, and larger
+    /// ones only beyond it (rad, >= 0): the trunk's sway within a step of undisturbed walking
+    /// is not a tilt of the body.
+    pub tilt_dead_band: f64,
 }
 
 impl Default for MotionConfig {
@@ -227,7 +235,7 @@ impl Default for MotionConfig {
             swing_window: [0.1, 0.9],
             lean_per_step: 0.2,
             filter_time: 0.05,
-            step_x_range: [-0.15, 0.45],
+            step_x_range: [-0.45, 0.45],
             step_y_range: [0.16, 0.4],
             max_turn: 0.5,
             period: 0.4,
@@ -236,6 +244,8 @@ impl Default for MotionConfig {
             swing: Swing::Tracking,
             tilt_lead: 0.0,
             tilt_gain: 1.0,
+            tilt_settle_s: 3.0,
+            tilt_dead_band: 0.01,
         }
     }
 }
@@ -244,7 +254,9 @@ impl MotionConfig {
     /// Checks the tracking swing's settings; errors name the field.
     pub fn validate(&self) -> Result<(), ConfigError> {
         config::non_negative("tilt_lead", self.tilt_lead)?;
-        config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)
+        config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)?;
+        config::positive("tilt_settle_s", self.tilt_settle_s)?;
+        config::non_negative("tilt_dead_band", self.tilt_dead_band)
     }
 
     /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
@@ -291,10 +303,13 @@ pub struct MotionGenerator {
     placement: [[f64; 3]; 2],
     /// Last commanded leg poses.
     legs: [LegPose; 2],
-    /// The trunk tilt `[roll, pitch]` predicted at touch-down from the last command's
-    /// measurement, if it had one.
+    /// The trunk tilt's deviation `[roll, pitch]` from its settled value, predicted at
+    /// touch-down from the last command's measurement, if it had one.
     #[serde(default)]
     tilt: Option<[f64; 2]>,
+    /// The trunk's settled tilt `[roll, pitch]` (low-pass filtered measurement).
+    #[serde(default)]
+    tilt_settled: Option<[f64; 2]>,
 }
 
 /// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
@@ -323,6 +338,7 @@ impl MotionGenerator {
             placement: [[0.0; 3]; 2],
             legs: [LegPose::default(); 2],
             tilt: None,
+            tilt_settled: None,
         };
         g.legs = [g.halt_pose(); 2];
         g
@@ -462,7 +478,16 @@ impl MotionGenerator {
                 if tilt.iter().chain(&rate).all(|v| v.is_finite()) =>
             {
                 let lead = c.tilt_lead.min(left).max(0.0);
-                Some([tilt[0] + lead * rate[0], tilt[1] + lead * rate[1]])
+                let beta = 1.0 - (-dt / c.tilt_settle_s).exp();
+                let settled = self.tilt_settled.get_or_insert(tilt);
+                for (m, t) in settled.iter_mut().zip(tilt) {
+                    *m += beta * (t - *m);
+                }
+                let band = c.tilt_dead_band;
+                Some([0, 1].map(|k| {
+                    let dev = tilt[k] + lead * rate[k] - settled[k];
+                    dev.signum() * (dev.abs() - band).max(0.0)
+                }))
             }
             _ => None,
         };
@@ -517,9 +542,9 @@ impl MotionGenerator {
         // support sole on the ground, for the trunk's predicted tilt.
         let tracking = self.tilt.map(|[roll, pitch]| {
             let roll = c.tilt_gain * roll;
-            let pitch = lean + c.tilt_gain * (pitch - lean);
+            let pitch = lean + c.tilt_gain * pitch;
             // The hip over the support sole at the end of the step, with the support leg
-            // tilted by the trunk's tilt beyond the commanded lean.
+            // tilted by the trunk's tilt beyond its settled value.
             let support_world = end_support_pitch - lean + pitch;
             let hip_x = d * support_world.sin();
             let hip_z = d * support_world.cos();

@@ -21,14 +21,14 @@ use super::capture_step::{
     CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
 };
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
-use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
+use super::learner::{LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
 use super::motion::{MotionConfig, MotionGenerator, StepCommand, smooth};
-use crate::approx::FunctionApproximator;
+use super::step_parameter::{PerParameter, StepParameter};
 use crate::config::{self, ConfigError};
 use crate::robot::kinematics::LegGeometry;
 use crate::robot::{JointTargets, Sensors, Side};
-use crate::rules::{LearningRule, StepOutcome};
+use crate::rules::StepOutcome;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -176,105 +176,7 @@ pub enum WalkerError {
     Config(#[from] ConfigError),
 }
 
-/// A source of learned sagittal footstep offsets dF: asked every tick, told at touch-down.
-///
-/// [`FootstepLearner`] is the implementation; the trait lets the walker hold any learner
-/// without knowing its approximator and rule types.
-pub trait FootstepPolicy {
-    /// dF for the current tick (m).
-    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError>;
-    /// The offsets that could change the step at this tick (after [`Self::offset`]).
-    fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError>;
-    /// The step that just ended: learn from it.
-    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError>;
-    /// The step in progress ended in a fall: learn from it or forget it (the learner's
-    /// setting); the robot is reset afterwards.
-    fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError>;
-    /// Forget the current step without learning.
-    fn discard_step(&mut self);
-
-    /// The lateral learner's step-width offset dW for this tick (m, towards the swing leg's
-    /// side), if the policy has one; its input is the frontal plane's, mirrored (see
-    /// [`Walker::tick`]). Default: no lateral learner.
-    fn lateral_offset(&mut self, input: LearnerInput) -> Result<Option<f64>, LearnerError> {
-        let _ = input;
-        Ok(None)
-    }
-    /// The width offsets that could change the step at this tick (after
-    /// [`Self::lateral_offset`]).
-    fn set_lateral_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        let _ = (lo, hi);
-        Ok(())
-    }
-    /// The step that just ended, in the frontal plane (mirrored): learn from it.
-    fn lateral_touch_down(
-        &mut self,
-        outcome: &StepOutcome,
-    ) -> Result<Option<TouchDownReport>, LearnerError> {
-        let _ = outcome;
-        Ok(None)
-    }
-    /// The step in progress ended in a fall, in the frontal plane (mirrored).
-    fn lateral_fall(
-        &mut self,
-        outcome: &StepOutcome,
-    ) -> Result<Option<TouchDownReport>, LearnerError> {
-        let _ = outcome;
-        Ok(None)
-    }
-    /// Forget the current lateral step without learning.
-    fn discard_lateral_step(&mut self) {}
-
-    /// Both planes' offsets for this tick, `(dF, dW)`: what the walker calls. Default:
-    /// [`Self::offset`], then [`Self::lateral_offset`]. A policy that learns both planes in one
-    /// model (the [`CoupledLearner`](super::coupled::CoupledLearner)) answers here.
-    fn offsets(
-        &mut self,
-        sagittal: LearnerInput,
-        lateral: LearnerInput,
-    ) -> Result<(f64, Option<f64>), LearnerError> {
-        Ok((self.offset(sagittal)?, self.lateral_offset(lateral)?))
-    }
-    /// Both planes' step ended: what the walker calls. Default: [`Self::touch_down`], then
-    /// [`Self::lateral_touch_down`].
-    fn touch_downs(
-        &mut self,
-        sagittal: &StepOutcome,
-        lateral: &StepOutcome,
-    ) -> Result<(TouchDownReport, Option<TouchDownReport>), LearnerError> {
-        Ok((
-            self.touch_down(sagittal)?,
-            self.lateral_touch_down(lateral)?,
-        ))
-    }
-    /// Both planes' step in progress ended in a fall: what a trial calls. Default:
-    /// [`Self::fall`], then [`Self::lateral_fall`].
-    fn falls(
-        &mut self,
-        sagittal: &StepOutcome,
-        lateral: &StepOutcome,
-    ) -> Result<(Option<TouchDownReport>, Option<TouchDownReport>), LearnerError> {
-        Ok((self.fall(sagittal)?, self.lateral_fall(lateral)?))
-    }
-}
-
-impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
-    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
-        self.query(input)
-    }
-    fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        FootstepLearner::set_reach(self, lo, hi)
-    }
-    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
-        FootstepLearner::touch_down(self, outcome)
-    }
-    fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
-        FootstepLearner::fall(self, outcome)
-    }
-    fn discard_step(&mut self) {
-        FootstepLearner::discard_step(self)
-    }
-}
+pub use super::policy::{FootstepPolicy, StepReports};
 
 /// What one tick decided and measured.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -298,6 +200,9 @@ pub struct Tick {
     /// The learned lateral offset added to the step's y this tick (m, heading frame, positive
     /// to the left; 0 without a lateral learner).
     pub lateral_offset: f64,
+    /// The learned step-time offset added to the step time this tick (s; 0 without a
+    /// step-time learner).
+    pub time_offset: f64,
     /// The step that ended this tick, if a touch-down was detected.
     pub step: Option<StepOutcome>,
     /// The same step in the frontal plane, mirrored to the side of the leg that landed (see
@@ -307,6 +212,8 @@ pub struct Tick {
     pub learning: Option<TouchDownReport>,
     /// What the lateral learner did with it, if there is one and it learned.
     pub lateral_learning: Option<TouchDownReport>,
+    /// What the step-time learner did with it, if there is one and it learned.
+    pub time_learning: Option<TouchDownReport>,
 }
 
 /// The walker: estimator, balance controller and motion generator, ticked together.
@@ -419,8 +326,7 @@ impl Walker {
             let width = td.support.sign() * td.step[1];
             self.lateral_outcome(&estimate, td.support, width)
         });
-        let mut learning = None;
-        let mut lateral_learning = None;
+        let mut reports = StepReports::default();
         let always =
             self.config.learner_during_fade_in || self.config.mode == WalkerMode::LearnerOnly;
         let engaged = always || self.generator.fade() >= 1.0;
@@ -435,17 +341,13 @@ impl Walker {
             (&step, &lateral_step, policy.as_deref_mut())
         {
             if engaged {
-                let (s, l) = p.touch_downs(outcome, lateral)?;
-                learning = Some(s);
-                lateral_learning = l;
+                reports = p.touch_down(&per_parameter(*outcome, *lateral))?;
             } else {
                 p.discard_step();
-                p.discard_lateral_step();
             }
         }
 
-        let mut learned_offset = 0.0;
-        let mut lateral_offset = 0.0;
+        let mut offsets = PerParameter::<f64>::default();
         let (command, decision) = match self.config.mode {
             WalkerMode::OpenLoop => (self.generator.open_loop(f_r), None),
             WalkerMode::CaptureStep | WalkerMode::LearnerOnly => {
@@ -455,15 +357,15 @@ impl Walker {
                 let [lean, lean_rate] = lean_towards(&estimate, support.other());
                 let width_r = self.width_reference(support.other()) - self.reference_width();
                 if let Some(p) = policy.as_deref_mut() {
-                    let (df, dw) = p.offsets(
+                    let learned = p.offsets(&per_parameter(
                         LearnerInput::new(estimate.theta_e, estimate.theta_e_rate, f_r),
                         LearnerInput::new(lean, lean_rate, width_r),
-                    )?;
-                    learned_offset = df * engagement;
-                    if let Some(dw) = dw {
-                        lateral_offset = swing_sign * dw * engagement;
-                    }
+                    ))?;
+                    offsets = learned.map(|v| v * engagement);
+                    offsets[StepParameter::StepY] *= swing_sign;
                 }
+                let learned_offset = offsets[StepParameter::StepX];
+                let lateral_offset = offsets[StepParameter::StepY];
                 let com = com_relative_to(&estimate, support);
                 // In learner-only mode the offset is the whole sagittal step.
                 let into_reference = self.config.offset_target == OffsetTarget::Reference
@@ -480,15 +382,12 @@ impl Walker {
                 let d = self.controller.update_with_offsets(
                     &com,
                     &reference,
-                    [footstep_offset, lateral_offset],
+                    [
+                        footstep_offset,
+                        lateral_offset,
+                        offsets[StepParameter::StepTime],
+                    ],
                 )?;
-                if let Some(p) = policy.as_deref_mut() {
-                    // The generator keeps the width within its range: offsets beyond that
-                    // range's ends cannot change the step.
-                    let width = swing_sign * (d.step[1] - lateral_offset);
-                    let [lo, hi] = m.step_y_range;
-                    p.set_lateral_reach(lo - width, hi - width)?;
-                }
                 if let Some(p) = policy {
                     // Offsets beyond these would be clamped away by the step range.
                     let cap = self.config.capture_step.max_step_x;
@@ -501,7 +400,15 @@ impl Walker {
                     } else {
                         d.analytic_step_x
                     };
-                    p.set_reach(lo - base, hi - base)?;
+                    // The generator keeps the width within its range: offsets beyond that
+                    // range's ends cannot change the step.
+                    let width = swing_sign * (d.step[1] - lateral_offset);
+                    let [w_lo, w_hi] = m.step_y_range;
+                    p.set_reach(&PerParameter([
+                        [lo - base, hi - base],
+                        [w_lo - width, w_hi - width],
+                        d.time_reach,
+                    ]))?;
                 }
                 let gait_x = if self.config.offset_in_gait {
                     f_r + learned_offset
@@ -530,12 +437,14 @@ impl Walker {
             command,
             f_r,
             f_r_y,
-            learned_offset,
-            lateral_offset,
+            learned_offset: offsets[StepParameter::StepX],
+            lateral_offset: offsets[StepParameter::StepY],
+            time_offset: offsets[StepParameter::StepTime],
             step,
             lateral_step,
-            learning,
-            lateral_learning,
+            learning: reports[StepParameter::StepX],
+            lateral_learning: reports[StepParameter::StepY],
+            time_learning: reports[StepParameter::StepTime],
         })
     }
 
@@ -583,6 +492,16 @@ impl Walker {
         }
     }
 
+    /// The outcome of the step in progress at `estimate` for every step parameter
+    /// ([`Self::outcome_at`] and [`Self::lateral_outcome_at`]): what a trial hands the policy
+    /// at a fall.
+    pub fn outcomes_at(&self, estimate: &Estimate, f_r: f64) -> PerParameter<StepOutcome> {
+        per_parameter(
+            Self::outcome_at(estimate, f_r),
+            self.lateral_outcome_at(estimate),
+        )
+    }
+
     /// [`Self::outcome_at`] in the frontal plane: the step in progress at `estimate` with the
     /// swing foot's lateral distance from the support foot as its width, mirrored to the swing
     /// leg's side.
@@ -607,6 +526,12 @@ impl Walker {
             f_r,
         }
     }
+}
+
+/// The inputs or outcomes of every step parameter from the sagittal and the (mirrored)
+/// frontal plane's: the step time learns from the sagittal plane.
+fn per_parameter<T: Copy>(sagittal: T, lateral: T) -> PerParameter<T> {
+    PerParameter([sagittal, lateral, sagittal])
 }
 
 /// The trunk's lean towards `side` and its rate (rad, rad/s): the roll mirrored to that side

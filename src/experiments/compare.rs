@@ -6,10 +6,8 @@ use super::fall_causes::{ClassifiedFall, count, push_rows, run_classified};
 use super::settings::LearnerFactory;
 use super::summary::ModelLearned;
 use super::trial::{ControllerCell, StepCells, TrialLog, TrialSetup};
-use crate::approx::FunctionApproximator;
 use crate::report::ReportError;
 use crate::report::write_rows;
-use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -64,14 +62,10 @@ impl ModelAndLearned {
 
 /// Runs `setup` without a learner and with a fresh learner from `learner`, in parallel (the
 /// results do not depend on the number of threads: each run is sequential and seeded).
-pub fn run_model_and_learned<A, R>(
+pub fn run_model_and_learned(
     setup: &TrialSetup,
-    learner: &(impl LearnerFactory<A, R> + Sync),
-) -> Result<ModelAndLearned, ExperimentError>
-where
-    A: FunctionApproximator + Clone,
-    R: LearningRule,
-{
+    learner: &(impl LearnerFactory + Sync),
+) -> Result<ModelAndLearned, ExperimentError> {
     let (model, learned) = rayon::join(
         || run_classified(setup, None),
         || -> Result<_, ExperimentError> {

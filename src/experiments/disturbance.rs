@@ -13,7 +13,6 @@ use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::{StepRecord, TrialLog, TrialSetup};
-use crate::approx::FunctionApproximator;
 use crate::config::limits::{
     MAX_BINS, MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MIN_BIN_S,
 };
@@ -25,7 +24,6 @@ use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::{number, read_rows};
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{Fixed, write_rows};
-use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -291,16 +289,12 @@ pub fn trial_setup(settings: &Settings, protocol: &DisturbanceProtocol, seed: u6
 }
 
 /// Runs experiment B.
-pub fn run<A, R>(
+pub fn run(
     settings: &Settings,
     protocol: &DisturbanceProtocol,
     seed: u64,
-    learner: &(impl LearnerFactory<A, R> + Sync),
-) -> Result<DisturbanceResult, ExperimentError>
-where
-    A: FunctionApproximator + Clone,
-    R: LearningRule,
-{
+    learner: &(impl LearnerFactory + Sync),
+) -> Result<DisturbanceResult, ExperimentError> {
     settings.validate()?;
     protocol
         .validate()
@@ -520,7 +514,7 @@ impl Experiment for Disturbance {
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
         let p: DisturbanceProtocol = ctx.protocols.get(self.name())?;
         let p = &p;
-        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
+        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_step_learner())?;
         r.write(dir, p.f_r)?;
         let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
         Ok(ExperimentResult::Disturbance {

@@ -13,13 +13,18 @@ use super::settings::Settings;
 use crate::approx::{BoxedApproximator, Stacked};
 use crate::config::ConfigError;
 use crate::control::coupled::CoupledLearner;
-use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
+use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError, Prior};
+use crate::control::step_learner::StepLearner;
+use crate::control::step_parameter::{LearnSet, StepParameter};
 use crate::experiments::summary::{ExperimentResult, Summary};
-use crate::rules::LearningRule;
+use crate::rules::{LearningRule, StepTime};
 use std::path::Path;
 
 /// The learner every experiment runs: the run's approximator and rule, chosen by name.
 pub type RunLearner = FootstepLearner<BoxedApproximator, Box<dyn LearningRule>>;
+
+/// A learner of a set of step parameters: one [`RunLearner`] per parameter.
+pub type RunStepLearner = StepLearner<BoxedApproximator, Box<dyn LearningRule>>;
 
 /// Builds a fresh, untrained learner of a run's approximator and rule with a learner config.
 pub type LearnerBuilder<'a> = dyn Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + 'a;
@@ -58,6 +63,45 @@ impl RunContext<'_> {
     /// A fresh learner with the settings' learner config.
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
         (self.learner)(self.settings.learner)
+    }
+
+    /// A fresh learner of `set` with the settings' learner config: for each parameter a
+    /// learner of the run's approximator, with the run's rule for `step-x` and `step-y` and
+    /// the LIPM step-time rule ([`StepTime`]) for `step-time`.
+    pub fn make_learner_of(&self, set: LearnSet) -> Result<RunStepLearner, LearnerError> {
+        let config = LearnerConfig {
+            learn: set,
+            ..self.settings.learner
+        };
+        let learners = set
+            .iter()
+            .map(|p| {
+                Ok((
+                    p,
+                    match p {
+                        StepParameter::StepX | StepParameter::StepY => (self.learner)(config)?,
+                        StepParameter::StepTime => {
+                            // The run's approximator as built (no prior trained into it yet).
+                            let bare = LearnerConfig {
+                                prior: Prior::none(),
+                                ..config
+                            };
+                            let (approx, _) = (self.learner)(bare)?.into_parts();
+                            let rule: Box<dyn LearningRule> = Box::new(StepTime::default());
+                            let mut learner = FootstepLearner::new(approx, rule, config)?;
+                            learner.reseed(self.seed);
+                            learner
+                        }
+                    },
+                ))
+            })
+            .collect::<Result<Vec<_>, LearnerError>>()?;
+        StepLearner::new(learners)
+    }
+
+    /// A fresh learner of the settings' set (`[settings.learner] learn`, `--learn`).
+    pub fn make_step_learner(&self) -> Result<RunStepLearner, LearnerError> {
+        self.make_learner_of(self.settings.learner.learn)
     }
 
     /// A fresh coupled learner with the settings' learner config.

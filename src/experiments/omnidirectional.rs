@@ -5,7 +5,8 @@
 //! 45 degrees apart), each sector with its own pushes of random impulse over the protocol's
 //! range at random gait phases, the same pushes for four walkers: open-loop, the Capture Step
 //! model, the model with the paper's sagittal learner, and the model with both learners
-//! ([`TwoPlanes`]: the sagittal learner and a lateral one of the same approximator and rule).
+//! (a [`StepLearner`](crate::control::step_learner::StepLearner) of `step-x` and `step-y`: the
+//! sagittal learner and a lateral one of the same approximator and rule).
 //! Each walker learns afresh in each sector. Per sector and walker: the impulse at 50% falls
 //! (I50, as in experiment C) and the falls per cause.
 //!
@@ -27,7 +28,7 @@ use super::summary::{CustomResult, ExperimentResult, Summary};
 use super::trial::{Observer, TrialLog, run_trial};
 use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
 use crate::config::{self, ConfigError};
-use crate::control::two_planes::TwoPlanes;
+use crate::control::step_parameter::{LearnSet, StepParameter};
 use crate::control::walker::{FootstepPolicy, Tick, WalkerMode};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
@@ -76,7 +77,8 @@ pub struct OmnidirectionalProtocol {
 #[serde(rename_all = "kebab-case")]
 #[strum(serialize_all = "kebab-case")]
 pub enum BothPlanes {
-    /// Two learners, one per plane, each from its own plane only ([`TwoPlanes`]).
+    /// Two learners, one per plane, each from its own plane only (a
+    /// [`StepLearner`](crate::control::step_learner::StepLearner) of `step-x` and `step-y`).
     #[default]
     Uncoupled,
     /// One learner with two outputs (dF, dW) over both planes' inputs
@@ -97,10 +99,9 @@ fn both_learners(
     how: BothPlanes,
 ) -> Result<Box<dyn FootstepPolicy>, ExperimentError> {
     Ok(match how {
-        BothPlanes::Uncoupled => Box::new(TwoPlanes {
-            sagittal: ctx.make_learner()?,
-            lateral: ctx.make_learner()?,
-        }),
+        BothPlanes::Uncoupled => Box::new(ctx.make_learner_of(
+            LearnSet::of(&[StepParameter::StepX, StepParameter::StepY]).expect("two parameters"),
+        )?),
         BothPlanes::Coupled => Box::new(ctx.make_coupled_learner()?),
     })
 }

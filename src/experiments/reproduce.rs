@@ -334,6 +334,7 @@ mod tests {
             approx: "lwpr".into(),
             rule: "pendulum-cart".into(),
             seed,
+            learn: Default::default(),
             result,
         }
     }

@@ -2,11 +2,9 @@
 
 use super::schedule::{Push, PushPlan, ReferenceSchedule};
 use super::trial::TrialSetup;
-use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
-use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
-use crate::control::walker::{WalkerConfig, WalkerMode};
-use crate::rules::LearningRule;
+use crate::control::learner::{LearnerConfig, LearnerError};
+use crate::control::walker::{FootstepPolicy, WalkerConfig, WalkerMode};
 use crate::sim::SimConfig;
 use serde::{Deserialize, Serialize};
 
@@ -132,19 +130,23 @@ impl Settings {
     }
 }
 
-/// Builds a fresh learner for one run (each controller of an experiment gets its own).
-pub trait LearnerFactory<A: FunctionApproximator, R: LearningRule> {
+/// Builds a fresh learner for one run (each controller of an experiment gets its own): a
+/// [`FootstepLearner`](crate::control::learner::FootstepLearner), a
+/// [`StepLearner`](crate::control::step_learner::StepLearner) or any other policy.
+pub trait LearnerFactory {
+    /// The policy it builds.
+    type Policy: FootstepPolicy;
     /// A new, untrained learner.
-    fn make(&self) -> Result<FootstepLearner<A, R>, LearnerError>;
+    fn make(&self) -> Result<Self::Policy, LearnerError>;
 }
 
-impl<A, R, F> LearnerFactory<A, R> for F
+impl<P, F> LearnerFactory for F
 where
-    A: FunctionApproximator,
-    R: LearningRule,
-    F: Fn() -> Result<FootstepLearner<A, R>, LearnerError>,
+    P: FootstepPolicy,
+    F: Fn() -> Result<P, LearnerError>,
 {
-    fn make(&self) -> Result<FootstepLearner<A, R>, LearnerError> {
+    type Policy = P;
+    fn make(&self) -> Result<P, LearnerError> {
         self()
     }
 }

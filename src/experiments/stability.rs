@@ -15,7 +15,6 @@ use super::schedule::PushPlan;
 use super::settings::{LearnerFactory, Settings};
 use super::summary::FallCauseCounts;
 use super::trial::{PushRecord, TrialLog, TrialSetup};
-use crate::approx::FunctionApproximator;
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::experiments::summary::{
@@ -27,7 +26,6 @@ use crate::report::csv_read::{number, read_rows};
 use crate::report::fall_rate::{Fall50Estimate, PushResult, fall_rate_bins, impulse_at_50pct_fall};
 use crate::report::figures::{FallCurve, FallPlot, fall_probability_plot};
 use crate::report::write_rows;
-use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -125,16 +123,12 @@ pub struct StabilityResult {
 }
 
 /// Runs experiment C. The three controllers see the same push sequence.
-pub fn run<A, R>(
+pub fn run(
     settings: &Settings,
     protocol: &StabilityProtocol,
     seed: u64,
-    learner: &(impl LearnerFactory<A, R> + Sync),
-) -> Result<StabilityResult, ExperimentError>
-where
-    A: FunctionApproximator + Clone,
-    R: LearningRule,
-{
+    learner: &(impl LearnerFactory + Sync),
+) -> Result<StabilityResult, ExperimentError> {
     settings.validate()?;
     protocol
         .validate()
@@ -318,7 +312,7 @@ impl Experiment for Stability {
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
         let p: StabilityProtocol = ctx.protocols.get(self.name())?;
         let p = &p;
-        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
+        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_step_learner())?;
         r.write(dir, p.impulse, p.direction)?;
         let falls = |c: &ControllerPushes| ControllerFalls {
             pushes: c.pushes.len() as u32,

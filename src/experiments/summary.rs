@@ -10,6 +10,7 @@
 use super::ExperimentKind;
 use super::fall_causes::FallCause;
 use crate::Named;
+use crate::control::step_parameter::LearnSet;
 use crate::report::{ReportError, write_atomic};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
@@ -229,18 +230,22 @@ pub struct Summary {
     pub rule: String,
     /// Seed of the run.
     pub seed: u64,
+    /// The step parameters the run's learner learned (`[settings.learner] learn`; older
+    /// summaries: the paper's `step-x`).
+    pub learn: LearnSet,
     /// `"experiment"` and the experiment's fields.
     pub result: ExperimentResult,
 }
 
 /// The fields every summary has.
-const COMMON_FIELDS: [&str; 4] = ["approx", "rule", "seed", "experiment"];
+const COMMON_FIELDS: [&str; 5] = ["approx", "rule", "seed", "learn", "experiment"];
 
 #[derive(Serialize)]
 struct BuiltinOut<'a> {
     approx: &'a str,
     rule: &'a str,
     seed: u64,
+    learn: LearnSet,
     #[serde(flatten)]
     result: &'a ExperimentResult,
 }
@@ -250,6 +255,7 @@ struct CustomOut<'a> {
     approx: &'a str,
     rule: &'a str,
     seed: u64,
+    learn: LearnSet,
     experiment: &'a str,
     #[serde(flatten)]
     fields: &'a serde_json::Map<String, serde_json::Value>,
@@ -260,6 +266,8 @@ struct SummaryIn {
     approx: String,
     rule: String,
     seed: u64,
+    #[serde(default)]
+    learn: LearnSet,
     experiment: String,
     #[serde(flatten)]
     fields: serde_json::Map<String, serde_json::Value>,
@@ -272,6 +280,7 @@ impl Serialize for Summary {
                 approx: &self.approx,
                 rule: &self.rule,
                 seed: self.seed,
+                learn: self.learn,
                 experiment: &c.experiment,
                 fields: &c.fields,
             }
@@ -280,6 +289,7 @@ impl Serialize for Summary {
                 approx: &self.approx,
                 rule: &self.rule,
                 seed: self.seed,
+                learn: self.learn,
                 result,
             }
             .serialize(serializer),
@@ -293,6 +303,7 @@ impl<'de> Deserialize<'de> for Summary {
             approx,
             rule,
             seed,
+            learn,
             experiment,
             mut fields,
         } = SummaryIn::deserialize(deserializer)?;
@@ -310,6 +321,7 @@ impl<'de> Deserialize<'de> for Summary {
             approx,
             rule,
             seed,
+            learn,
             result,
         })
     }
@@ -607,6 +619,7 @@ mod tests {
             approx: "lwpr".into(),
             rule: "pendulum-cart".into(),
             seed: 3,
+            learn: LearnSet::default(),
             result: ExperimentResult::Stability {
                 controllers: Controllers {
                     open_loop: falls(400, 250, 4.5),
@@ -648,13 +661,18 @@ mod tests {
             keys,
             [
                 "approx",
+                "catch_step_reach",
                 "controllers",
                 "experiment",
                 "fall_causes",
+                "learn",
                 "rule",
                 "seed"
             ]
         );
+        assert_eq!(v["learn"], serde_json::json!(["step-x"]));
+        assert_eq!(v["catch_step_reach"]["model"], 0.93);
+        assert!(v["catch_step_reach"]["learned"].is_null());
         assert_eq!(v["fall_causes"]["model"]["before_touch_down"], 100);
         assert_eq!(v["experiment"], "stability");
         assert_eq!(v["rule"], "pendulum-cart");
@@ -739,7 +757,7 @@ mod tests {
             let v: serde_json::Value = serde_json::from_str(&s.to_json().unwrap()).unwrap();
             let mut keys: Vec<_> = v.as_object().unwrap().keys().cloned().collect();
             keys.sort();
-            let mut want = vec!["approx", "experiment", "rule", "seed"];
+            let mut want = vec!["approx", "experiment", "learn", "rule", "seed"];
             want.extend(fields);
             want.sort();
             assert_eq!(keys, want);

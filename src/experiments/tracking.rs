@@ -13,7 +13,6 @@ use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::ReferenceSchedule;
 use super::settings::{LearnerFactory, Settings};
 use super::trial::TrialLog;
-use crate::approx::FunctionApproximator;
 use crate::config::limits::{MAX_BINS, MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S, MIN_BIN_S};
 use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
@@ -22,7 +21,6 @@ use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
 use crate::report::{Fixed, write_rows};
-use crate::rules::LearningRule;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -97,16 +95,12 @@ pub struct TrackingResult {
 }
 
 /// Runs experiment A.
-pub fn run<A, R>(
+pub fn run(
     settings: &Settings,
     protocol: &TrackingProtocol,
     seed: u64,
-    learner: &(impl LearnerFactory<A, R> + Sync),
-) -> Result<TrackingResult, ExperimentError>
-where
-    A: FunctionApproximator + Clone,
-    R: LearningRule,
-{
+    learner: &(impl LearnerFactory + Sync),
+) -> Result<TrackingResult, ExperimentError> {
     settings.validate()?;
     protocol
         .validate()
@@ -311,7 +305,7 @@ impl Experiment for Tracking {
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
         let p: TrackingProtocol = ctx.protocols.get(self.name())?;
         let p = &p;
-        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_learner())?;
+        let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_step_learner())?;
         r.write(dir)?;
         let (model, learned) = r.std_per_bin();
         Ok(ExperimentResult::Tracking {

@@ -8,6 +8,7 @@
 //! the learner keeps what it learned (its unfinished step is discarded).
 
 use super::schedule::{Push, ReferenceSchedule};
+use crate::control::step_parameter::StepParameter;
 use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
 use crate::report::Fixed;
 use crate::sim::{Fall, GroundTruth, Humanoid, SimConfig, SimError};
@@ -361,17 +362,12 @@ pub fn run_trial(
             if let Some(p) = policy.as_deref_mut() {
                 match last_tick.take() {
                     Some((estimate, f_r)) => {
-                        let outcome = Walker::outcome_at(&estimate, f_r);
                         // The walker is as it was at that tick: it is reset below.
-                        let lateral = walker.lateral_outcome_at(&estimate);
-                        let (sagittal, _) =
-                            p.falls(&outcome, &lateral).map_err(WalkerError::from)?;
-                        learning_gain = sagittal.map(|r| r.gain);
+                        let outcomes = walker.outcomes_at(&estimate, f_r);
+                        let reports = p.fall(&outcomes).map_err(WalkerError::from)?;
+                        learning_gain = reports[StepParameter::StepX].map(|r| r.gain);
                     }
-                    None => {
-                        p.discard_step();
-                        p.discard_lateral_step();
-                    }
+                    None => p.discard_step(),
                 }
             }
             let record = FallRecord {

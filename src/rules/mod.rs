@@ -29,6 +29,7 @@ mod linear;
 mod pendulum_cart;
 mod policy_gradient;
 mod rate_damped;
+mod step_time;
 mod tracking_only;
 
 pub use balance_only::BalanceOnly;
@@ -37,6 +38,7 @@ pub use linear::Linear;
 pub use pendulum_cart::PendulumCart;
 pub use policy_gradient::{PolicyGradient, PolicyGradientParams, PolicyGradientState};
 pub use rate_damped::RateDamped;
+pub use step_time::StepTime;
 pub use tracking_only::TrackingOnly;
 
 use serde::{Deserialize, Serialize};

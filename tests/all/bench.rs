@@ -315,6 +315,7 @@ fn custom_results_round_trip_and_cannot_pose_as_built_ins() {
         approx: "knn".into(),
         rule: "doubled".into(),
         seed: 7,
+        learn: Default::default(),
         result: ExperimentResult::Custom(c),
     };
     let json = s.to_json().unwrap();

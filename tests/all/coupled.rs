@@ -8,6 +8,8 @@ use steplearn::control::coupled::{CoupledLearner, coupled_bounds};
 use steplearn::control::learner::{
     InputGrid, LearnerConfig, LearnerError, LearnerInput, TrustFallback,
 };
+use steplearn::control::motion::Swing;
+use steplearn::control::step_parameter::{PerParameter, StepParameter};
 use steplearn::control::walker::FootstepPolicy;
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::rules::{PendulumCart, StepOutcome};
@@ -175,38 +177,43 @@ fn bad_input_and_unsupported_settings_are_refused_and_change_nothing() {
 }
 
 #[test]
-fn through_the_one_plane_methods_it_is_a_sagittal_learner_with_the_other_plane_at_rest() {
+fn as_a_policy_it_learns_both_planes_and_not_the_step_time() {
     let mut learner = coupled(LearnerConfig {
         trust_region: None,
         ..LearnerConfig::default()
     });
-    let df = FootstepPolicy::offset(&mut learner, SAGITTAL).unwrap();
-    assert_eq!(
-        df,
-        learner
-            .predict(&at(SAGITTAL, LearnerInput::default()))
-            .unwrap()[0]
-    );
-    assert_eq!(learner.lateral_offset(LATERAL).unwrap(), None);
-    let report = FootstepPolicy::touch_down(&mut learner, &outcome(0.1, 0.0)).unwrap();
-    assert!(report.gradient > 0.0 && report.samples == 1);
-    // Both planes at once: the walker's calls.
-    let (df, dw) = learner.offsets(SAGITTAL, LATERAL).unwrap();
-    assert!(df.is_finite() && dw.is_some());
-    let (s, l) = learner
-        .falls(&outcome(2.0, 0.0), &outcome(-2.0, 0.0))
-        .unwrap();
+    assert_eq!(learner.learns().to_string(), "step-x,step-y");
+    let inputs = PerParameter([SAGITTAL, LATERAL, SAGITTAL]);
+    let offsets = learner.offsets(&inputs).unwrap();
+    let both = learner.predict(&at(SAGITTAL, LATERAL)).unwrap();
+    assert_eq!(offsets.0, [both[0], both[1], 0.0]);
+    let reports = FootstepPolicy::touch_down(
+        &mut learner,
+        &PerParameter([outcome(0.1, 0.0), outcome(0.0, 0.0), outcome(0.1, 0.0)]),
+    )
+    .unwrap();
+    let s = reports[StepParameter::StepX].unwrap();
+    assert!(s.gradient > 0.0 && s.samples == 1);
+    assert!(reports[StepParameter::StepY].is_some());
+    assert!(reports[StepParameter::StepTime].is_none());
+    learner.offsets(&inputs).unwrap();
+    let reports = FootstepPolicy::fall(
+        &mut learner,
+        &PerParameter([outcome(2.0, 0.0), outcome(-2.0, 0.0), outcome(2.0, 0.0)]),
+    )
+    .unwrap();
     // Learning from falls clamps theta_E to the fall limit before the rule sees it.
     let lim = LearnerConfig::default().fall_theta_limit;
-    assert_eq!(s.unwrap().gradient, lim);
-    assert_eq!(l.unwrap().gradient, -lim);
+    assert_eq!(reports[StepParameter::StepX].unwrap().gradient, lim);
+    assert_eq!(reports[StepParameter::StepY].unwrap().gradient, -lim);
 }
 
 #[test]
 fn on_the_humanoid_the_coupled_learner_learns_the_width_after_a_side_push() {
     let mut learner = coupled(LearnerConfig::default());
-    let learned = step_in_place(14.0, [0.0, 5.0, 0.0], Some(&mut learner));
-    let model = step_in_place(14.0, [0.0, 5.0, 0.0], None);
+    // The paper's swing, as for the uncoupled lateral learner's test.
+    let learned = step_in_place(14.0, [0.0, 5.0, 0.0], Swing::Paper, Some(&mut learner));
+    let model = step_in_place(14.0, [0.0, 5.0, 0.0], Swing::Paper, None);
     assert_eq!(learned.falls + model.falls, 0);
     assert!(learned.offsets.iter().any(|o| *o != 0.0));
     let err = |r: &crate::lateral::Run| r.mean_width_error_after(8.0);

@@ -107,10 +107,16 @@ fn stability_summary_counts_every_fall_by_cause() {
     let ExperimentResult::Stability {
         controllers,
         fall_causes,
+        catch_step_reach,
     } = &s.result
     else {
         panic!("{:?}", s.result)
     };
+    // The stability summary reports the catch step's reach of both Capture Step walkers.
+    let reach = catch_step_reach.expect("catch_step_reach in a new summary");
+    for r in [reach.model, reach.learned].into_iter().flatten() {
+        assert!(r.is_finite() && r > 0.0, "reach {r}");
+    }
     let mut any_fall = false;
     for (c, causes) in [
         (&controllers.open_loop, &fall_causes.open_loop),

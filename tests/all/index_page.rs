@@ -78,6 +78,7 @@ fn reproduction(dir: &Path, seeds: u64) {
             approx: "lwpr".into(),
             rule: "pendulum-cart".into(),
             seed,
+            learn: Default::default(),
             result,
         }
         .write(&d.join(SUMMARY_FILE))
@@ -142,6 +143,7 @@ fn reproduction(dir: &Path, seeds: u64) {
                     learned: falls(13.0 + s),
                 },
                 fall_causes: Default::default(),
+                catch_step_reach: None,
             },
         );
         let mut csv = String::from("controller,time_s,impulse_ns,fell,fall_cause\n");

@@ -6,9 +6,10 @@
 use steplearn::approx::{AnyApproximator, ApproxKind};
 use steplearn::control::learner::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, SavedLearner,
-    StepInProgress, TouchDownReport,
+    StepInProgress,
 };
-use steplearn::control::walker::{FootstepPolicy, WalkerMode};
+use steplearn::control::step_parameter::{LearnSet, PerParameter};
+use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{TrialLog, run_trial};
@@ -63,21 +64,30 @@ impl Reloading {
 }
 
 impl FootstepPolicy for Reloading {
-    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
+    fn learns(&self) -> LearnSet {
+        LearnSet::default()
+    }
+    fn offsets(
+        &mut self,
+        inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError> {
         self.queries += 1;
         if self.every.is_some_and(|k| self.queries.is_multiple_of(k)) {
             self.reload();
         }
-        self.learner.query(input)
+        self.learner.offsets(inputs)
     }
-    fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        self.learner.set_reach(lo, hi)
+    fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
+        FootstepPolicy::set_reach(&mut self.learner, reach)
     }
-    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
-        self.learner.touch_down(outcome)
+    fn touch_down(
+        &mut self,
+        outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError> {
+        FootstepPolicy::touch_down(&mut self.learner, outcomes)
     }
-    fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
-        self.learner.fall(outcome)
+    fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
+        FootstepPolicy::fall(&mut self.learner, outcomes)
     }
     fn discard_step(&mut self) {
         self.learner.discard_step()

@@ -46,6 +46,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 learned: controller(40),
             },
             fall_causes: Default::default(),
+            catch_step_reach: None,
         },
         "robustness" => {
             let first = rng.random_range(1..=6u32);
@@ -87,6 +88,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
         approx: spec.approx.clone(),
         rule: spec.rule.clone(),
         seed: spec.seed,
+        learn: Default::default(),
         result,
     })
 }

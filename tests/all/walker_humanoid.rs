@@ -1,6 +1,7 @@
 //! The walker and the trial harness on the simulated humanoid.
 
-use steplearn::control::walker::{Walker, WalkerConfig, WalkerMode};
+use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
+use steplearn::control::walker::{StepReports, Walker, WalkerConfig, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{TrialError, run_trial};
@@ -250,60 +251,77 @@ fn pushes_delayed_by_a_fall_wait_for_the_gait_and_trials_end_after_the_last_push
     );
 }
 
-/// A policy with one fixed sagittal offset and, if given, one fixed lateral width offset; it
-/// records the sagittal reach the walker reports and learns nothing.
+/// A policy with one fixed sagittal offset and, if given, one fixed lateral width offset and
+/// one fixed step-time offset; it records the sagittal and the step-time reach the walker
+/// reports and learns nothing.
 pub(crate) struct FixedOffset {
     pub(crate) offset: f64,
     pub(crate) lateral: Option<f64>,
+    pub(crate) time: Option<f64>,
     pub(crate) reach: Vec<[f64; 2]>,
+    pub(crate) time_reach: Vec<[f64; 2]>,
+}
+
+impl FixedOffset {
+    pub(crate) fn sagittal(offset: f64) -> Self {
+        FixedOffset {
+            offset,
+            lateral: None,
+            time: None,
+            reach: vec![],
+            time_reach: vec![],
+        }
+    }
 }
 
 impl steplearn::control::walker::FootstepPolicy for FixedOffset {
-    fn offset(
+    fn learns(&self) -> LearnSet {
+        let mut set = vec![StepParameter::StepX];
+        set.extend(self.lateral.map(|_| StepParameter::StepY));
+        set.extend(self.time.map(|_| StepParameter::StepTime));
+        LearnSet::of(&set).unwrap()
+    }
+    fn offsets(
         &mut self,
-        _: steplearn::control::learner::LearnerInput,
-    ) -> Result<f64, steplearn::control::learner::LearnerError> {
-        Ok(self.offset)
+        _: &PerParameter<steplearn::control::learner::LearnerInput>,
+    ) -> Result<PerParameter<f64>, steplearn::control::learner::LearnerError> {
+        Ok(PerParameter([
+            self.offset,
+            self.lateral.unwrap_or(0.0),
+            self.time.unwrap_or(0.0),
+        ]))
     }
     fn set_reach(
         &mut self,
-        lo: f64,
-        hi: f64,
+        reach: &PerParameter<[f64; 2]>,
     ) -> Result<(), steplearn::control::learner::LearnerError> {
-        self.reach.push([lo, hi]);
+        self.reach.push(reach[StepParameter::StepX]);
+        self.time_reach.push(reach[StepParameter::StepTime]);
         Ok(())
     }
     fn touch_down(
         &mut self,
-        _: &steplearn::rules::StepOutcome,
-    ) -> Result<
-        steplearn::control::learner::TouchDownReport,
-        steplearn::control::learner::LearnerError,
-    > {
-        Ok(steplearn::control::learner::TouchDownReport {
-            gradient: 0.0,
-            samples: 0,
-            response: 0.0,
-            gain: 0.0,
-            scale: 1.0,
-        })
+        _: &PerParameter<steplearn::rules::StepOutcome>,
+    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
+        Ok(PerParameter([
+            Some(steplearn::control::learner::TouchDownReport {
+                gradient: 0.0,
+                samples: 0,
+                response: 0.0,
+                gain: 0.0,
+                scale: 1.0,
+            }),
+            None,
+            None,
+        ]))
     }
     fn fall(
         &mut self,
-        _: &steplearn::rules::StepOutcome,
-    ) -> Result<
-        Option<steplearn::control::learner::TouchDownReport>,
-        steplearn::control::learner::LearnerError,
-    > {
-        Ok(None)
+        _: &PerParameter<steplearn::rules::StepOutcome>,
+    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
+        Ok(StepReports::default())
     }
     fn discard_step(&mut self) {}
-    fn lateral_offset(
-        &mut self,
-        _: steplearn::control::learner::LearnerInput,
-    ) -> Result<Option<f64>, steplearn::control::learner::LearnerError> {
-        Ok(self.lateral)
-    }
 }
 
 /// The learned offset enters the footstep (the paper) or the controller's reference: with
@@ -320,11 +338,7 @@ fn the_learned_offset_enters_the_footstep_or_the_reference() {
         let range = config.motion.step_x_range;
         let mut robot = Humanoid::new(SimConfig::default()).unwrap();
         let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
-        let mut policy = FixedOffset {
-            offset: d_f,
-            lateral: None,
-            reach: vec![],
-        };
+        let mut policy = FixedOffset::sagittal(d_f);
         let mut checked = 0;
         while robot.time() < 4.0 {
             let tick = walker
@@ -368,11 +382,7 @@ fn the_learned_offset_enters_the_footstep_or_the_reference() {
     config.offset_target = OffsetTarget::Reference;
     let robot = Humanoid::new(SimConfig::default()).unwrap();
     let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
-    let mut policy = FixedOffset {
-        offset: d_f,
-        lateral: None,
-        reach: vec![],
-    };
+    let mut policy = FixedOffset::sagittal(d_f);
     let tick = walker
         .tick(&robot.sensors(), 0.0, Some(&mut policy))
         .unwrap();

@@ -22,7 +22,8 @@ use steplearn::approx::ApproxKind;
 use steplearn::control::learner::{
     FootstepLearner, InputGrid, LearnerError, LearnerInput, TouchDownReport,
 };
-use steplearn::control::walker::{FootstepPolicy, Tick, WalkerMode};
+use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
+use steplearn::control::walker::{FootstepPolicy, StepReports, Tick, WalkerMode};
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::trial::{Observer, PushRecord, StepRecord, run_trial};
@@ -73,19 +74,28 @@ impl NoiseOffset {
 }
 
 impl FootstepPolicy for NoiseOffset {
-    fn offset(&mut self, _input: LearnerInput) -> Result<f64, LearnerError> {
-        Ok(self.current)
+    fn learns(&self) -> LearnSet {
+        LearnSet::default()
     }
-    fn set_reach(&mut self, _lo: f64, _hi: f64) -> Result<(), LearnerError> {
+    fn offsets(
+        &mut self,
+        _inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError> {
+        Ok(PerParameter([self.current, 0.0, 0.0]))
+    }
+    fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         Ok(())
     }
-    fn touch_down(&mut self, _outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
+    fn touch_down(
+        &mut self,
+        _outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError> {
         self.redraw();
-        Ok(TouchDownReport::default())
+        Ok(PerParameter([Some(TouchDownReport::default()), None, None]))
     }
-    fn fall(&mut self, _outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
+    fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         self.redraw();
-        Ok(None)
+        Ok(StepReports::default())
     }
     fn discard_step(&mut self) {}
 }
@@ -99,31 +109,42 @@ struct Phased<P> {
 }
 
 impl<P: FootstepPolicy> FootstepPolicy for Phased<P> {
-    fn offset(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
-        let df = self.inner.offset(input)?;
-        Ok(if input.theta_e_dot.abs() <= self.gate_rate {
-            df
-        } else {
-            0.0
-        })
+    fn learns(&self) -> LearnSet {
+        self.inner.learns()
     }
-    fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        self.inner.set_reach(lo, hi)
+    fn offsets(
+        &mut self,
+        inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError> {
+        let offsets = self.inner.offsets(inputs)?;
+        Ok(
+            if inputs[StepParameter::StepX].theta_e_dot.abs() <= self.gate_rate {
+                offsets
+            } else {
+                PerParameter::default()
+            },
+        )
     }
-    fn touch_down(&mut self, outcome: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
+    fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
+        self.inner.set_reach(reach)
+    }
+    fn touch_down(
+        &mut self,
+        outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError> {
         self.seen += 1;
         if self.seen > self.learn_steps {
             self.inner.discard_step();
-            return Ok(TouchDownReport::default());
+            return Ok(PerParameter([Some(TouchDownReport::default()), None, None]));
         }
-        self.inner.touch_down(outcome)
+        self.inner.touch_down(outcomes)
     }
-    fn fall(&mut self, outcome: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
+    fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         if self.seen >= self.learn_steps {
             self.inner.discard_step();
-            return Ok(None);
+            return Ok(StepReports::default());
         }
-        self.inner.fall(outcome)
+        self.inner.fall(outcomes)
     }
     fn discard_step(&mut self) {
         self.inner.discard_step()

@@ -1,0 +1,87 @@
+//! What the walker asks of a learner: [`FootstepPolicy`], one shape for any set of step
+//! parameters.
+//!
+//! Every tick the walker hands the policy each parameter's input and asks for its offsets,
+//! then tells it each parameter's reach (the offsets that could still change the step); at
+//! every touch-down it hands over each parameter's outcome; at a fall, the outcome of the step
+//! in progress. A policy answers for the parameters it [`learns`](FootstepPolicy::learns) and
+//! ignores the others. The inputs and outcomes of the step parameters:
+//!
+//! - [`StepParameter::StepX`] and [`StepParameter::StepTime`]: the sagittal plane, input
+//!   `(theta_E, theta_E_dot, F_R)`, outcome `(theta_E, theta_E_dot, F_E, F_R)` (eq. 1-2);
+//! - [`StepParameter::StepY`]: the frontal plane mirrored to the swing leg's side, input
+//!   `(lean, lean rate, W_R - 2 delta)`, outcome the lean, its rate and the width error
+//!   `W - W_R` (see [`Walker`](super::walker::Walker)).
+
+use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
+use super::step_parameter::{LearnSet, PerParameter, StepParameter};
+use crate::approx::FunctionApproximator;
+use crate::rules::{LearningRule, StepOutcome};
+
+/// What a policy did with a step, per parameter (`None` for a parameter it did not learn from).
+pub type StepReports = PerParameter<Option<TouchDownReport>>;
+
+/// A source of learned step offsets: asked every tick, told at touch-down and at falls.
+///
+/// [`StepLearner`](super::step_learner::StepLearner) is the implementation for any set of
+/// parameters; a lone [`FootstepLearner`] is the paper's policy, `step-x` only.
+pub trait FootstepPolicy {
+    /// The step parameters it learns.
+    fn learns(&self) -> LearnSet;
+    /// The offsets for this tick from each parameter's input (0 for a parameter it does not
+    /// learn).
+    fn offsets(
+        &mut self,
+        inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError>;
+    /// The offsets `[lo, hi]` that could change the step at this tick, per parameter (after
+    /// [`Self::offsets`]).
+    fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError>;
+    /// The step that just ended: learn from each parameter's outcome.
+    fn touch_down(
+        &mut self,
+        outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError>;
+    /// The step in progress ended in a fall: learn from it or forget it (the learner's
+    /// setting); the robot is reset afterwards.
+    fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError>;
+    /// Forget the current step without learning.
+    fn discard_step(&mut self);
+}
+
+impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
+    fn learns(&self) -> LearnSet {
+        LearnSet::default()
+    }
+    fn offsets(
+        &mut self,
+        inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError> {
+        let mut out = PerParameter::default();
+        out[StepParameter::StepX] = self.query(inputs[StepParameter::StepX])?;
+        Ok(out)
+    }
+    fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
+        let [lo, hi] = reach[StepParameter::StepX];
+        FootstepLearner::set_reach(self, lo, hi)
+    }
+    fn touch_down(
+        &mut self,
+        outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError> {
+        let mut out = StepReports::default();
+        out[StepParameter::StepX] = Some(FootstepLearner::touch_down(
+            self,
+            &outcomes[StepParameter::StepX],
+        )?);
+        Ok(out)
+    }
+    fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
+        let mut out = StepReports::default();
+        out[StepParameter::StepX] = FootstepLearner::fall(self, &outcomes[StepParameter::StepX])?;
+        Ok(out)
+    }
+    fn discard_step(&mut self) {
+        FootstepLearner::discard_step(self)
+    }
+}

@@ -1,0 +1,229 @@
+//! The step parameters a learner can learn, and sets of them.
+//!
+//! The Capture Step controller decides three things about the next step: where it lands
+//! sagittally (`F`), laterally (`W`), and when (`T`). A learner adds an offset to any set of
+//! them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
+//! [`StepParameter::StepTime`] a step-time offset dT. [`PerParameter`] holds one value per
+//! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+use thiserror::Error;
+
+/// One learnable step parameter.
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    PartialOrd,
+    Ord,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::EnumString,
+    strum::Display,
+    strum::IntoStaticStr,
+)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum StepParameter {
+    /// The sagittal footstep offset dF (m, forward positive): the paper's.
+    StepX,
+    /// The lateral step-width offset dW (m, towards the swing leg's side).
+    StepY,
+    /// The step-time offset dT (s, later positive).
+    StepTime,
+}
+
+impl StepParameter {
+    /// Every parameter, in their fixed order.
+    pub const ALL: [StepParameter; 3] = [Self::StepX, Self::StepY, Self::StepTime];
+
+    /// Position in [`Self::ALL`].
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The name on the command line and in config files (`step-x`, `step-y`, `step-time`).
+    pub fn name(self) -> &'static str {
+        self.into()
+    }
+}
+
+/// One value per step parameter, indexed by [`StepParameter`].
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct PerParameter<T>(pub [T; 3]);
+
+impl<T> PerParameter<T> {
+    /// The value of `p`.
+    pub fn get(&self, p: StepParameter) -> &T {
+        &self.0[p.index()]
+    }
+
+    /// The value of `p`, mutably.
+    pub fn get_mut(&mut self, p: StepParameter) -> &mut T {
+        &mut self.0[p.index()]
+    }
+
+    /// Each value transformed.
+    pub fn map<U>(self, f: impl FnMut(T) -> U) -> PerParameter<U> {
+        PerParameter(self.0.map(f))
+    }
+}
+
+impl<T> std::ops::Index<StepParameter> for PerParameter<T> {
+    type Output = T;
+    fn index(&self, p: StepParameter) -> &T {
+        self.get(p)
+    }
+}
+
+impl<T> std::ops::IndexMut<StepParameter> for PerParameter<T> {
+    fn index_mut(&mut self, p: StepParameter) -> &mut T {
+        self.get_mut(p)
+    }
+}
+
+/// A malformed set of step parameters.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum LearnSetError {
+    /// A name that is not a step parameter.
+    #[error("unknown step parameter {0:?} (expected step-x, step-y or step-time)")]
+    Unknown(String),
+    /// A parameter named twice.
+    #[error("step parameter {0} named twice")]
+    Repeated(StepParameter),
+    /// No parameter at all.
+    #[error(
+        "the set of learned step parameters is empty (expected one or more of step-x, step-y, step-time)"
+    )]
+    Empty,
+}
+
+/// A non-empty set of step parameters that a learner learns. Written as a list of names
+/// (`["step-x", "step-time"]` in config files, `step-x,step-time` on the command line), always
+/// in the order of [`StepParameter::ALL`]. The default is the paper's `step-x`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(try_from = "Vec<String>", into = "Vec<String>")]
+pub struct LearnSet([bool; 3]);
+
+impl Default for LearnSet {
+    fn default() -> Self {
+        LearnSet::of(&[StepParameter::StepX]).expect("non-empty")
+    }
+}
+
+impl LearnSet {
+    /// The set of `parameters` (each at most once, at least one).
+    pub fn of(parameters: &[StepParameter]) -> Result<Self, LearnSetError> {
+        let mut set = [false; 3];
+        for &p in parameters {
+            if std::mem::replace(&mut set[p.index()], true) {
+                return Err(LearnSetError::Repeated(p));
+            }
+        }
+        if set.iter().any(|&b| b) {
+            Ok(LearnSet(set))
+        } else {
+            Err(LearnSetError::Empty)
+        }
+    }
+
+    /// Whether `p` is in the set.
+    pub fn contains(&self, p: StepParameter) -> bool {
+        self.0[p.index()]
+    }
+
+    /// The parameters in the set, in the order of [`StepParameter::ALL`].
+    pub fn iter(&self) -> impl Iterator<Item = StepParameter> + '_ {
+        StepParameter::ALL.into_iter().filter(|p| self.contains(*p))
+    }
+
+    /// The names, in order.
+    pub fn names(&self) -> Vec<&'static str> {
+        self.iter().map(StepParameter::name).collect()
+    }
+
+    /// Whether this is the paper's set, `step-x` alone.
+    pub fn is_paper(&self) -> bool {
+        *self == LearnSet::default()
+    }
+}
+
+impl FromStr for LearnSet {
+    type Err = LearnSetError;
+    /// Comma-separated names: `step-x,step-time`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let names: Vec<String> = s.split(',').map(|n| n.trim().to_string()).collect();
+        LearnSet::try_from(names)
+    }
+}
+
+impl TryFrom<Vec<String>> for LearnSet {
+    type Error = LearnSetError;
+    fn try_from(names: Vec<String>) -> Result<Self, Self::Error> {
+        let parameters = names
+            .iter()
+            .map(|n| StepParameter::from_str(n).map_err(|_| LearnSetError::Unknown(n.clone())))
+            .collect::<Result<Vec<_>, _>>()?;
+        LearnSet::of(&parameters)
+    }
+}
+
+impl From<LearnSet> for Vec<String> {
+    fn from(set: LearnSet) -> Self {
+        set.iter().map(|p| p.name().to_string()).collect()
+    }
+}
+
+impl fmt::Display for LearnSet {
+    /// Comma-separated names, as on the command line.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.names().join(","))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sets_parse_in_any_order_and_print_in_the_fixed_one() {
+        let s: LearnSet = "step-time, step-x".parse().unwrap();
+        assert_eq!(s.to_string(), "step-x,step-time");
+        assert!(s.contains(StepParameter::StepTime) && !s.contains(StepParameter::StepY));
+        assert_eq!(LearnSet::default().to_string(), "step-x");
+        assert!(LearnSet::default().is_paper() && !s.is_paper());
+    }
+
+    #[test]
+    fn bad_sets_are_refused_with_the_reason() {
+        assert_eq!(
+            "step-x,step-z".parse::<LearnSet>(),
+            Err(LearnSetError::Unknown("step-z".into()))
+        );
+        assert_eq!(
+            "step-x,step-x".parse::<LearnSet>(),
+            Err(LearnSetError::Repeated(StepParameter::StepX))
+        );
+        assert_eq!(LearnSet::of(&[]), Err(LearnSetError::Empty));
+        assert!("".parse::<LearnSet>().is_err());
+    }
+
+    #[test]
+    fn sets_round_trip_through_toml_as_lists_of_names() {
+        #[derive(Serialize, Deserialize)]
+        struct T {
+            learn: LearnSet,
+        }
+        let t: T = toml::from_str("learn = [\"step-y\", \"step-x\"]").unwrap();
+        assert_eq!(t.learn.to_string(), "step-x,step-y");
+        let text = toml::to_string(&t).unwrap();
+        assert_eq!(text.trim(), "learn = [\"step-x\", \"step-y\"]");
+        assert!(toml::from_str::<T>("learn = []").is_err());
+        assert!(toml::from_str::<T>("learn = [\"dT\"]").is_err());
+    }
+}
