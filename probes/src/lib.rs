@@ -1,6 +1,46 @@
-//! What the research probes share: reading a bench directory's run summaries.
+//! What the research probes share: reading a bench directory's run summaries, and running the
+//! model beside a learner on the same trial.
 
 use std::path::{Path, PathBuf};
+use steplearn::control::walker::FootstepPolicy;
+use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::settings::Settings;
+use steplearn::experiments::trial::{Observer, TrialSetup, run_trial};
+
+/// The settings of `--config FILE` (`steplearn config` format), or the defaults without one.
+pub fn settings(config: Option<&Path>) -> Result<Settings, ProbeError> {
+    Ok(match config {
+        Some(path) => ConfigFile::load(path)?.settings,
+        None => Settings::default(),
+    })
+}
+
+/// The error a probe's parallel part returns.
+pub type ProbeError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Runs `setup` for the model (no policy) and for the policy `make` builds, in parallel, each
+/// watched by a fresh `O`; returns the two observers (model, learned).
+pub fn model_and_learned<O: Observer + Default + Send>(
+    setup: &TrialSetup,
+    make: impl FnOnce() -> Result<Box<dyn FootstepPolicy>, ProbeError> + Send,
+) -> Result<(O, O), String> {
+    let watch = |policy: Option<&mut dyn FootstepPolicy>| -> Result<O, ProbeError> {
+        let mut o = O::default();
+        run_trial(setup, policy, &mut [&mut o])?;
+        Ok(o)
+    };
+    let (model, learned) = rayon::join(
+        || watch(None),
+        || {
+            let mut policy = make()?;
+            watch(Some(policy.as_mut()))
+        },
+    );
+    Ok((
+        model.map_err(|e| e.to_string())?,
+        learned.map_err(|e| e.to_string())?,
+    ))
+}
 
 /// The `summary.json` of every run directory in `dir` whose experiment is `experiment`, with
 /// its path, in no particular order. Entries without a readable summary are skipped; a summary

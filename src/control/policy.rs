@@ -26,8 +26,10 @@ pub type StepReports = PerParameter<Option<TouchDownReport>>;
 /// [`StepLearner`](super::step_learner::StepLearner) is the implementation for any set of
 /// parameters; a lone [`FootstepLearner`] is the paper's policy, `step-x` only.
 pub trait FootstepPolicy {
-    /// The step parameters it learns.
-    fn learns(&self) -> LearnSet;
+    /// The step parameters it learns. Default: `step-x` alone, the paper's.
+    fn learns(&self) -> LearnSet {
+        LearnSet::default()
+    }
     /// The offsets for this tick from each parameter's input (0 for a parameter it does not
     /// learn).
     fn offsets(
@@ -50,9 +52,6 @@ pub trait FootstepPolicy {
 }
 
 impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
-    fn learns(&self) -> LearnSet {
-        LearnSet::default()
-    }
     fn offsets(
         &mut self,
         inputs: &PerParameter<LearnerInput>,

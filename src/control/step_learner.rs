@@ -51,7 +51,7 @@ impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
             param: "learn",
             reason: e.to_string(),
         })?;
-        learners.sort_by_key(|(p, _)| *p);
+        learners.sort_by_key(|(p, _)| p.index());
         Ok(StepLearner { learners, set })
     }
 

@@ -8,7 +8,7 @@ use steplearn::control::learner::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, SavedLearner,
     StepInProgress,
 };
-use steplearn::control::step_parameter::{LearnSet, PerParameter};
+use steplearn::control::step_parameter::PerParameter;
 use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
@@ -64,9 +64,6 @@ impl Reloading {
 }
 
 impl FootstepPolicy for Reloading {
-    fn learns(&self) -> LearnSet {
-        LearnSet::default()
-    }
     fn offsets(
         &mut self,
         inputs: &PerParameter<LearnerInput>,

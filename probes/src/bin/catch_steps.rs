@@ -14,11 +14,11 @@ use steplearn::control::learner::{FootstepLearner, InputGrid};
 use steplearn::control::step_learner::StepLearner;
 use steplearn::control::step_parameter::{LearnSet, StepParameter};
 use steplearn::control::walker::{Tick, WalkerMode};
-use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::schedule::PushPlan;
-use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, run_trial};
+use steplearn::experiments::trial::{FallRecord, Observer, PushRecord};
 use steplearn::report::fall_rate::impulse_at_50pct_fall;
 use steplearn::rules::{LearningRule, PendulumCart, StepTime};
+use steplearn_probes::{ProbeError, model_and_learned};
 
 #[derive(Parser)]
 struct Args {
@@ -141,10 +141,7 @@ fn report(name: &str, r: &Recorder) -> Result<(), Box<dyn std::error::Error>> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = Args::parse();
-    let settings = match &args.config {
-        Some(path) => ConfigFile::load(path)?.settings,
-        None => Default::default(),
-    };
+    let settings = steplearn_probes::settings(args.config.as_deref()).map_err(|e| e.to_string())?;
     let plan = PushPlan {
         count: args.pushes,
         impulse: (0.0, 20.0),
@@ -158,7 +155,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let setup = settings.push_trial(WalkerMode::CaptureStep, 0.0, &plan, args.seed, direction);
     let bounds = InputGrid::default().input_box()?;
-    let learned = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
+    let (model, learned) = model_and_learned::<Recorder>(&setup, || {
         let learners = args
             .learn
             .iter()
@@ -175,22 +172,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     FootstepLearner::new(ApproxKind::Lwpr.build(&bounds)?, rule, settings.learner)?,
                 ))
             })
-            .collect::<Result<Vec<_>, Box<dyn std::error::Error + Send + Sync>>>()?;
-        let mut policy = StepLearner::new(learners)?;
-        let mut rec = Recorder::default();
-        run_trial(&setup, Some(&mut policy), &mut [&mut rec])?;
-        Ok(rec)
-    };
-    let model = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
-        let mut rec = Recorder::default();
-        run_trial(&setup, None, &mut [&mut rec])?;
-        Ok(rec)
-    };
-    let (model, learned) = rayon::join(model, learned);
-    report("model", &model.map_err(|e| e.to_string())?)?;
-    report(
-        &format!("learned {}", args.learn),
-        &learned.map_err(|e| e.to_string())?,
-    )?;
+            .collect::<Result<Vec<_>, ProbeError>>()?;
+        Ok(Box::new(StepLearner::new(learners)?))
+    })?;
+    report("model", &model)?;
+    report(&format!("learned {}", args.learn), &learned)?;
     Ok(())
 }

@@ -24,11 +24,11 @@ use steplearn::control::learner::{
 };
 use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
 use steplearn::control::walker::{FootstepPolicy, StepReports, Tick, WalkerMode};
-use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::schedule::PushPlan;
-use steplearn::experiments::trial::{Observer, PushRecord, StepRecord, run_trial};
+use steplearn::experiments::trial::{Observer, PushRecord, StepRecord};
 use steplearn::report::fall_rate::impulse_at_50pct_fall;
 use steplearn::rules::{PendulumCart, StepOutcome};
+use steplearn_probes::model_and_learned;
 
 #[derive(Parser)]
 struct Args {
@@ -74,9 +74,6 @@ impl NoiseOffset {
 }
 
 impl FootstepPolicy for NoiseOffset {
-    fn learns(&self) -> LearnSet {
-        LearnSet::default()
-    }
     fn offsets(
         &mut self,
         _inputs: &PerParameter<LearnerInput>,
@@ -188,10 +185,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if !(args.p_theta.is_finite() && args.p_theta > 0.0) {
         return Err("--p-theta must be > 0".into());
     }
-    let settings = match &args.config {
-        Some(path) => ConfigFile::load(path)?.settings,
-        None => Default::default(),
-    };
+    let settings = steplearn_probes::settings(args.config.as_deref()).map_err(|e| e.to_string())?;
     let plan = PushPlan {
         count: args.pushes,
         impulse: (0.0, 20.0),
@@ -206,16 +200,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         [1.0, 0.0, 0.0],
     );
     let bounds = InputGrid::default().input_box()?;
-    let learned = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
+    let (model, learned) = model_and_learned::<Recorder>(&setup, || {
         if let Some(sigma) = args.noise_offset {
-            let mut policy = NoiseOffset {
+            return Ok(Box::new(NoiseOffset {
                 rng: ChaCha8Rng::seed_from_u64(args.seed ^ 0x006e_6f69_7365),
                 normal: Normal::new(0.0, sigma)?,
                 current: 0.0,
-            };
-            let mut rec = Recorder::default();
-            run_trial(&setup, Some(&mut policy), &mut [&mut rec])?;
-            return Ok(rec);
+            }));
         }
         let approx = ApproxKind::Lwpr.build(&bounds)?;
         let learner = FootstepLearner::new(
@@ -226,26 +217,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
             settings.learner,
         )?;
-        let mut policy = Phased {
+        Ok(Box::new(Phased {
             inner: learner,
             gate_rate: args.gate_rate.unwrap_or(f64::INFINITY),
             learn_steps: args.learn_steps.unwrap_or(usize::MAX),
             seen: 0,
-        };
-        let mut rec = Recorder::default();
-        run_trial(&setup, Some(&mut policy), &mut [&mut rec])?;
-        Ok(rec)
-    };
-    let model = || -> Result<Recorder, Box<dyn std::error::Error + Send + Sync>> {
-        let mut rec = Recorder::default();
-        run_trial(&setup, None, &mut [&mut rec])?;
-        Ok(rec)
-    };
-    let (model, learned) = rayon::join(model, learned);
-    let (model, learned) = (
-        model.map_err(|e| e.to_string())?,
-        learned.map_err(|e| e.to_string())?,
-    );
+        }))
+    })?;
     for (name, r) in [("model", &model), ("learned", &learned)] {
         let samples: Vec<(f64, bool)> = r.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
         let i50 = impulse_at_50pct_fall(&samples)?.impulse_ns;
