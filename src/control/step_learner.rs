@@ -148,3 +148,115 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::approx::{AnyApproximator, ApproxKind};
+    use crate::control::learner::{InputGrid, LearnerConfig};
+    use crate::rules::{PendulumCart, StepTime};
+
+    fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
+        let bounds = InputGrid::default().input_box().unwrap();
+        let rule: Box<dyn LearningRule> = match p {
+            StepParameter::StepTime => Box::new(StepTime::default()),
+            _ => Box::new(PendulumCart::default()),
+        };
+        let approx = ApproxKind::Grid.build(&bounds).unwrap();
+        FootstepLearner::new(approx, rule, LearnerConfig::default()).unwrap()
+    }
+
+    fn rule(p: StepParameter) -> Box<dyn LearningRule> {
+        match p {
+            StepParameter::StepTime => Box::new(StepTime::default()),
+            _ => Box::new(PendulumCart::default()),
+        }
+    }
+
+    fn inputs(k: usize) -> PerParameter<LearnerInput> {
+        let x = LearnerInput::new(0.01 * k as f64, 0.1, 0.0);
+        PerParameter([x, LearnerInput::new(-0.02, 0.0, 0.0), x])
+    }
+
+    fn outcome(theta_e: f64) -> PerParameter<StepOutcome> {
+        let o = StepOutcome {
+            theta_e,
+            theta_e_dot: 0.0,
+            f_e: 0.2,
+            f_r: 0.0,
+        };
+        PerParameter([o, o, o])
+    }
+
+    #[test]
+    fn each_parameter_learns_with_its_own_rule_and_the_rest_stay_zero() {
+        let mut l = StepLearner::new(vec![
+            (StepParameter::StepTime, learner(StepParameter::StepTime)),
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+        ])
+        .unwrap();
+        assert_eq!(l.learns().to_string(), "step-x,step-time");
+        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        for k in 0..5 {
+            let o = l.offsets(&inputs(k)).unwrap();
+            assert_eq!(o[StepParameter::StepY], 0.0);
+            l.set_reach(&reach).unwrap();
+        }
+        let r = l.touch_down(&outcome(0.3)).unwrap();
+        // Leaning forward after a long step: a longer step (G > 0) and a sooner one (G_T < 0).
+        assert!(r[StepParameter::StepX].unwrap().gradient > 0.0);
+        assert!(r[StepParameter::StepTime].unwrap().gradient < 0.0);
+        assert!(r[StepParameter::StepY].is_none());
+        let o = l.offsets(&inputs(2)).unwrap();
+        assert!(
+            o[StepParameter::StepX] > 0.0 && o[StepParameter::StepTime] < 0.0,
+            "{o:?}"
+        );
+    }
+
+    #[test]
+    fn a_checkpoint_continues_bit_for_bit_mid_step() {
+        let mut a = StepLearner::new(vec![
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+            (StepParameter::StepTime, learner(StepParameter::StepTime)),
+        ])
+        .unwrap();
+        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        for k in 0..4 {
+            a.offsets(&inputs(k)).unwrap();
+            a.set_reach(&reach).unwrap();
+        }
+        a.touch_down(&outcome(0.2)).unwrap();
+        a.offsets(&inputs(1)).unwrap();
+        a.set_reach(&reach).unwrap();
+        let json = serde_json::to_string(&a.checkpoint()).unwrap();
+        let mut b = StepLearner::from_checkpoint(
+            serde_json::from_str::<SavedStepLearner<AnyApproximator>>(&json).unwrap(),
+            rule,
+        )
+        .unwrap();
+        assert_eq!(b.learns(), a.learns());
+        let (ra, rb) = (
+            a.touch_down(&outcome(-0.1)).unwrap(),
+            b.touch_down(&outcome(-0.1)).unwrap(),
+        );
+        assert_eq!(format!("{ra:?}"), format!("{rb:?}"));
+        assert_eq!(
+            a.offsets(&inputs(3)).unwrap(),
+            b.offsets(&inputs(3)).unwrap()
+        );
+    }
+
+    #[test]
+    fn a_set_names_each_parameter_once() {
+        let twice = StepLearner::new(vec![
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+        ]);
+        assert!(matches!(
+            twice,
+            Err(LearnerError::InvalidConfig { param: "learn", .. })
+        ));
+        assert!(StepLearner::<AnyApproximator, Box<dyn LearningRule>>::new(vec![]).is_err());
+    }
+}

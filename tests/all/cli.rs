@@ -447,3 +447,45 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
     assert_eq!(report, std::fs::read(out.join("claims.md")).unwrap());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--learn` sets the learned step parameters: the summary names the set, the run identity
+/// records it (another set into the same directory is refused), and a malformed set is refused
+/// before anything runs, naming what is wrong.
+#[test]
+fn learn_names_the_step_parameters_of_a_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("xt");
+    let run = |learn: &str| {
+        steplearn(&[
+            "experiment",
+            "stability",
+            "--pushes",
+            "2",
+            "--seed",
+            "1",
+            "--learn",
+            learn,
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let o = run("step-time,step-x");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["learn"], serde_json::json!(["step-x", "step-time"]));
+    let identity = std::fs::read_to_string(out.join("run-config.toml")).unwrap();
+    assert!(
+        identity.contains("learn = [") && identity.contains("\"step-time\""),
+        "{identity}"
+    );
+    // The paper's set is another run: refused in the finished run's directory.
+    let o = run("step-x");
+    assert!(!o.status.success());
+    for bad in ["step-z", "step-x,step-x", ""] {
+        let o = run(bad);
+        assert!(!o.status.success(), "{bad:?} accepted");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("step"), "{bad:?}: {err}");
+    }
+}

@@ -425,3 +425,52 @@ fn a_negative_start_ramp_is_refused() {
     config.start_ramp_s = f64::NAN;
     assert!(Walker::new(config, robot.body().leg_geometry()).is_err());
 }
+
+/// A step-time offset reaches the controller: stepping in place with dT = -0.05 s the steps are
+/// shorter in time than the model's (measured: 0.356 s against 0.368 s; the controller's step
+/// time is recomputed every tick, so a constant dT does not shorten a step by all of it), and the reach the walker reports for dT always contains
+/// the offsets that leave the step time within its limits (lo <= 0 <= hi where the limits do
+/// not bind).
+#[test]
+fn a_step_time_offset_shortens_the_steps_and_its_reach_is_reported() {
+    let setup = Settings::default().trial(
+        WalkerMode::CaptureStep,
+        ReferenceSchedule::constant(0.0),
+        vec![],
+        [1.0, 0.0, 0.0],
+        10.0,
+    );
+    let durations = |log: &steplearn::experiments::trial::TrialLog| {
+        let t: Vec<f64> = log
+            .steps
+            .iter()
+            .filter(|s| s.time > 4.0)
+            .map(|s| s.time)
+            .collect();
+        (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64
+    };
+    let model = run_trial(&setup, None, &mut []).unwrap();
+    let mut policy = FixedOffset {
+        time: Some(-0.05),
+        ..FixedOffset::sagittal(0.0)
+    };
+    let sooner = run_trial(&setup, Some(&mut policy), &mut []).unwrap();
+    assert_eq!(model.falls.len() + sooner.falls.len(), 0);
+    let (m, s) = (durations(&model), durations(&sooner));
+    assert!(
+        s < m - 0.005,
+        "mean step duration: dT -0.05 {s:.3} s, model {m:.3} s"
+    );
+    assert!(!policy.time_reach.is_empty());
+    assert!(policy.time_reach.iter().all(|[lo, hi]| lo <= hi));
+    let open = policy
+        .time_reach
+        .iter()
+        .filter(|[lo, hi]| *lo < 0.0 && *hi > 0.0)
+        .count();
+    assert!(
+        open * 2 > policy.time_reach.len(),
+        "{open} of {}",
+        policy.time_reach.len()
+    );
+}
