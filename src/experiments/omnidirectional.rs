@@ -7,7 +7,9 @@
 //! model, the model with the paper's sagittal learner, and the model with both learners
 //! (a [`StepLearner`](crate::control::step_learner::StepLearner) of `step-x` and `step-y`: the
 //! sagittal learner and a lateral one of the same approximator and rule).
-//! Each walker learns afresh in each sector. Per sector and walker: the impulse at 50% falls
+//! With a set of step parameters other than the paper's (`--learn`), a fifth walker, `learned`,
+//! learns exactly that set. Each walker learns afresh in each sector. Per sector and walker: the
+//! impulse at 50% falls
 //! (I50, as in experiment C) and the falls per cause.
 //!
 //! Then an omnidirectional walk (the paper's Fig. 4 in two dimensions): the reference step
@@ -42,6 +44,10 @@ pub const SECTORS: usize = 8;
 
 /// The walkers compared, in the order of the summary's lists.
 pub const WALKERS: [&str; 4] = ["open_loop", "model", "sagittal", "both"];
+
+/// The walker that learns the run's set of step parameters (`--learn`), pushed beside
+/// [`WALKERS`] when the set is not the paper's `step-x`.
+pub const LEARNED_WALKER: &str = "learned";
 
 /// The walkers of the omnidirectional walk, in the order of the summary's lists.
 pub const WALK_WALKERS: [&str; 2] = ["model", "both"];
@@ -331,13 +337,19 @@ impl Experiment for Omnidirectional {
             gap: p.gap_s,
         };
         let sectors: Vec<f64> = (0..SECTORS).map(|k| 45.0 * k as f64).collect();
+        let learned = !ctx.settings.learner.learn.is_paper();
+        let walkers: Vec<&'static str> = WALKERS
+            .iter()
+            .copied()
+            .chain(learned.then_some(LEARNED_WALKER))
+            .collect();
         let jobs: Vec<(usize, usize)> = (0..SECTORS)
-            .flat_map(|k| (0..WALKERS.len()).map(move |w| (k, w)))
+            .flat_map(|k| (0..walkers.len()).map(move |w| (k, w)))
             .collect();
         let outcomes: Vec<Result<_, ExperimentError>> = jobs
             .par_iter()
             .map(|&(k, w)| {
-                // Each sector its own pushes, the same for the four walkers.
+                // Each sector its own pushes, the same for every walker.
                 let seed = ctx.seed.wrapping_mul(SECTORS as u64).wrapping_add(k as u64);
                 let mode = if w == 0 {
                     WalkerMode::OpenLoop
@@ -350,6 +362,7 @@ impl Experiment for Omnidirectional {
                 let mut learners: Option<Box<dyn FootstepPolicy>> = match w {
                     2 => Some(Box::new(ctx.make_learner()?)),
                     3 => Some(both_learners(ctx, p.both_planes)?),
+                    4 => Some(Box::new(ctx.make_step_learner()?)),
                     _ => None,
                 };
                 let policy = learners.as_deref_mut();
@@ -431,14 +444,14 @@ impl Experiment for Omnidirectional {
         let mut rows: Vec<PushRow> = Vec::new();
         for (&(k, w), outcome) in jobs.iter().zip(outcomes) {
             let (pushes, i50, fell, causes) = outcome?;
-            let name = WALKERS[w].to_string();
+            let name = walkers[w].to_string();
             result.pushes[k] = pushes.len();
             result.i50_ns.entry(name.clone()).or_default().push(i50);
             result.falls.entry(name.clone()).or_default().push(fell);
             result.fall_causes.entry(name).or_default().push(causes);
             rows.extend(pushes.iter().map(|push| PushRow {
                 azimuth_deg: sectors[k],
-                walker: WALKERS[w],
+                walker: walkers[w],
                 time_s: push.time,
                 impulse_ns: push.impulse,
                 fell: push.fell,
@@ -446,7 +459,7 @@ impl Experiment for Omnidirectional {
         }
         crate::report::write_rows(&dir.join("omnidirectional_pushes.csv"), &rows)?;
         crate::report::write_rows(&dir.join("omnidirectional_walk.csv"), &walk_rows)?;
-        let series: Vec<(String, Vec<f64>)> = WALKERS
+        let series: Vec<(String, Vec<f64>)> = walkers
             .iter()
             .map(|w| {
                 let v = result.i50_ns[*w].iter().map(|v| v.max(0.0)).collect();
@@ -510,7 +523,10 @@ impl Experiment for Omnidirectional {
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
         let runs = parse(runs);
         let mut out = Vec::new();
-        for walker in ["both", "sagittal"] {
+        for walker in ["both", "sagittal", LEARNED_WALKER] {
+            if walker == LEARNED_WALKER && !runs.iter().any(|r| r.i50_ns.contains_key(walker)) {
+                continue;
+            }
             let ratios: Vec<Vec<f64>> = runs.iter().map(|r| r.ratio_to_model(walker)).collect();
             // The ratio of the sectors' mean I50s: a sector where the model's I50 is near 0
             // does not dominate it, as it would a mean of ratios.

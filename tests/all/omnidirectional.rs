@@ -107,6 +107,46 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// With a set of step parameters other than the paper's, a fifth walker, `learned`, learns that
+/// set: it has an I50 in every sector, and its I50 differs from the sagittal walker's
+/// somewhere (it learns the step time as well); the paper's set adds no such walker.
+#[test]
+fn a_learned_set_adds_the_walker_that_learns_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let registry = Registry::builtin();
+    let run = |learn: &str, out: &str| {
+        let config = ConfigFile::from_toml(&format!(
+            "[settings.learner]\nlearn = {learn}\n[protocols.omnidirectional]\nwalk_s = 8.0\nwalk_hold_s = [2.0, 3.0]\n"
+        ))
+        .unwrap();
+        Bench::new(&registry)
+            .config(config)
+            .approximators(["lwpr"])
+            .rules(["pendulum-cart"])
+            .experiments(["omnidirectional"])
+            .seeds(1)
+            .scale(0.03)
+            .out(dir.path().join(out))
+            .run()
+            .unwrap();
+        let summary = std::fs::read_to_string(
+            dir.path()
+                .join(out)
+                .join("omnidirectional__lwpr__pendulum-cart__s0")
+                .join("summary.json"),
+        )
+        .unwrap();
+        serde_json::from_str::<OmnidirectionalResult>(&summary).unwrap()
+    };
+    let with = run("[\"step-x\", \"step-time\"]", "xt");
+    let learned = &with.i50_ns["learned"];
+    assert_eq!(learned.len(), SECTORS);
+    assert!(learned.iter().all(|v| v.is_finite() && *v >= 0.0));
+    assert_ne!(learned, &with.i50_ns["sagittal"]);
+    let paper = run("[\"step-x\"]", "x");
+    assert!(!paper.i50_ns.contains_key("learned"));
+}
+
 #[test]
 fn sector_directions_are_unit_vectors_counter_clockwise_from_forward() {
     assert_eq!(direction(0.0), [1.0, 0.0, 0.0]);
