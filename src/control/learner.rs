@@ -930,6 +930,24 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         self.exploration
     }
 
+    /// The same learner (approximator, prior, trust-region statistics, step in progress),
+    /// taught by `rule` from now on: how a learner of another step parameter is built from a
+    /// fresh one of the run's approximator (the prior does not depend on the rule).
+    pub fn with_rule<R2: LearningRule>(self, rule: R2) -> FootstepLearner<A, R2> {
+        FootstepLearner {
+            approx: self.approx,
+            rule,
+            config: self.config,
+            step: self.step,
+            before: self.before,
+            desired: self.desired,
+            targets: self.targets,
+            trained: self.trained,
+            last_offset: self.last_offset,
+            exploration: self.exploration,
+        }
+    }
+
     /// Takes the learner apart into its approximator and rule.
     pub fn into_parts(self) -> (A, R) {
         (self.approx, self.rule)

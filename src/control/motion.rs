@@ -553,11 +553,8 @@ impl MotionGenerator {
             let world = -(sx - hip_x).atan2(hip_z);
             ([end_swing[0] - roll, world + lean - pitch], [roll, pitch])
         });
-        let mut end_swing = end_swing;
-        if let Some((end, _)) = tracking {
-            end_swing[0] = end[0];
-            end_swing[1] = end[1];
-        }
+        let end_swing =
+            tracking.map_or(end_swing, |([roll, pitch], _)| [roll, pitch, end_swing[2]]);
         let sway = self.sway_roll(p) * fade;
         let mut out = [self.halt_pose(); 2];
         let mut placement = [[0.0; 3]; 2];

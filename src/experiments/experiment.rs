@@ -13,7 +13,7 @@ use super::settings::Settings;
 use crate::approx::{BoxedApproximator, Stacked};
 use crate::config::ConfigError;
 use crate::control::coupled::CoupledLearner;
-use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError, Prior};
+use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::control::step_learner::StepLearner;
 use crate::control::step_parameter::{LearnSet, StepParameter};
 use crate::experiments::summary::{ExperimentResult, Summary};
@@ -81,14 +81,8 @@ impl RunContext<'_> {
                     match p {
                         StepParameter::StepX | StepParameter::StepY => (self.learner)(config)?,
                         StepParameter::StepTime => {
-                            // The run's approximator as built (no prior trained into it yet).
-                            let bare = LearnerConfig {
-                                prior: Prior::none(),
-                                ..config
-                            };
-                            let (approx, _) = (self.learner)(bare)?.into_parts();
                             let rule: Box<dyn LearningRule> = Box::new(StepTime::default());
-                            let mut learner = FootstepLearner::new(approx, rule, config)?;
+                            let mut learner = (self.learner)(config)?.with_rule(rule);
                             learner.reseed(self.seed);
                             learner
                         }
