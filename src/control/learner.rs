@@ -118,11 +118,15 @@ pub enum LearnerError {
     /// The rule rejected a saved rule state (see [`LearningRule::set_state`]).
     #[error("rule: {0}")]
     Rule(#[from] RuleError),
-    /// The approximator does not map 3 inputs to 1 output.
+    /// The approximator does not map the learner's inputs to its outputs.
     #[error(
-        "approximator must map {LEARNER_INPUTS} inputs to 1 output, it maps {inputs} to {outputs}"
+        "approximator must map {} inputs to {} outputs, it maps {inputs} to {outputs}",
+        expected.0,
+        expected.1
     )]
     WrongApproximatorShape {
+        /// The inputs and outputs the learner needs.
+        expected: (usize, usize),
         /// Its input dimension.
         inputs: usize,
         /// Its output dimension.
@@ -675,58 +679,65 @@ pub(crate) fn windup(change: f64, before: f64, reach: [f64; 2]) -> f64 {
     }
 }
 
-/// The prediction of a one-output `approx` at `x`, checked to be finite.
-fn predict_at<A: FunctionApproximator>(
+/// The outputs of `approx` at `x`, checked to be finite.
+fn predict_at<A: FunctionApproximator, const I: usize, const O: usize>(
     approx: &A,
-    x: &[f64; LEARNER_INPUTS],
-) -> Result<f64, LearnerError> {
-    let mut y = [0.0];
+    x: &[f64; I],
+) -> Result<[f64; O], LearnerError> {
+    let mut y = [0.0; O];
     approx.predict(x, &mut y).map_err(LearnerError::approx)?;
-    if !y[0].is_finite() {
+    if let Some(v) = y.iter().find(|v| !v.is_finite()) {
         return Err(LearnerError::NonFinite {
             what: "approximator prediction",
-            value: y[0],
+            value: *v,
         });
     }
-    Ok(y[0])
+    Ok(y)
 }
 
-/// Trains `approx` toward `before + scale * desired` at every input (`targets` is scratch).
-fn train_towards<A: FunctionApproximator>(
+/// Trains `approx` toward `before + scale * desired` at every input.
+fn train_towards<A: FunctionApproximator, const I: usize, const O: usize>(
     approx: &mut A,
-    inputs: &[[f64; LEARNER_INPUTS]],
-    before: &[f64],
-    desired: &[f64],
-    targets: &mut Vec<f64>,
+    inputs: &[[f64; I]],
+    before: &[[f64; O]],
+    desired: &[[f64; O]],
     scale: f64,
 ) -> Result<(), LearnerError> {
-    targets.clear();
-    targets.extend(before.iter().zip(desired).map(|(b, d)| b + scale * d));
-    for (applied, (x, t)) in inputs.iter().zip(targets.iter()).enumerate() {
+    for (applied, ((x, b), d)) in inputs.iter().zip(before).zip(desired).enumerate() {
+        let target: [f64; O] = std::array::from_fn(|k| b[k] + scale * d[k]);
         approx
-            .update(x, &[*t])
+            .update(x, &target)
             .map_err(|source| LearnerError::Approx { applied, source })?;
     }
     Ok(())
 }
 
-/// The share `<dy, d> / <d, d>` of the desired change the predictions at `inputs` moved (0 if
-/// `asked`, `<d, d>`, is 0).
-fn response<A: FunctionApproximator>(
+/// Per output, the share `<dy, d> / <d, d>` of the desired change the predictions at `inputs`
+/// moved (0 for an output where nothing was `asked`, `<d, d>` = 0).
+fn response<A: FunctionApproximator, const I: usize, const O: usize>(
     approx: &A,
-    inputs: &[[f64; LEARNER_INPUTS]],
-    before: &[f64],
-    desired: &[f64],
-    asked: f64,
-) -> Result<f64, LearnerError> {
-    if asked == 0.0 {
-        return Ok(0.0);
+    inputs: &[[f64; I]],
+    before: &[[f64; O]],
+    desired: &[[f64; O]],
+    asked: [f64; O],
+) -> Result<[f64; O], LearnerError> {
+    if asked.iter().all(|a| *a == 0.0) {
+        return Ok([0.0; O]);
     }
-    let mut moved = 0.0;
+    let mut moved = [0.0; O];
     for ((x, b), d) in inputs.iter().zip(before).zip(desired) {
-        moved += (predict_at(approx, x)? - b) * d;
+        let y: [f64; O] = predict_at(approx, x)?;
+        for k in 0..O {
+            moved[k] += (y[k] - b[k]) * d[k];
+        }
     }
-    Ok(moved / asked)
+    Ok(std::array::from_fn(|k| {
+        if asked[k] == 0.0 {
+            0.0
+        } else {
+            moved[k] / asked[k]
+        }
+    }))
 }
 
 /// `step` as a learner sees it after a fall: theta_E clamped to +-`limit`, its rate to ten
@@ -746,7 +757,7 @@ pub(crate) struct Guarded<T> {
     pub(crate) scale: f64,
     /// The response to the full step (the first attempt).
     pub(crate) first: T,
-    /// The response of the update finally applied (the default when none was).
+    /// The response of the update finally applied (`none` when none was).
     pub(crate) applied: T,
 }
 
@@ -764,17 +775,18 @@ pub(crate) enum GuardError {
 /// means. With `limit` set, while that gain exceeds it the step is scaled to just below the
 /// limit and applied again to the approximator as it was (a copy), at most [`GUARD_RETRIES`]
 /// times; then the approximator is restored and the scale is 0.
-pub(crate) fn guarded_update<A: Clone, T: Copy + Default>(
+pub(crate) fn guarded_update<A: Clone, T: Copy>(
     approx: &mut A,
     limit: Option<f64>,
+    none: T,
     mut apply: impl FnMut(&mut A, f64) -> Result<(), LearnerError>,
     mut measure: impl FnMut(&A) -> Result<T, LearnerError>,
     gain: impl Fn(&T) -> f64,
 ) -> Result<Guarded<T>, GuardError> {
     let original = limit.map(|_| approx.clone());
     let mut scale = 1.0;
-    let mut first = T::default();
-    let mut applied = T::default();
+    let mut first = none;
+    let mut applied = none;
     for attempt in 0..=GUARD_RETRIES {
         if attempt > 0
             && let Some(o) = &original
@@ -797,7 +809,7 @@ pub(crate) fn guarded_update<A: Clone, T: Copy + Default>(
                     return Ok(Guarded {
                         scale: 0.0,
                         first,
-                        applied: T::default(),
+                        applied: none,
                     });
                 }
                 // Aim a little below the limit: responses are not quite linear.
@@ -846,61 +858,132 @@ impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
     }
 }
 
-/// Learns the footstep offset dF over (theta_E, theta_E_dot, F_R) online (eq. 6).
-pub struct FootstepLearner<A: FunctionApproximator, R: LearningRule> {
-    approx: A,
-    rule: R,
-    config: LearnerConfig,
-    /// Inputs recorded in the current step (at most `max_samples_per_step`), each with its
-    /// reach (lowest, highest offset that can still change the step; unbounded unless told by
-    /// [`FootstepLearner::set_reach`]).
-    step: StepSamples<[f64; LEARNER_INPUTS], [f64; 2]>,
-    /// Scratch at touch-down: predictions before the update, desired changes, targets.
-    before: Vec<f64>,
-    desired: Vec<f64>,
-    targets: Vec<f64>,
-    /// Mean and std of the inputs the learner was trained at, per axis (the trust region).
-    trained: [MeanStd; LEARNER_INPUTS],
-    /// The offset the last query returned.
-    last_offset: f64,
-    /// The rule's exploration perturbation of the current step (drawn at its first query).
-    exploration: f64,
+/// Bases of the Halton sequence the prior is spread over, one per input (the first primes).
+const HALTON_BASES: [usize; MAX_OFFSET_INPUTS] = [2, 3, 5, 7, 11, 13, 17, 19, 23];
+
+/// Most inputs an [`OffsetLearner`] takes: three per learned plane or parameter.
+pub const MAX_OFFSET_INPUTS: usize = 9;
+
+/// The name of input `axis` in errors: each group of three is (lean, lean rate, reference).
+fn input_name(axis: usize) -> &'static str {
+    const NAMES: [&str; 6] = [
+        "theta_e",
+        "theta_e_dot",
+        "f_r",
+        "lateral lean",
+        "lateral lean rate",
+        "lateral f_r",
+    ];
+    NAMES.get(axis).copied().unwrap_or("learner input")
 }
 
-impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
-    /// A learner around `approx` (3 inputs, 1 output) and `rule`, holding the prior of
-    /// `config` (dF = 0 trained in at `config.prior.samples` points; none if 0).
-    pub fn new(approx: A, rule: R, config: LearnerConfig) -> Result<Self, LearnerError> {
-        let mut learner = Self::assemble(approx, rule, config)?;
+/// The one learner of step offsets: `O` offsets over `I` inputs (a group of three per plane,
+/// (lean, lean rate, reference), each spread over the prior's box), learned online with one
+/// rule per offset (eq. 6).
+///
+/// Two shapes are used: [`FootstepLearner`] (one offset over the paper's three inputs, one per
+/// learned step parameter) and [`CoupledLearner`](super::coupled::CoupledLearner) (dF and dW
+/// over both planes' six inputs, one approximator with two outputs). Every safeguard of
+/// [`LearnerConfig`] holds for each offset: the prior, the gain guard (on the largest of the
+/// offsets' gains, one scale for all), anti-windup per offset, the trust region over all
+/// inputs with either fallback, learning from falls, dead zone, leakage, `max_step_error` (a
+/// touch-down any of whose offsets the model missed by more teaches nothing) and train share.
+pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize> {
+    approx: A,
+    /// One rule per offset, in output order.
+    rules: [R; O],
+    config: LearnerConfig,
+    /// Inputs recorded in the current step (at most `max_samples_per_step`), each with each
+    /// offset's reach (lowest, highest offset that can still change the step; unbounded unless
+    /// told by [`OffsetLearner::set_reach_of`]).
+    step: StepSamples<[f64; I], [[f64; 2]; O]>,
+    /// Scratch at touch-down: predictions before the update and desired changes.
+    before: Vec<[f64; O]>,
+    desired: Vec<[f64; O]>,
+    /// Mean and std of the inputs the learner was trained at, per axis (the trust region).
+    trained: [MeanStd; I],
+    /// The offsets the last query returned.
+    last_offset: [f64; O],
+    /// Each rule's exploration perturbation of the current step (drawn at its first query).
+    exploration: [f64; O],
+}
+
+impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize> std::fmt::Debug
+    for OffsetLearner<A, R, I, O>
+{
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("OffsetLearner")
+            .field("inputs", &I)
+            .field("offsets", &O)
+            .field("config", &self.config)
+            .field("recorded", &self.step.inputs.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
+    OffsetLearner<A, R, I, O>
+{
+    /// A learner around `approx` (`I` inputs, `O` outputs) with one rule per output, holding
+    /// the prior of `config` (zero offsets trained in at `config.prior.samples` Halton points
+    /// of the prior's box, repeated for every group of three inputs; none if 0).
+    pub fn with_rules(
+        approx: A,
+        rules: [R; O],
+        config: LearnerConfig,
+    ) -> Result<Self, LearnerError> {
+        let mut learner = Self::assemble(approx, rules, config)?;
         for i in 0..config.prior.samples {
+            let x = learner.prior_point(i);
             learner
                 .approx
-                .update(&config.prior.point(i), &[0.0])
+                .update(&x, &[0.0; O])
                 .map_err(LearnerError::approx)?;
         }
         Ok(learner)
     }
 
     /// A learner around `approx` as it is (no prior trained in).
-    fn assemble(approx: A, rule: R, config: LearnerConfig) -> Result<Self, LearnerError> {
+    fn assemble(approx: A, rules: [R; O], config: LearnerConfig) -> Result<Self, LearnerError> {
         config.validate()?;
-        if approx.input_dim() != LEARNER_INPUTS || approx.output_dim() != 1 {
+        if I == 0 || !I.is_multiple_of(LEARNER_INPUTS) || I > MAX_OFFSET_INPUTS || O == 0 {
+            return Err(LearnerError::config(
+                "shape",
+                format!(
+                    "needs a multiple of {LEARNER_INPUTS} inputs, at most {MAX_OFFSET_INPUTS}, \
+                     and at least one offset, got {I} inputs and {O} offsets"
+                ),
+            ));
+        }
+        if approx.input_dim() != I || approx.output_dim() != O {
             return Err(LearnerError::WrongApproximatorShape {
+                expected: (I, O),
                 inputs: approx.input_dim(),
                 outputs: approx.output_dim(),
             });
         }
-        Ok(FootstepLearner {
+        Ok(OffsetLearner {
             approx,
-            rule,
+            rules,
             config,
             step: StepSamples::with_capacity(config.max_samples_per_step),
             before: Vec::with_capacity(config.max_samples_per_step),
             desired: Vec::with_capacity(config.max_samples_per_step),
-            targets: Vec::with_capacity(config.max_samples_per_step),
-            trained: [MeanStd::new(); LEARNER_INPUTS],
-            last_offset: 0.0,
-            exploration: 0.0,
+            trained: [MeanStd::new(); I],
+            last_offset: [0.0; O],
+            exploration: [0.0; O],
+        })
+    }
+
+    /// The `i`-th point of the prior: Halton over the prior's box, for each group of inputs.
+    fn prior_point(&self, i: usize) -> [f64; I] {
+        let (lo, hi) = (
+            self.config.prior.lo.to_array(),
+            self.config.prior.hi.to_array(),
+        );
+        std::array::from_fn(|a| {
+            let (l, h) = (lo[a % LEARNER_INPUTS], hi[a % LEARNER_INPUTS]);
+            l + (h - l) * radical_inverse(i + 1, HALTON_BASES[a])
         })
     }
 
@@ -914,34 +997,330 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
         &self.approx
     }
 
-    /// The rule.
-    pub fn rule(&self) -> &R {
-        &self.rule
+    /// The rules, in output order.
+    pub fn rules(&self) -> &[R; O] {
+        &self.rules
     }
 
-    /// Reseeds the rule's randomness ([`LearningRule::reseed`]); nothing else changes.
+    /// Reseeds every rule's randomness ([`LearningRule::reseed`]); nothing else changes.
     pub fn reseed(&mut self, seed: u64) {
-        self.rule.reseed(seed);
+        for rule in &mut self.rules {
+            rule.reseed(seed);
+        }
+    }
+
+    /// The raw approximator outputs at `x` (no trust region, nothing recorded), checked to be
+    /// finite.
+    pub fn predict_all(&self, x: &[f64; I]) -> Result<[f64; O], LearnerError> {
+        predict_at(&self.approx, x)
+    }
+
+    /// The control-tick query: returns the offsets at `x` (faded by the trust region), plus
+    /// each rule's exploration perturbation of the step (drawn at the step's first query),
+    /// clamped to `max_offset` if set, and records `x` for the touch-down update (subject to
+    /// the per-step bound). On error nothing is recorded (a non-finite perturbation is an
+    /// error; the rule has then drawn it).
+    pub fn query_all(&mut self, x: [f64; I]) -> Result<[f64; O], LearnerError> {
+        for (a, v) in x.iter().enumerate() {
+            if !v.is_finite() {
+                return Err(LearnerError::NonFinite {
+                    what: input_name(a),
+                    value: *v,
+                });
+            }
+        }
+        let trust = self.trust(&x);
+        let mut y = self.predict_all(&x)?.map(|v| v * trust);
+        if trust < 1.0 && self.config.trust_fallback == TrustFallback::Nominal {
+            let nominal = self.predict_all(&self.nominal_input(&x))?;
+            for (v, n) in y.iter_mut().zip(nominal) {
+                *v += (1.0 - trust) * n;
+            }
+        }
+        if self.step.queries == 0 {
+            let mut drawn = [0.0; O];
+            for (e, rule) in drawn.iter_mut().zip(&mut self.rules) {
+                *e = rule.explore();
+                if !e.is_finite() {
+                    return Err(LearnerError::NonFinite {
+                        what: "exploration",
+                        value: *e,
+                    });
+                }
+            }
+            self.exploration = drawn;
+        }
+        for (v, e) in y.iter_mut().zip(self.exploration) {
+            if e != 0.0 {
+                *v += e;
+            }
+        }
+        self.step.record(
+            x,
+            [[f64::NEG_INFINITY, f64::INFINITY]; O],
+            self.config.max_samples_per_step,
+        );
+        if let Some(m) = self.config.max_offset {
+            for v in &mut y {
+                *v = v.clamp(-m, m);
+            }
+        }
+        self.last_offset = y;
+        Ok(y)
+    }
+
+    /// Index of the first recorded input trained at touch-down (`train_share`).
+    fn first_trained(&self) -> usize {
+        self.step.first_trained(self.config.train_share)
+    }
+
+    /// The nominal state near `x`: the mean trained lean and lean rate of every group, its
+    /// reference clamped into the trust region (the prior's centre before any training).
+    fn nominal_input(&self, x: &[f64; I]) -> [f64; I] {
+        let (lo, hi) = (
+            self.config.prior.lo.to_array(),
+            self.config.prior.hi.to_array(),
+        );
+        std::array::from_fn(|a| {
+            let t = &self.trained[a];
+            if t.count() == 0 {
+                0.5 * (lo[a % LEARNER_INPUTS] + hi[a % LEARNER_INPUTS])
+            } else if a % LEARNER_INPUTS == 2 {
+                let half = self.config.trust_region.unwrap_or(0.0) * self.trust_std(a);
+                x[a].clamp(t.mean() - half, t.mean() + half)
+            } else {
+                t.mean()
+            }
+        })
+    }
+
+    /// The spread the trust region measures distances in along `axis`: the std of the trained
+    /// inputs, at least 2% of the prior box's width.
+    fn trust_std(&self, axis: usize) -> f64 {
+        let (lo, hi) = (
+            self.config.prior.lo.to_array(),
+            self.config.prior.hi.to_array(),
+        );
+        let a = axis % LEARNER_INPUTS;
+        self.trained[axis]
+            .population_std()
+            .max(0.02 * (hi[a] - lo[a]))
+    }
+
+    /// The share of the offsets applied at `x` (1 without a trust region).
+    fn trust(&self, x: &[f64; I]) -> f64 {
+        match self.config.trust_region {
+            Some(k) => trust_share(k, x, &self.trained, |a| self.trust_std(a)),
+            None => 1.0,
+        }
+    }
+
+    /// Tells the learner which values of offset `k` could change the step at the last query:
+    /// `lo..=hi` (infinite bounds allowed); with `anti_windup` the training targets of that
+    /// input stop at its ends. Errors (no such offset, NaN, `lo > hi`, or an empty interval at
+    /// infinity) leave the learner unchanged.
+    pub fn set_reach_of(&mut self, k: usize, lo: f64, hi: f64) -> Result<(), LearnerError> {
+        if k >= O || !is_reach(lo, hi) {
+            return Err(LearnerError::config(
+                "reach",
+                format!("needs an offset below {O} and lo <= hi, got {k}: [{lo}, {hi}]"),
+            ));
+        }
+        if let Some(r) = self.step.last_reach_mut() {
+            r[k] = [lo, hi];
+        }
+        Ok(())
+    }
+
+    /// Forgets the inputs of the current step without learning from it (e.g. after a fall and
+    /// reset, when the step never touched down).
+    pub fn discard_step(&mut self) {
+        self.step.clear();
+        self.exploration = [0.0; O];
+    }
+}
+
+impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: usize>
+    OffsetLearner<A, R, I, O>
+{
+    /// Ends the step with each offset's outcome: each rule gives its G and eq. (6) is applied
+    /// to every recorded input, then a new step starts (see [`FootstepLearner::touch_down`]
+    /// for the one-offset case, which every offset follows). Returns each offset's report.
+    pub fn touch_down_all(
+        &mut self,
+        outcomes: [&StepOutcome; O],
+    ) -> Result<[TouchDownReport; O], LearnerError> {
+        self.end_step(outcomes, false)
+    }
+
+    /// A step that ended in a fall: with `learn_from_falls`, learns from it as from a
+    /// touch-down, each outcome's theta_E clamped to +-`fall_theta_limit` and theta_E_dot to
+    /// ten times that; otherwise discards the step. Returns what the update did, if one was
+    /// made.
+    pub fn fall_all(
+        &mut self,
+        outcomes: [&StepOutcome; O],
+    ) -> Result<Option<[TouchDownReport; O]>, LearnerError> {
+        if !self.config.learn_from_falls || self.step.inputs.is_empty() {
+            self.discard_step();
+            return Ok(None);
+        }
+        let clamped = outcomes.map(|o| clamped_at_fall(o, self.config.fall_theta_limit));
+        match self.end_step(std::array::from_fn(|k| &clamped[k]), true) {
+            Ok(r) => Ok(Some(r)),
+            Err(e) => {
+                self.discard_step();
+                Err(e)
+            }
+        }
+    }
+
+    /// [`Self::touch_down_all`] of a step that ended in a fall (`fell`) or not.
+    fn end_step(
+        &mut self,
+        outcomes: [&StepOutcome; O],
+        fell: bool,
+    ) -> Result<[TouchDownReport; O], LearnerError> {
+        for o in outcomes {
+            for (what, v) in [
+                ("theta_e", o.theta_e),
+                ("theta_e_dot", o.theta_e_dot),
+                ("f_e", o.f_e),
+                ("f_r", o.f_r),
+            ] {
+                if !v.is_finite() {
+                    return Err(LearnerError::NonFinite { what, value: v });
+                }
+            }
+        }
+        if let Some(m) = self.config.max_step_error
+            && (0..O).any(|k| (outcomes[k].f_e - self.last_offset[k]).abs() > m)
+        {
+            self.discard_step();
+            return Ok([TouchDownReport::default(); O]);
+        }
+        let mut raw = [0.0; O];
+        for k in 0..O {
+            raw[k] = self.rules[k].learn(outcomes[k], self.exploration[k], fell);
+            if !raw[k].is_finite() {
+                return Err(LearnerError::NonFinite {
+                    what: "gradient G",
+                    value: raw[k],
+                });
+            }
+        }
+        let dz = self.config.dead_zone;
+        let g = raw.map(|g| g.signum() * (g.abs() - dz).max(0.0));
+        let step_size = g.map(|g| self.config.eta * g);
+        self.before.clear();
+        self.desired.clear();
+        let first = self.first_trained();
+        for (x, reach) in self.step.inputs[first..]
+            .iter()
+            .zip(&self.step.reach[first..])
+        {
+            let before = self.predict_all(x)?;
+            let mut desired = [0.0; O];
+            for k in 0..O {
+                let mut change = step_size[k] - self.config.leakage * before[k];
+                if self.config.anti_windup {
+                    change = windup(change, before[k], reach[k]);
+                }
+                let target = before[k] + change;
+                if !target.is_finite() {
+                    return Err(LearnerError::NonFinite {
+                        what: "training target",
+                        value: target,
+                    });
+                }
+                desired[k] = target - before[k];
+            }
+            self.before.push(before);
+            self.desired.push(desired);
+        }
+        let samples = self.step.inputs.len() - first;
+        let asked: [f64; O] =
+            std::array::from_fn(|k| self.desired.iter().map(|d| d[k] * d[k]).sum());
+        let gain_of = |k: usize, response: f64| {
+            if g[k] == 0.0 {
+                0.0
+            } else {
+                response * step_size[k] / g[k]
+            }
+        };
+        let guard = self
+            .config
+            .max_gain
+            .filter(|_| asked.iter().any(|a| *a > 0.0));
+        let (inputs, before, desired) = (&self.step.inputs[first..], &self.before, &self.desired);
+        let guarded = guarded_update(
+            &mut self.approx,
+            guard,
+            [0.0; O],
+            |approx, scale| train_towards(approx, inputs, before, desired, scale),
+            |approx| response(approx, inputs, before, desired, asked),
+            |r: &[f64; O]| (0..O).map(|k| gain_of(k, r[k]).abs()).fold(0.0, f64::max),
+        );
+        let Guarded {
+            scale,
+            first: first_response,
+            applied: applied_response,
+        } = match guarded {
+            Ok(g) => g,
+            Err(GuardError::Apply(e)) => {
+                self.discard_step();
+                return Err(e);
+            }
+            Err(GuardError::Measure(e)) => return Err(e),
+        };
+        if scale > 0.0 {
+            self.step.add_trained(first, &mut self.trained);
+        }
+        self.discard_step();
+        Ok(std::array::from_fn(|k| TouchDownReport {
+            gradient: raw[k],
+            samples,
+            response: first_response[k],
+            gain: gain_of(k, applied_response[k]),
+            scale,
+        }))
+    }
+}
+
+/// Learns the footstep offset dF over (theta_E, theta_E_dot, F_R) online (eq. 6): the
+/// [`OffsetLearner`] of one offset over the paper's three inputs, one per learned step
+/// parameter in a [`StepLearner`](super::step_learner::StepLearner).
+pub type FootstepLearner<A, R> = OffsetLearner<A, R, LEARNER_INPUTS, 1>;
+
+impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUTS, 1> {
+    /// A learner around `approx` (3 inputs, 1 output) and `rule`, holding the prior of
+    /// `config` (dF = 0 trained in at `config.prior.samples` points; none if 0).
+    pub fn new(approx: A, rule: R, config: LearnerConfig) -> Result<Self, LearnerError> {
+        Self::with_rules(approx, [rule], config)
+    }
+
+    /// The rule.
+    pub fn rule(&self) -> &R {
+        &self.rules[0]
     }
 
     /// The rule's exploration perturbation of the current step (m; 0 before its first query
     /// and for a rule that does not explore).
     pub fn exploration(&self) -> f64 {
-        self.exploration
+        self.exploration[0]
     }
 
     /// The same learner (approximator, prior, trust-region statistics, step in progress),
     /// taught by `rule` from now on: how a learner of another step parameter is built from a
     /// fresh one of the run's approximator (the prior does not depend on the rule).
     pub fn with_rule<R2: LearningRule>(self, rule: R2) -> FootstepLearner<A, R2> {
-        FootstepLearner {
+        OffsetLearner {
             approx: self.approx,
-            rule,
+            rules: [rule],
             config: self.config,
             step: self.step,
             before: self.before,
             desired: self.desired,
-            targets: self.targets,
             trained: self.trained,
             last_offset: self.last_offset,
             exploration: self.exploration,
@@ -950,7 +1329,8 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
 
     /// Takes the learner apart into its approximator and rule.
     pub fn into_parts(self) -> (A, R) {
-        (self.approx, self.rule)
+        let [rule] = self.rules;
+        (self.approx, rule)
     }
 
     /// The inputs recorded so far in the current step, in query order.
@@ -968,7 +1348,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     }
 
     fn predict_array(&self, x: &[f64; LEARNER_INPUTS]) -> Result<f64, LearnerError> {
-        predict_at(&self.approx, x)
+        Ok(self.predict_all(x)?[0])
     }
 
     /// The control-tick query: returns dF at `input` plus the step's exploration perturbation
@@ -977,90 +1357,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     /// allocate. On error nothing is recorded (a non-finite perturbation is an error; the rule
     /// has then drawn it).
     pub fn query(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
-        let x = input.to_array();
-        for (what, v) in ["theta_e", "theta_e_dot", "f_r"].into_iter().zip(x) {
-            if !v.is_finite() {
-                return Err(LearnerError::NonFinite { what, value: v });
-            }
-        }
-        let trust = self.trust(&x);
-        let mut df = self.predict_array(&x)? * trust;
-        if trust < 1.0 && self.config.trust_fallback == TrustFallback::Nominal {
-            df += (1.0 - trust) * self.predict_array(&self.nominal_input(x[2]))?;
-        }
-        if self.step.queries == 0 {
-            let e = self.rule.explore();
-            if !e.is_finite() {
-                return Err(LearnerError::NonFinite {
-                    what: "exploration",
-                    value: e,
-                });
-            }
-            self.exploration = e;
-        }
-        if self.exploration != 0.0 {
-            df += self.exploration;
-        }
-        self.step.record(
-            x,
-            [f64::NEG_INFINITY, f64::INFINITY],
-            self.config.max_samples_per_step,
-        );
-        let df = match self.config.max_offset {
-            Some(m) => df.clamp(-m, m),
-            None => df,
-        };
-        self.last_offset = df;
-        Ok(df)
-    }
-
-    /// Index of the first recorded input trained at touch-down (`train_share`).
-    fn first_trained(&self) -> usize {
-        self.step.first_trained(self.config.train_share)
-    }
-
-    /// The nominal state for the reference `f_r`: the mean trained theta_E and theta_E_dot,
-    /// `f_r` clamped into the trust region (the prior's centre before any training).
-    fn nominal_input(&self, f_r: f64) -> [f64; LEARNER_INPUTS] {
-        let (lo, hi) = (
-            self.config.prior.lo.to_array(),
-            self.config.prior.hi.to_array(),
-        );
-        let mut x = [0.0; LEARNER_INPUTS];
-        for a in 0..LEARNER_INPUTS {
-            let t = &self.trained[a];
-            x[a] = if t.count() == 0 {
-                0.5 * (lo[a] + hi[a])
-            } else {
-                t.mean()
-            };
-        }
-        let t = &self.trained[2];
-        if t.count() > 0 {
-            let half = self.config.trust_region.unwrap_or(0.0) * self.trust_std(2);
-            x[2] = f_r.clamp(t.mean() - half, t.mean() + half);
-        }
-        x
-    }
-
-    /// The spread the trust region measures distances in along `axis`: the std of the trained
-    /// inputs, at least 2% of the prior box's width.
-    fn trust_std(&self, axis: usize) -> f64 {
-        let (lo, hi) = (
-            self.config.prior.lo.to_array(),
-            self.config.prior.hi.to_array(),
-        );
-        self.trained[axis]
-            .population_std()
-            .max(0.02 * (hi[axis] - lo[axis]))
-    }
-
-    /// The share of the offset applied at `x` (1 without a trust region).
-    fn trust(&self, x: &[f64; LEARNER_INPUTS]) -> f64 {
-        match self.config.trust_region {
-            Some(k) => trust_share(k, x, &self.trained, |a| self.trust_std(a)),
-            None => 1.0,
-        }
+        Ok(self.query_all(input.to_array())?[0])
     }
 
     /// Tells the learner which offsets could change the step at the last query: `lo..=hi`
@@ -1069,23 +1366,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     /// step range is exhausted). The walker calls this every tick after [`Self::query`].
     /// Errors (NaN, `lo > hi`, or an empty interval at infinity) leave the learner unchanged.
     pub fn set_reach(&mut self, lo: f64, hi: f64) -> Result<(), LearnerError> {
-        if !is_reach(lo, hi) {
-            return Err(LearnerError::config(
-                "reach",
-                format!("needs lo <= hi, got [{lo}, {hi}]"),
-            ));
-        }
-        if let Some(r) = self.step.last_reach_mut() {
-            *r = [lo, hi];
-        }
-        Ok(())
-    }
-
-    /// Forgets the inputs of the current step without learning from it (e.g. after a fall and
-    /// reset, when the step never touched down).
-    pub fn discard_step(&mut self) {
-        self.step.clear();
-        self.exploration = 0.0;
+        self.set_reach_of(0, lo, hi)
     }
 
     /// The learning metric of experiment D: the Euclidean norm of the approximator's outputs
@@ -1140,7 +1421,7 @@ impl<A: FunctionApproximator, R: LearningRule> FootstepLearner<A, R> {
     }
 }
 
-impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
+impl<A: FunctionApproximator + Clone, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUTS, 1> {
     /// Ends the step: computes G with the rule and applies eq. (6) to every recorded input,
     /// then starts a new step.
     ///
@@ -1164,107 +1445,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
     /// The rule gives G through [`LearningRule::learn`] with the step's exploration
     /// perturbation (for a gradient rule, [`LearningRule::gradient`]).
     pub fn touch_down(&mut self, step: &StepOutcome) -> Result<TouchDownReport, LearnerError> {
-        self.end_step(step, false)
-    }
-
-    /// [`Self::touch_down`] of a step that ended in a fall (`fell`) or not.
-    fn end_step(
-        &mut self,
-        step: &StepOutcome,
-        fell: bool,
-    ) -> Result<TouchDownReport, LearnerError> {
-        for (what, v) in [
-            ("theta_e", step.theta_e),
-            ("theta_e_dot", step.theta_e_dot),
-            ("f_e", step.f_e),
-            ("f_r", step.f_r),
-        ] {
-            if !v.is_finite() {
-                return Err(LearnerError::NonFinite { what, value: v });
-            }
-        }
-        if self
-            .config
-            .max_step_error
-            .is_some_and(|m| (step.f_e - self.last_offset).abs() > m)
-        {
-            self.discard_step();
-            return Ok(TouchDownReport::default());
-        }
-        let g = self.rule.learn(step, self.exploration, fell);
-        if !g.is_finite() {
-            return Err(LearnerError::NonFinite {
-                what: "gradient G",
-                value: g,
-            });
-        }
-        let raw_gradient = g;
-        let g = g.signum() * (g.abs() - self.config.dead_zone).max(0.0);
-        let step_size = self.config.eta * g;
-        self.before.clear();
-        self.desired.clear();
-        let first = self.first_trained();
-        for (x, reach) in self.step.inputs[first..]
-            .iter()
-            .zip(&self.step.reach[first..])
-        {
-            let before = self.predict_array(x)?;
-            let mut change = step_size - self.config.leakage * before;
-            if self.config.anti_windup {
-                change = windup(change, before, *reach);
-            }
-            let target = before + change;
-            if !target.is_finite() {
-                return Err(LearnerError::NonFinite {
-                    what: "training target",
-                    value: target,
-                });
-            }
-            self.before.push(before);
-            self.desired.push(target - before);
-        }
-        let samples = self.step.inputs.len() - first;
-        let asked: f64 = self.desired.iter().map(|d| d * d).sum();
-        let gain_of = |response: f64| {
-            if g == 0.0 {
-                0.0
-            } else {
-                response * step_size / g
-            }
-        };
-        let guard = self.config.max_gain.filter(|_| asked > 0.0);
-        let (inputs, before, desired) = (&self.step.inputs[first..], &self.before, &self.desired);
-        let targets = &mut self.targets;
-        let guarded = guarded_update(
-            &mut self.approx,
-            guard,
-            |approx, scale| train_towards(approx, inputs, before, desired, targets, scale),
-            |approx| response(approx, inputs, before, desired, asked),
-            |r| gain_of(*r).abs(),
-        );
-        let Guarded {
-            scale,
-            first: response,
-            applied: applied_response,
-        } = match guarded {
-            Ok(g) => g,
-            Err(GuardError::Apply(e)) => {
-                self.discard_step();
-                return Err(e);
-            }
-            Err(GuardError::Measure(e)) => return Err(e),
-        };
-        if scale > 0.0 {
-            self.step.add_trained(first, &mut self.trained);
-        }
-        self.discard_step();
-        Ok(TouchDownReport {
-            gradient: raw_gradient,
-            samples,
-            response,
-            gain: gain_of(applied_response),
-            scale,
-        })
+        let [report] = self.touch_down_all([step])?;
+        Ok(report)
     }
 
     /// A step that ended in a fall: with `learn_from_falls`, learns from `step` (the step in
@@ -1272,22 +1454,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepLearner<A, R> {
     /// +-`fall_theta_limit` and theta_E_dot to ten times that; otherwise discards the step.
     /// Returns what the update did, if one was made.
     pub fn fall(&mut self, step: &StepOutcome) -> Result<Option<TouchDownReport>, LearnerError> {
-        if !self.config.learn_from_falls || self.step.inputs.is_empty() {
-            self.discard_step();
-            return Ok(None);
-        }
-        let clamped = clamped_at_fall(step, self.config.fall_theta_limit);
-        match self.end_step(&clamped, true) {
-            Ok(r) => Ok(Some(r)),
-            Err(e) => {
-                self.discard_step();
-                Err(e)
-            }
-        }
+        Ok(self.fall_all([step])?.map(|[report]| report))
     }
 }
 
-impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner<A, R> {
+impl<A: FunctionApproximator + Persist + Clone, R: LearningRule>
+    OffsetLearner<A, R, LEARNER_INPUTS, 1>
+{
     /// Everything the learner holds but its rule, with the rule's state, as [`Self::save`]
     /// writes it.
     pub fn checkpoint(&self) -> SavedLearner<A> {
@@ -1301,15 +1474,15 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
                     .step
                     .reach
                     .iter()
-                    .map(|[lo, hi]| [finite_or_none(*lo), finite_or_none(*hi)])
+                    .map(|[[lo, hi]]| [finite_or_none(*lo), finite_or_none(*hi)])
                     .collect(),
                 last_recorded: self.step.last_recorded,
                 stride: self.step.stride,
                 queries: self.step.queries,
-                last_offset: self.last_offset,
-                exploration: self.exploration,
+                last_offset: self.last_offset[0],
+                exploration: self.exploration[0],
             },
-            rule_state: self.rule.state(),
+            rule_state: self.rule().state(),
         }
     }
 
@@ -1326,20 +1499,20 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> FootstepLearner
         if let Some(state) = &saved.rule_state {
             rule.set_state(state)?;
         }
-        let mut learner = Self::assemble(saved.approximator, rule, saved.config)?;
+        let mut learner = Self::assemble(saved.approximator, [rule], saved.config)?;
         let step = saved.step;
         learner.trained = saved.trained;
         learner.step.inputs.extend_from_slice(&step.recorded);
         learner.step.reach.extend(
             step.reach
                 .iter()
-                .map(|[lo, hi]| [lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)]),
+                .map(|[lo, hi]| [[lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)]]),
         );
         learner.step.last_recorded = step.last_recorded;
         learner.step.stride = step.stride;
         learner.step.queries = step.queries;
-        learner.last_offset = step.last_offset;
-        learner.exploration = step.exploration;
+        learner.last_offset = [step.last_offset];
+        learner.exploration = [step.exploration];
         Ok(learner)
     }
 

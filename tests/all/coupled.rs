@@ -126,7 +126,7 @@ fn a_plane_whose_reach_is_exhausted_is_not_wound_up() {
 }
 
 #[test]
-fn bad_input_and_unsupported_settings_are_refused_and_change_nothing() {
+fn bad_input_is_refused_and_changes_nothing() {
     // Wrong shape: a one-output, three-input approximator.
     let bounds = InputGrid::default().input_box().unwrap();
     let small = Stacked::new(vec![ApproxKind::Lwpr.build(&bounds).unwrap()]).unwrap();
@@ -136,24 +136,29 @@ fn bad_input_and_unsupported_settings_are_refused_and_change_nothing() {
         LearnerConfig::default(),
     )
     .unwrap_err();
-    assert!(err.to_string().contains("6 inputs and 2 outputs"), "{err}");
-    for config in [
-        LearnerConfig {
-            max_step_error: Some(0.1),
-            ..LearnerConfig::default()
-        },
-        LearnerConfig {
-            trust_fallback: TrustFallback::Nominal,
-            ..LearnerConfig::default()
-        },
+    assert!(
+        matches!(
+            err,
+            LearnerError::WrongApproximatorShape {
+                expected: (6, 2),
+                inputs: 3,
+                outputs: 1
+            }
+        ),
+        "{err}"
+    );
+    let r = CoupledLearner::new(
+        heads(),
+        [PendulumCart::default(); 2],
         LearnerConfig {
             eta: f64::NAN,
             ..LearnerConfig::default()
         },
-    ] {
-        let r = CoupledLearner::new(heads(), [PendulumCart::default(); 2], config);
-        assert!(matches!(r, Err(LearnerError::InvalidConfig { .. })));
-    }
+    );
+    assert!(matches!(
+        r,
+        Err(LearnerError::InvalidConfig { param: "eta", .. })
+    ));
     let mut learner = coupled(LearnerConfig::default());
     let nan = LearnerInput {
         theta_e: f64::NAN,
@@ -277,4 +282,54 @@ fn experiment_omnidirectional_runs_both_planes_coupled_as_a_setting() {
         "{err}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn max_step_error_and_the_nominal_fallback_act_on_the_coupled_learner_too() {
+    // max_step_error: a step either plane's model missed by more teaches nothing.
+    let mut learner = coupled(LearnerConfig {
+        max_step_error: Some(0.05),
+        trust_region: None,
+        ..LearnerConfig::default()
+    });
+    let x = at(SAGITTAL, LATERAL);
+    let before = learner.predict(&x).unwrap();
+    learner.query(SAGITTAL, LATERAL).unwrap();
+    let missed = StepOutcome {
+        f_e: 0.2,
+        ..outcome(0.1, 0.0)
+    };
+    let [s, l] = learner.touch_down([&outcome(0.1, 0.0), &missed]).unwrap();
+    assert_eq!((s.samples, l.samples), (0, 0));
+    assert_eq!(learner.predict(&x).unwrap(), before);
+    // Within it, the same step teaches.
+    learner.query(SAGITTAL, LATERAL).unwrap();
+    let [s, _] = learner
+        .touch_down([&outcome(0.1, 0.0), &outcome(0.0, 0.0)])
+        .unwrap();
+    assert_eq!(s.samples, 1);
+    assert!(learner.predict(&x).unwrap()[0] > before[0]);
+
+    // The nominal fallback: far outside the trust region the offsets fade to those learned at
+    // the nominal state, not to zero.
+    let mut learner = coupled(LearnerConfig {
+        trust_fallback: TrustFallback::Nominal,
+        ..LearnerConfig::default()
+    });
+    for _ in 0..20 {
+        learner.query(SAGITTAL, LATERAL).unwrap();
+        learner
+            .touch_down([&outcome(0.1, 0.0), &outcome(0.0, 0.0)])
+            .unwrap();
+    }
+    let far = LearnerInput {
+        theta_e_dot: 1.4,
+        ..SAGITTAL
+    };
+    let [df_far, _] = learner.query(far, LATERAL).unwrap();
+    let [df_nominal, _] = learner.predict(&x).unwrap();
+    assert!(df_nominal > 0.01, "learned {df_nominal}");
+    // Every query was at one state, so the nominal state is that state; far from it the trust
+    // share is 0 and the offset is the nominal one exactly (with the zero fallback: 0).
+    assert_eq!(df_far, df_nominal);
 }

@@ -479,6 +479,7 @@ fn bad_configs_shapes_and_inputs_are_typed_errors() {
     assert!(matches!(
         FootstepLearner::new(TwoInputs, BalanceOnly, LearnerConfig::literal()),
         Err(LearnerError::WrongApproximatorShape {
+            expected: (3, 1),
             inputs: 2,
             outputs: 1
         })
