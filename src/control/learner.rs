@@ -17,31 +17,29 @@
 //!
 //! One touch-down moves the prediction at the step's inputs by `gain * G`, where the gain is
 //! eta times the approximator's response r (the share of a requested change its predictions
-//! actually move; a fresh LWPR receptive field moves ~1.0, one that has seen a thousand samples
-//! ~0.03). Near the reference the walker answers a sustained offset with
-//! dG/dF = -k, k ~ 4.8 per metre on the simulated humanoid (the tanh slope p_theta p_F = 4.5
-//! plus d theta_E / dF ~ 0.3 rad/m), so the step error evolves as e <- (1 - gain k) e: it
-//! settles monotonically for gain < 1/k ~ 0.21, oscillates but settles below 2/k ~ 0.42 and
-//! grows beyond (bounded only by saturation and falls). Eq. (6) at the paper's eta = 1 with an
-//! untrained approximator has gain ~ 1: unstable by construction. Three settings of
+//! actually move: near 1 for a fresh local model, far less for one that has seen many
+//! samples). Near the reference the walker answers a sustained offset with dG/dF = -k (k is
+//! the tanh slope p_theta p_F plus the trunk's own response d theta_E / dF), so the step error
+//! evolves as e <- (1 - gain k) e: it settles monotonically for gain < 1/k, oscillates but
+//! settles below 2/k and grows beyond (bounded only by saturation and falls). Eq. (6) at the
+//! paper's eta = 1 with an untrained approximator has gain ~ 1, beyond that limit on the
+//! humanoid (docs/learner.md has k as measured there). Three settings of
 //! [`LearnerConfig`] make it stable for any approximator and any eta:
 //!
-//! - **Gain guard** (`max_gain`, default 0.2 ~ 1/k, half the stability limit): the update is
+//! - **Gain guard** (`max_gain`, default 0.2, about 1/k on the humanoid): the update is
 //!   tried on a copy of the approximator; if its response gives a larger gain, the step is
 //!   scaled to just below the limit and applied to the original (never above it: if retries
 //!   do not get there, that touch-down changes nothing). [`TouchDownReport`] carries r, the gain
 //!   applied and the scale; the trial log records the gain of every touch-down.
 //! - **Anti-windup** (`anti_windup`, conditional integration): no target goes further past the
 //!   offsets that could still change the step at that tick (the walker tells the learner this
-//!   reach: the step range minus the analytic step). Without it eq. (6) kept integrating where
-//!   the step range was exhausted (|dF| reached 24 m in one run). Targets are not pulled *into*
-//!   the reach: after backward pushes the analytic step lay beyond the range's backward end,
-//!   and clamping targets into the reach drove dF to +0.7 m there (stepping forward when pushed
-//!   back; backward I50 4.6-5.3 Ns against the model's 6.2-7.0 on seeds 0-2).
+//!   reach: the step range minus the analytic step). Without it eq. (6) keeps integrating
+//!   where the step range is exhausted. Targets are not pulled *into* the reach: where the
+//!   analytic step lies beyond an end of the range, clamping targets into the reach would
+//!   drive the offset the wrong way (docs/learner.md has both measured).
 //! - **Prior** (`prior`): the paper's initialised learner starts at dF = 0 everywhere; training
-//!   that belief in at 1000 points makes the approximator hold it with confidence, so that
-//!   early steps do not move it all the way (the response of the experiments' LWPR to its first
-//!   step drops from 1.00 to 0.32, `tests/all/learner.rs`).
+//!   that belief in makes the approximator hold it with confidence, so that early steps do not
+//!   move it all the way (its response to the first step drops, `tests/all/learner.rs`).
 //!
 //! A fourth, the **trust region** (`trust_region`, default 2), applies the offset only near
 //! the inputs the learner was trained at, so that what it learned stepping or walking does
@@ -221,9 +219,8 @@ pub struct LearnerConfig {
     /// If set (k > 0), the learner acts only where it has learned: the offset is applied in
     /// full where every input lies within k standard deviations of the mean of the inputs it
     /// was trained at, fades linearly to 0 at 1.5 k and is 0 beyond (the model alone decides
-    /// in states the learner never learned from). Default 2: without it the offset learned in
-    /// other states reached the catch steps of experiment B (1-7.5 cm more step there) and the
-    /// learned walker fell after 2-23x as many pushes as the model.
+    /// in states the learner never learned from). Default 2: without it the offset learned
+    /// walking reaches the catch steps after pushes (docs/learner.md has what that cost).
     pub trust_region: Option<f64>,
     /// What the offset fades to outside the trust region (default [`TrustFallback::Zero`]).
     pub trust_fallback: TrustFallback,

@@ -63,12 +63,9 @@ pub struct WalkerConfig {
     pub motion: MotionConfig,
     /// Feed the learned offset into the support leg's sweep as well as the footstep
     /// (`gait_x = F_R + dF`), as the authors' gait turns the step into a gait velocity. Off:
-    /// the sweep follows F_R alone. Default on: with it the learned walker's 50% fall impulse
-    /// in experiment C was 14.37 / 13.40 / 13.78 Ns on seeds 0-2 (100 pushes, forward, with
-    /// an earlier anti-windup that clamped targets into the reach), without it 11.81 / 11.05 /
-    /// 13.71 Ns (model 14.07 / 13.76 / 13.47); backward, with the current learner, 6.24 /
-    /// 7.39 / 6.96 Ns with it and 6.70 / 5.84 / 6.64 without (model 6.46 / 6.19 / 6.99).
-    /// Without a learner dF = 0, so the model is the same either way.
+    /// the sweep follows F_R alone. Default on: the learned walker is harder to push over with
+    /// it (measured both ways in docs/learner.md). Without a learner dF = 0, so the model is
+    /// the same either way.
     #[serde(default = "default_offset_in_gait")]
     pub offset_in_gait: bool,
     /// Use the learner while the generator is still fading its primitives in after a start or
@@ -88,11 +85,9 @@ pub struct WalkerConfig {
     pub offset_target: OffsetTarget,
     /// After a start or a reset the walker tracks a reference that rises from 0 to the
     /// requested one over this time (s, cosine; 0: the full reference at once), as a gait
-    /// command ramps up from standing. Without it the Capture Step walker failed to start
-    /// from standing at F_R 0.17, 0.19 and 0.22-0.30 m (it fell, again after every reset;
-    /// 0.10-0.16, 0.18, 0.20 and 0.21 m started; seed 0); with 1 s it started up to 0.25 m,
-    /// with 2 s (the default) at every F_R from -0.15 to 0.30 m (seeds 0 and 1, model and
-    /// learned walker).
+    /// command ramps up from standing. Without it the Capture Step walker fails to start from
+    /// standing at larger references (docs/control.md has the references measured); the
+    /// default 2 s starts it at every reference the experiments use.
     #[serde(default = "default_start_ramp_s")]
     pub start_ramp_s: f64,
 }
