@@ -234,13 +234,16 @@ impl Registry {
     }
 
     /// Checks that `approx` and `rule` are registered and that the approximator builds, so
-    /// that a factory that cannot build is an error before any run.
+    /// that a factory that cannot build is an error before any run
+    /// ([`BenchError::CannotBuild`]).
     pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
         find("rule", &self.rules, rule)?;
         find("approximator", &self.approximators, approx)?(&learner_bounds()?)
             .map(|_| ())
-            .map_err(|e| {
-                BenchError::Selection(format!("approximator {approx:?} cannot be built: {e}"))
+            .map_err(|e| BenchError::CannotBuild {
+                approx: approx.to_string(),
+                rule: rule.to_string(),
+                reason: e.to_string(),
             })
     }
 
@@ -289,9 +292,11 @@ impl Registry {
         )
     }
 
-    /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and CSV into `dir` and
-    /// returns its summary (the caller writes `summary.json`). Every learner of the run has its
-    /// rule reseeded with the run's seed ([`FootstepLearner::reseed`]).
+    /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and
+    /// CSV into `dir` and returns its summary (the caller writes `summary.json`). The run's
+    /// learners learn the spec's set ([`RunSpec::learn`]) where it gives one, else the
+    /// settings'. Every learner of the run has its rule reseeded with the run's seed
+    /// ([`FootstepLearner::reseed`]).
     pub fn run_spec(
         &self,
         spec: &RunSpec,
@@ -299,6 +304,7 @@ impl Registry {
         settings: &Settings,
         protocols: &ProtocolTables,
     ) -> Result<Summary, ExperimentError> {
+        let settings = &settings_of(spec, settings);
         let invalid = |e: BenchError| ExperimentError::Invalid(e.to_string());
         let experiment = self.find_experiment(&spec.experiment).map_err(invalid)?;
         let build = self
@@ -346,6 +352,15 @@ impl Registry {
     }
 }
 
+/// `settings` with the spec's set of learned parameters, where it gives one.
+fn settings_of(spec: &RunSpec, settings: &Settings) -> Settings {
+    let mut settings = settings.clone();
+    if let Some(set) = spec.learn {
+        settings.learner.learn = set;
+    }
+    settings
+}
+
 /// The version of the results' format, recorded in every run's identity: raised when a
 /// change of steplearn makes earlier results differ from what it would produce now.
 pub const RESULTS_FORMAT: u32 = 1;
@@ -364,8 +379,9 @@ struct RunIdentity<'a> {
 }
 
 impl Registry {
-    /// The identity of `spec` with `settings` and `protocols`: the run, the whole settings,
-    /// the experiment's whole protocol table and [`RESULTS_FORMAT`], as TOML. Two runs with
+    /// The identity of `spec` with `settings` and `protocols`: the run, the whole settings
+    /// (with the spec's set of learned parameters, recorded when not the paper's), the
+    /// experiment's whole protocol table and [`RESULTS_FORMAT`], as TOML. Two runs with
     /// the same identity give the same bytes.
     pub fn run_identity(
         &self,
@@ -373,6 +389,7 @@ impl Registry {
         settings: &Settings,
         protocols: &ProtocolTables,
     ) -> Result<String, BenchError> {
+        let settings = &settings_of(spec, settings);
         let invalid = |e: ConfigError| BenchError::Selection(format!("invalid config: {e}"));
         settings.validate().map_err(invalid)?;
         let protocol = self
