@@ -342,6 +342,11 @@ pub struct RunRecord {
     pub spec: RunSpec,
     /// Wall-clock time of the runner (s).
     pub wall_time_s: f64,
+    /// The steplearn version that made the run (empty in records written before it was
+    /// recorded). Kept out of the run's identity, so that a new release does not make every
+    /// finished run stale; [`IDENTITY_FILE`]'s results format does that when results change.
+    #[serde(default)]
+    pub steplearn_version: String,
 }
 
 /// How one run of a sweep ended.
@@ -475,6 +480,7 @@ fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
         id: spec.id(),
         spec: spec.clone(),
         wall_time_s,
+        steplearn_version: env!("CARGO_PKG_VERSION").to_string(),
     };
     let written = serde_json::to_string_pretty(&record)
         .map_err(|e| ReportError::invalid(e.to_string()))

@@ -13,7 +13,7 @@ use steplearn::experiments::ExperimentError;
 use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
-use steplearn::experiments::sweep::RunSpec;
+use steplearn::experiments::sweep::{RunSpec, RunStatus};
 use steplearn::rules::StepOutcome;
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -320,4 +320,80 @@ fn a_factory_that_cannot_build_is_refused_before_anything_is_written() {
     );
     assert_eq!(code, std::process::ExitCode::FAILURE);
     assert!(!dir.exists());
+}
+
+/// A user's rule with a parameter.
+struct Scaled(f64);
+impl steplearn::rules::LearningRule for Scaled {
+    fn gradient(&self, step: &StepOutcome) -> f64 {
+        self.0 * step.theta_e
+    }
+}
+
+#[test]
+fn a_users_changed_parameter_is_never_handed_back_as_a_finished_run() {
+    let dir = temp_dir("changed");
+    let bench = |cells: usize, k: f64| {
+        let r = registry()
+            .approximator("mine", move |b: &InputBox| {
+                Grid::new(GridConfig::new(b.clone(), vec![cells, 3, 3], 1))
+            })
+            .rule("scaled", move || Scaled(k));
+        Bench::new(&r)
+            .approximators(["mine"])
+            .rules(["scaled"])
+            .experiments(["set-probe"])
+            .seeds(1)
+            .out(&dir)
+            .run()
+            .map(|report| report.outcomes[0].status.clone())
+    };
+    let id = dir.join("set-probe__mine__scaled__s0");
+    assert!(matches!(bench(3, 1.0), Ok(RunStatus::Done { .. })));
+    let identity = std::fs::read_to_string(id.join("run-config.toml")).unwrap();
+    assert!(
+        identity.contains("approx_model = \"fnv1a-64:"),
+        "{identity}"
+    );
+    assert!(identity.contains("rule_model = \"fnv1a-64:"), "{identity}");
+    let record = json(&id.join("run.json"));
+    assert_eq!(record["steplearn_version"], env!("CARGO_PKG_VERSION"));
+    // The same registrations: reused.
+    assert_eq!(bench(3, 1.0).unwrap(), RunStatus::Skipped);
+    // Another approximator parameter, then another rule parameter: refused, saying why,
+    // and the old result is not in the leaderboard.
+    for (cells, k, field) in [(4, 1.0, "approx_model"), (3, 2.0, "rule_model")] {
+        match bench(cells, k) {
+            Err(BenchError::RunsFailed(failed)) => {
+                assert!(failed[0].1.contains(field), "{failed:?}")
+            }
+            other => panic!("expected a refusal, got {other:?}"),
+        }
+        let board = json(&dir.join("leaderboard.json"));
+        assert_eq!(board["rows"][0]["seeds"], serde_json::json!([]), "{board}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn built_in_components_keep_identities_without_fingerprints() {
+    let r = registry();
+    let spec = RunSpec {
+        experiment: "stability".into(),
+        approx: "lwpr".into(),
+        rule: "pendulum-cart".into(),
+        seed: 0,
+        learn: None,
+    };
+    let settings = steplearn::experiments::settings::Settings::default();
+    let protocols = steplearn::experiments::protocol::ProtocolTables::new();
+    let identity = r.run_identity(&spec, &settings, &protocols).unwrap();
+    assert!(!identity.contains("_model"), "{identity}");
+    let user = RunSpec {
+        approx: "coarse-grid".into(),
+        ..spec
+    };
+    let identity = r.run_identity(&user, &settings, &protocols).unwrap();
+    assert!(identity.contains("approx_model"), "{identity}");
+    assert!(!identity.contains("rule_model"), "{identity}");
 }
