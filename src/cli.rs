@@ -126,10 +126,12 @@ enum Command {
         /// Experiments, comma-separated [default: every registered one].
         #[arg(long, value_delimiter = ',')]
         experiments: Vec<String>,
-        /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
-        /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
+        /// A set of step parameters the learners learn, comma-separated: step-x (the paper's
+        /// dF), step-y (the lateral dW), step-time (dT). Give it several times to bench several
+        /// sets side by side (`--learn step-x --learn step-x,step-time`) [default: the
+        /// config's, step-x].
         #[arg(long)]
-        learn: Option<LearnSet>,
+        learn: Vec<LearnSet>,
         /// Number of seeds: FIRST..FIRST+N.
         #[arg(long, default_value_t = 5)]
         seeds: u64,
@@ -394,6 +396,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 approx: approx.clone(),
                 rule: rule.clone(),
                 seed,
+                learn: None,
             };
             let identity = registry
                 .run_identity(&spec, &config.settings, &config.protocols)
@@ -455,10 +458,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             threads,
             out,
         } => {
-            let mut config = load_config(registry, config)?;
-            if let Some(set) = learn {
-                config.settings.learner.learn = set;
-            }
+            let config = load_config(registry, config)?;
             let mut bench = Bench::new(registry)
                 .seeds(seeds)
                 .first_seed(first_seed)
@@ -473,6 +473,9 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             }
             if !experiments.is_empty() {
                 bench = bench.experiments(&experiments);
+            }
+            if !learn.is_empty() {
+                bench = bench.learn_sets(learn);
             }
             if let Some(s) = scale {
                 bench = bench.scale(s);

@@ -23,6 +23,17 @@ pub enum BenchError {
     /// scale out of range, a baseline outside the selection).
     #[error("{0}")]
     Selection(String),
+    /// The approximator of a combination cannot be built (its factory fails on the learner's
+    /// input box); found before any run.
+    #[error("approximator {approx:?} cannot be built (combination {approx} + {rule}): {reason}")]
+    CannotBuild {
+        /// The approximator's name.
+        approx: String,
+        /// The rule's name.
+        rule: String,
+        /// The factory's error.
+        reason: String,
+    },
     /// The output directory holds results of another configuration.
     #[error("{0}")]
     ConfigChanged(String),

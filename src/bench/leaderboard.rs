@@ -1,13 +1,14 @@
-//! The leaderboard of a bench: one row per (approximator, rule, experiment) with the
+//! The leaderboard of a bench: one row per (approximator, rule, set, experiment) with the
 //! experiment's headline figures, its paired comparisons of the learned walker against the
 //! model over seeds, and the same comparisons against a baseline combination.
 //!
 //! Written as `leaderboard.json` (the contract: `"rows"`, each with `"approx"`, `"rule"`,
-//! `"experiment"`, `"vs_model"` and `"vs_baseline"` lists of `{"quantity", "mean", "ci95",
+//! `"learn"` (the learned step parameters, a list of names), `"experiment"`, `"vs_model"` and `"vs_baseline"` lists of `{"quantity", "mean", "ci95",
 //! "verdict"}`), `leaderboard.md`, `leaderboard.csv` (one line per comparison or headline
 //! figure), `forest.svg` (each combination's first comparison per experiment) and `index.html`.
 
 use super::{BenchError, Registry};
+use crate::control::step_parameter::LearnSet;
 use crate::experiments::experiment::{Experiment, Headline};
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;
@@ -72,13 +73,15 @@ impl Comparison {
     }
 }
 
-/// One (approximator, rule, experiment).
+/// One (approximator, rule, set of learned parameters, experiment).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LeaderboardRow {
     /// Approximator name.
     pub approx: String,
     /// Rule name.
     pub rule: String,
+    /// The step parameters the runs' learners learned.
+    pub learn: LearnSet,
     /// Experiment name.
     pub experiment: String,
     /// The seeds whose runs finished.
@@ -87,8 +90,8 @@ pub struct LeaderboardRow {
     pub headline: Vec<Headline>,
     /// The learned walker against the model, paired by seed.
     pub vs_model: Vec<Comparison>,
-    /// This combination's per-seed comparison values minus the baseline's, paired by seed
-    /// (empty for the baseline itself).
+    /// This combination's per-seed comparison values minus the baseline's (learning the same
+    /// set), paired by seed (empty for the baseline itself).
     pub vs_baseline: Vec<Comparison>,
 }
 
@@ -110,7 +113,7 @@ pub struct Leaderboard {
     pub scale: f64,
     /// The seeds selected.
     pub seeds: Vec<u64>,
-    /// One row per (approximator, rule, experiment) in selection order.
+    /// One row per (approximator, rule, set, experiment) in selection order.
     pub rows: Vec<LeaderboardRow>,
     /// Runs of the selection without a finished summary (by id).
     pub missing: Vec<String>,
@@ -170,11 +173,14 @@ struct CsvRow<'a> {
     ci95_hi: Shortest,
     verdict: &'a str,
     seeds: usize,
+    /// The set of learned parameters, last so that the columns before it stay where they were.
+    learn: String,
 }
 
 impl Leaderboard {
-    /// Reads the finished runs of `grid` under `out` and builds the leaderboard. A summary
-    /// that cannot be read is an error naming it.
+    /// Reads the finished runs of `grid` under `out` and builds the leaderboard: a row per
+    /// experiment, approximator, rule and set of [`SweepGrid::learn`] (the paper's set when
+    /// it is empty). A summary that cannot be read is an error naming it.
     pub fn collect(
         registry: &Registry,
         grid: &SweepGrid,
@@ -185,7 +191,16 @@ impl Leaderboard {
     ) -> Result<Self, BenchError> {
         let mut rows = Vec::new();
         let mut missing = Vec::new();
-        let read = |experiment: &str, approx: &str, rule: &str, missing: &mut Vec<String>| {
+        let sets = if grid.learn.is_empty() {
+            vec![LearnSet::default()]
+        } else {
+            grid.learn.clone()
+        };
+        let read = |experiment: &str,
+                    approx: &str,
+                    rule: &str,
+                    learn: LearnSet,
+                    missing: &mut Vec<String>| {
             let mut runs = Vec::new();
             for &seed in &grid.seeds {
                 let spec = RunSpec {
@@ -193,6 +208,7 @@ impl Leaderboard {
                     approx: approx.to_string(),
                     rule: rule.to_string(),
                     seed,
+                    learn: Some(learn),
                 };
                 let path = out.join(spec.id()).join(SUMMARY_FILE);
                 if is_current(runner, &spec, out) {
@@ -205,29 +221,35 @@ impl Leaderboard {
         };
         for name in &grid.experiments {
             let experiment = registry.find_experiment(name)?;
-            let base = read(name, &baseline.0, &baseline.1, &mut Vec::new())?;
+            let bases = sets
+                .iter()
+                .map(|&set| read(name, &baseline.0, &baseline.1, set, &mut Vec::new()))
+                .collect::<Result<Vec<_>, _>>()?;
             for approx in &grid.approx {
                 for rule in &grid.rules {
-                    let runs = read(name, approx, rule, &mut missing)?;
-                    let refs: Vec<&Summary> = runs.iter().collect();
-                    let is_base = (approx, rule) == (&baseline.0, &baseline.1);
-                    rows.push(LeaderboardRow {
-                        approx: approx.clone(),
-                        rule: rule.clone(),
-                        experiment: name.clone(),
-                        seeds: runs.iter().map(|s| s.seed).collect(),
-                        headline: experiment.headline(&refs),
-                        vs_model: experiment
-                            .versus_model(&refs)
-                            .iter()
-                            .map(Comparison::from)
-                            .collect(),
-                        vs_baseline: if is_base {
-                            Vec::new()
-                        } else {
-                            versus_baseline(experiment, &runs, &base)
-                        },
-                    });
+                    for (&learn, base) in sets.iter().zip(&bases) {
+                        let runs = read(name, approx, rule, learn, &mut missing)?;
+                        let refs: Vec<&Summary> = runs.iter().collect();
+                        let is_base = (approx, rule) == (&baseline.0, &baseline.1);
+                        rows.push(LeaderboardRow {
+                            approx: approx.clone(),
+                            rule: rule.clone(),
+                            learn,
+                            experiment: name.clone(),
+                            seeds: runs.iter().map(|s| s.seed).collect(),
+                            headline: experiment.headline(&refs),
+                            vs_model: experiment
+                                .versus_model(&refs)
+                                .iter()
+                                .map(Comparison::from)
+                                .collect(),
+                            vs_baseline: if is_base {
+                                Vec::new()
+                            } else {
+                                versus_baseline(experiment, &runs, base)
+                            },
+                        });
+                    }
                 }
             }
         }
@@ -291,21 +313,22 @@ impl Leaderboard {
                 "First comparison against the model: {}.\n\n",
                 first(|r| &r.vs_model)
             ));
-            md.push_str("| approx | rule | seeds |");
+            md.push_str("| approx | rule | learn | seeds |");
             for h in &heads {
                 md.push_str(&format!(" {h} |"));
             }
             md.push_str(
                 " vs model: better / level / worse | first vs model | first vs baseline |\n|",
             );
-            md.push_str(&"---|".repeat(heads.len() + 6));
+            md.push_str(&"---|".repeat(heads.len() + 7));
             md.push('\n');
             for r in rows {
                 let count = |v: Verdict| r.vs_model.iter().filter(|c| c.verdict == Some(v)).count();
                 md.push_str(&format!(
-                    "| {} | {} | {} |",
+                    "| {} | {} | {} | {} |",
                     r.approx,
                     r.rule,
+                    r.learn,
                     r.seeds.len()
                 ));
                 for h in &r.headline {
@@ -339,6 +362,7 @@ impl Leaderboard {
             let base = CsvRow {
                 approx: &r.approx,
                 rule: &r.rule,
+                learn: r.learn.to_string(),
                 experiment: &r.experiment,
                 ..CsvRow::default()
             };
@@ -394,7 +418,11 @@ impl Leaderboard {
                         .map(|r| {
                             let c = r.vs_model.first();
                             ForestRow {
-                                label: format!("{} + {}", r.approx, r.rule),
+                                label: if r.learn.is_paper() {
+                                    format!("{} + {}", r.approx, r.rule)
+                                } else {
+                                    format!("{} + {} [{}]", r.approx, r.rule, r.learn)
+                                },
                                 mean: c.map_or(f64::NAN, |c| c.mean),
                                 lo: c.map_or(f64::NAN, |c| c.ci95[0]),
                                 hi: c.map_or(f64::NAN, |c| c.ci95[1]),

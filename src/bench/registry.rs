@@ -55,6 +55,9 @@ pub struct Registry {
     rules: Vec<(String, RuleFactory)>,
     experiments: Vec<Arc<dyn Experiment>>,
     problems: Vec<String>,
+    /// `"approximator NAME"` and `"rule NAME"` of the built-ins, whose parameters are
+    /// steplearn's (covered by [`RESULTS_FORMAT`]) and so are not fingerprinted.
+    builtin: Vec<String>,
 }
 
 impl std::fmt::Debug for Registry {
@@ -116,7 +119,51 @@ impl Registry {
         for e in suite::builtin() {
             r.add_experiment(e);
         }
+        r.builtin = r
+            .approximator_names()
+            .iter()
+            .map(|n| format!("approximator {n}"))
+            .chain(r.rule_names().iter().map(|n| format!("rule {n}")))
+            .collect();
         r
+    }
+
+    /// A fingerprint of a user's approximator `approx`: a stable hash of its freshly built
+    /// model's saved JSON ([`Persist`]), so that a changed parameter under the same name
+    /// changes the run's identity. `None` for a built-in.
+    fn approx_fingerprint(&self, approx: &str) -> Result<Option<String>, BenchError> {
+        if self.builtin.contains(&format!("approximator {approx}")) {
+            return Ok(None);
+        }
+        let model = find("approximator", &self.approximators, approx)?(&learner_bounds()?)
+            .and_then(|a| a.to_json())
+            .map_err(|e| BenchError::Selection(format!("approximator {approx:?}: {e}")))?;
+        Ok(Some(fingerprint(model.as_bytes())))
+    }
+
+    /// A fingerprint of a user's rule `rule`: a stable hash of a fresh rule's gradients on
+    /// fixed step outcomes and its state ([`LearningRule::state`]), so that a changed
+    /// parameter under the same name changes the run's identity. `None` for a built-in.
+    fn rule_fingerprint(&self, rule: &str) -> Result<Option<String>, BenchError> {
+        if self.builtin.contains(&format!("rule {rule}")) {
+            return Ok(None);
+        }
+        let r = find("rule", &self.rules, rule)?();
+        let mut bytes = Vec::new();
+        for (i, &a) in [-0.07, -0.01, 0.0, 0.02, 0.09].iter().enumerate() {
+            let b = [0.3, -0.5, 0.1, 0.0, -0.2][i];
+            let step = crate::rules::StepOutcome {
+                theta_e: a,
+                theta_e_dot: b,
+                f_e: 0.5 * a - 0.1 * b,
+                f_r: 0.05 + a,
+            };
+            bytes.extend_from_slice(&r.gradient(&step).to_bits().to_le_bytes());
+        }
+        if let Some(state) = r.state() {
+            bytes.extend_from_slice(state.to_string().as_bytes());
+        }
+        Ok(Some(fingerprint(&bytes)))
     }
 
     /// Why `name` cannot be registered as a `what` beside `names`, if it cannot (malformed,
@@ -234,13 +281,16 @@ impl Registry {
     }
 
     /// Checks that `approx` and `rule` are registered and that the approximator builds, so
-    /// that a factory that cannot build is an error before any run.
+    /// that a factory that cannot build is an error before any run
+    /// ([`BenchError::CannotBuild`]).
     pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
         find("rule", &self.rules, rule)?;
         find("approximator", &self.approximators, approx)?(&learner_bounds()?)
             .map(|_| ())
-            .map_err(|e| {
-                BenchError::Selection(format!("approximator {approx:?} cannot be built: {e}"))
+            .map_err(|e| BenchError::CannotBuild {
+                approx: approx.to_string(),
+                rule: rule.to_string(),
+                reason: e.to_string(),
             })
     }
 
@@ -289,9 +339,11 @@ impl Registry {
         )
     }
 
-    /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and CSV into `dir` and
-    /// returns its summary (the caller writes `summary.json`). Every learner of the run has its
-    /// rule reseeded with the run's seed ([`FootstepLearner::reseed`]).
+    /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and
+    /// CSV into `dir` and returns its summary (the caller writes `summary.json`). The run's
+    /// learners learn the spec's set ([`RunSpec::learn`]) where it gives one, else the
+    /// settings'. Every learner of the run has its rule reseeded with the run's seed
+    /// ([`FootstepLearner::reseed`]).
     pub fn run_spec(
         &self,
         spec: &RunSpec,
@@ -299,6 +351,7 @@ impl Registry {
         settings: &Settings,
         protocols: &ProtocolTables,
     ) -> Result<Summary, ExperimentError> {
+        let settings = &settings_of(spec, settings);
         let invalid = |e: BenchError| ExperimentError::Invalid(e.to_string());
         let experiment = self.find_experiment(&spec.experiment).map_err(invalid)?;
         let build = self
@@ -346,6 +399,24 @@ impl Registry {
     }
 }
 
+/// `settings` with the spec's set of learned parameters, where it gives one.
+fn settings_of(spec: &RunSpec, settings: &Settings) -> Settings {
+    let mut settings = settings.clone();
+    if let Some(set) = spec.learn {
+        settings.learner.learn = set;
+    }
+    settings
+}
+
+/// `fnv1a-64:` and the 64-bit FNV-1a hash of `bytes` in hex: stable across platforms and
+/// releases (not a cryptographic hash: it tells changes apart, it does not resist forgery).
+fn fingerprint(bytes: &[u8]) -> String {
+    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    format!("fnv1a-64:{hash:016x}")
+}
+
 /// The version of the results' format, recorded in every run's identity: raised when a
 /// change of steplearn makes earlier results differ from what it would produce now.
 pub const RESULTS_FORMAT: u32 = 1;
@@ -357,6 +428,12 @@ struct RunIdentity<'a> {
     experiment: &'a str,
     approx: &'a str,
     rule: &'a str,
+    /// A user's approximator's fingerprint (absent for the built-ins).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    approx_model: Option<String>,
+    /// A user's rule's fingerprint (absent for the built-ins).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rule_model: Option<String>,
     seed: u64,
     settings: &'a Settings,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -364,8 +441,12 @@ struct RunIdentity<'a> {
 }
 
 impl Registry {
-    /// The identity of `spec` with `settings` and `protocols`: the run, the whole settings,
-    /// the experiment's whole protocol table and [`RESULTS_FORMAT`], as TOML. Two runs with
+    /// The identity of `spec` with `settings` and `protocols`: the run, for a user's
+    /// approximator and rule a fingerprint of what they build (`approx_model`, `rule_model`:
+    /// a changed parameter under the same name is another identity, so its finished runs are
+    /// never reused), the whole settings
+    /// (with the spec's set of learned parameters, recorded when not the paper's), the
+    /// experiment's whole protocol table and [`RESULTS_FORMAT`], as TOML. Two runs with
     /// the same identity give the same bytes.
     pub fn run_identity(
         &self,
@@ -373,6 +454,7 @@ impl Registry {
         settings: &Settings,
         protocols: &ProtocolTables,
     ) -> Result<String, BenchError> {
+        let settings = &settings_of(spec, settings);
         let invalid = |e: ConfigError| BenchError::Selection(format!("invalid config: {e}"));
         settings.validate().map_err(invalid)?;
         let protocol = self
@@ -384,6 +466,8 @@ impl Registry {
             experiment: &spec.experiment,
             approx: &spec.approx,
             rule: &spec.rule,
+            approx_model: self.approx_fingerprint(&spec.approx)?,
+            rule_model: self.rule_fingerprint(&spec.rule)?,
             seed: spec.seed,
             settings,
             protocol,

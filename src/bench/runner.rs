@@ -3,6 +3,7 @@
 use super::leaderboard::Leaderboard;
 use super::{BenchError, Registry};
 use crate::config::limits::MAX_SEEDS;
+use crate::control::step_parameter::LearnSet;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::sweep::{RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, run_sweep};
 use crate::report::write_atomic;
@@ -14,7 +15,8 @@ pub const CONFIG_RECORD: &str = "bench-config.toml";
 /// The default baseline combination of the leaderboard: the paper's learner.
 pub const DEFAULT_BASELINE: (&str, &str) = ("lwpr", "pendulum-cart");
 
-/// A benchmark: approximators x rules x experiments x seeds from a [`Registry`], run into one
+/// A benchmark: approximators x rules x sets of learned parameters x experiments x seeds from
+/// a [`Registry`], run into one
 /// directory (one sub-directory per run, finished runs reused) and reported as a
 /// [`Leaderboard`] (`leaderboard.json`, `.md`, `.csv`, `forest.svg`, `index.html`).
 ///
@@ -25,6 +27,7 @@ pub struct Bench<'r> {
     approximators: Option<Vec<String>>,
     rules: Option<Vec<String>>,
     experiments: Option<Vec<String>>,
+    learn_sets: Option<Vec<LearnSet>>,
     seeds: u64,
     first_seed: u64,
     scale: Option<f64>,
@@ -83,6 +86,7 @@ impl<'r> Bench<'r> {
             approximators: None,
             rules: None,
             experiments: None,
+            learn_sets: None,
             seeds: 5,
             first_seed: 0,
             scale: None,
@@ -111,6 +115,16 @@ impl<'r> Bench<'r> {
     /// The experiments to run, by registered name.
     pub fn experiments<I: IntoIterator<Item = S>, S: AsRef<str>>(mut self, names: I) -> Self {
         self.experiments = Some(owned(names));
+        self
+    }
+
+    /// The sets of learned step parameters to run, each a dimension of the grid like the
+    /// approximators (default: the configuration's `settings.learner.learn`, the paper's
+    /// `step-x` unless changed). Runs of the paper's set keep their plain directory ids; any
+    /// other set's add a suffix ([`RunSpec::id`](crate::experiments::sweep::RunSpec::id)), and
+    /// every leaderboard row names its set.
+    pub fn learn_sets<I: IntoIterator<Item = LearnSet>>(mut self, sets: I) -> Self {
+        self.learn_sets = Some(sets.into_iter().collect());
         self
     }
 
@@ -208,20 +222,51 @@ impl<'r> Bench<'r> {
                 self.first_seed, self.seeds
             ))
         })?;
+        let learn = self
+            .learn_sets
+            .clone()
+            .unwrap_or_else(|| vec![self.config.settings.learner.learn]);
+        if learn.is_empty() {
+            return Err(BenchError::Selection(
+                "no set of learned step parameters selected".into(),
+            ));
+        }
+        for (i, set) in learn.iter().enumerate() {
+            if learn[..i].contains(set) {
+                return Err(BenchError::Selection(format!(
+                    "learned set {set} selected twice"
+                )));
+            }
+        }
         Ok(SweepGrid {
             experiments,
             approx,
             rules,
             seeds: (self.first_seed..end).collect(),
+            learn,
         })
     }
 
+    /// The configuration of the runs: the scale set here, and the set of learned parameters
+    /// left at the paper's, since each run learns its own set ([`Bench::learn_sets`]), so
+    /// that the record of a directory does not depend on the sets selected.
     fn resolved_config(&self) -> Result<ConfigFile, BenchError> {
         let mut config = self.config.clone();
         if let Some(scale) = self.scale {
             config.settings.scale = scale;
         }
+        config.settings.learner.learn = LearnSet::default();
         self.registry.resolve_config(&config)
+    }
+
+    /// Refuses, before any run, a selected approximator whose factory cannot build.
+    fn check_builds(&self, grid: &SweepGrid) -> Result<(), BenchError> {
+        for approx in &grid.approx {
+            for rule in &grid.rules {
+                self.registry.check_combination(approx, rule)?;
+            }
+        }
+        Ok(())
     }
 
     fn baseline_of(&self, grid: &SweepGrid) -> Result<(String, String), BenchError> {
@@ -280,11 +325,13 @@ impl<'r> Bench<'r> {
 
     /// Runs the selection (this shard of it), then writes the leaderboard of every finished
     /// run of the selection into the output directory. Errors before any run on a bad
-    /// selection or configuration; [`BenchError::RunsFailed`] after writing the leaderboard
-    /// if some runs failed.
+    /// selection or configuration, or an approximator that cannot be built
+    /// ([`BenchError::CannotBuild`]: nothing is written); [`BenchError::RunsFailed`] after
+    /// writing the leaderboard if some runs failed.
     pub fn run(&self) -> Result<Report, BenchError> {
         let grid = self.grid()?;
         let baseline = self.baseline_of(&grid)?;
+        self.check_builds(&grid)?;
         let config = self.resolved_config()?;
         let config_toml = config
             .to_toml()

@@ -166,6 +166,7 @@ impl Claims {
                             approx: approx.to_string(),
                             rule: rule.to_string(),
                             seed: *seed,
+                            learn: None,
                         }
                         .id(),
                     )

@@ -14,6 +14,7 @@
 //! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call [`merge`] when all are done.
 
 use crate::config::limits::MAX_SEEDS;
+use crate::control::step_parameter::LearnSet;
 use crate::experiments::summary::{ExperimentResult, Summary, check_name};
 use crate::report::{ReportError, write_atomic};
 use crate::report::{Shortest, write_rows};
@@ -58,8 +59,9 @@ pub enum SweepError {
     Report(#[from] ReportError),
 }
 
-/// One run: which experiment, approximator, rule and seed.
-#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+/// One run: which experiment, approximator, rule, seed and (optionally) set of learned step
+/// parameters.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSpec {
     /// Experiment name (lowercase letters, digits and `-`).
@@ -70,16 +72,49 @@ pub struct RunSpec {
     pub rule: String,
     /// The seed.
     pub seed: u64,
+    /// The step parameters the run's learners learn; `None`: whatever the runner's settings
+    /// say (`settings.learner.learn`). The bench always gives one ([`SweepGrid::learn`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub learn: Option<LearnSet>,
+}
+
+impl PartialOrd for RunSpec {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for RunSpec {
+    /// By experiment, approximator, rule, seed, then set (no set first; sets by their names).
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        let key = |r: &RunSpec| {
+            (
+                r.experiment.clone(),
+                r.approx.clone(),
+                r.rule.clone(),
+                r.seed,
+                r.learn.map(|s| s.names()),
+            )
+        };
+        key(self).cmp(&key(other))
+    }
 }
 
 impl RunSpec {
     /// The stable id, also the run's directory name: `experiment__approx__rule__sSEED`, e.g.
-    /// `stability__lwpr__pendulum-cart__s3`.
+    /// `stability__lwpr__pendulum-cart__s3`, for the paper's set (`step-x`) or none given;
+    /// any other set adds its names joined by `+`:
+    /// `stability__lwpr__pendulum-cart__s3__step-x+step-time`.
     pub fn id(&self) -> String {
-        format!(
+        let mut id = format!(
             "{}__{}__{}__s{}",
             self.experiment, self.approx, self.rule, self.seed
-        )
+        );
+        if let Some(set) = self.learn.filter(|s| !s.is_paper()) {
+            id.push_str("__");
+            id.push_str(&set.names().join("+"));
+        }
+        id
     }
 
     /// Whether `summary` is the result of this run.
@@ -88,10 +123,11 @@ impl RunSpec {
             && summary.approx == self.approx
             && summary.rule == self.rule
             && summary.seed == self.seed
+            && self.learn.is_none_or(|set| summary.learn == set)
     }
 }
 
-/// The grid of runs: the product of its four lists.
+/// The grid of runs: the product of its lists.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepGrid {
@@ -103,6 +139,11 @@ pub struct SweepGrid {
     pub rules: Vec<String>,
     /// Seeds.
     pub seeds: Vec<u64>,
+    /// Sets of learned step parameters, each a dimension of the grid like the approximators;
+    /// empty (the default): one run per combination with the runner's settings' set
+    /// ([`RunSpec::learn`] `None`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub learn: Vec<LearnSet>,
 }
 
 impl SweepGrid {
@@ -115,10 +156,20 @@ impl SweepGrid {
             approx: owned(approx),
             rules: owned(rules),
             seeds: (0..n_seeds.min(MAX_SEEDS + 1)).collect(),
+            learn: Vec::new(),
         }
     }
 
-    /// Every run, in a fixed order (experiment, approximator, rule, seed; each list in the
+    /// The sets of the grid's runs: [`SweepGrid::learn`], or `[None]` when it is empty.
+    pub fn learn_sets(&self) -> Vec<Option<LearnSet>> {
+        if self.learn.is_empty() {
+            vec![None]
+        } else {
+            self.learn.iter().copied().map(Some).collect()
+        }
+    }
+
+    /// Every run, in a fixed order (experiment, approximator, rule, set, seed; each list in the
     /// order given). Errors on an empty list, a bad approximator name or duplicates.
     pub fn runs(&self) -> Result<Vec<RunSpec>, SweepError> {
         for (what, len) in [
@@ -145,17 +196,28 @@ impl SweepGrid {
                 check_name(what, n).map_err(SweepError::InvalidGrid)?;
             }
         }
+        for (i, set) in self.learn.iter().enumerate() {
+            if self.learn[..i].contains(set) {
+                return Err(SweepError::InvalidGrid(format!(
+                    "learned set {set} given twice"
+                )));
+            }
+        }
+        let sets = self.learn_sets();
         let mut runs = Vec::new();
         for experiment in &self.experiments {
             for approx in &self.approx {
                 for rule in &self.rules {
-                    for &seed in &self.seeds {
-                        runs.push(RunSpec {
-                            experiment: experiment.clone(),
-                            approx: approx.clone(),
-                            rule: rule.clone(),
-                            seed,
-                        });
+                    for &learn in &sets {
+                        for &seed in &self.seeds {
+                            runs.push(RunSpec {
+                                experiment: experiment.clone(),
+                                approx: approx.clone(),
+                                rule: rule.clone(),
+                                seed,
+                                learn,
+                            });
+                        }
                     }
                 }
             }
@@ -280,6 +342,11 @@ pub struct RunRecord {
     pub spec: RunSpec,
     /// Wall-clock time of the runner (s).
     pub wall_time_s: f64,
+    /// The steplearn version that made the run (empty in records written before it was
+    /// recorded). Kept out of the run's identity, so that a new release does not make every
+    /// finished run stale; [`IDENTITY_FILE`]'s results format does that when results change.
+    #[serde(default)]
+    pub steplearn_version: String,
 }
 
 /// How one run of a sweep ended.
@@ -413,6 +480,7 @@ fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
         id: spec.id(),
         spec: spec.clone(),
         wall_time_s,
+        steplearn_version: env!("CARGO_PKG_VERSION").to_string(),
     };
     let written = serde_json::to_string_pretty(&record)
         .map_err(|e| ReportError::invalid(e.to_string()))
@@ -874,8 +942,22 @@ mod tests {
             approx: "kernel-ridge".into(),
             rule: "rate-damped".into(),
             seed: 42,
+            learn: None,
         };
         assert_eq!(spec.id(), "stability__kernel-ridge__rate-damped__s42");
+        let paper = RunSpec {
+            learn: Some(LearnSet::default()),
+            ..spec.clone()
+        };
+        assert_eq!(paper.id(), spec.id(), "the paper's set keeps today's id");
+        let xt = RunSpec {
+            learn: Some("step-time,step-x".parse().unwrap()),
+            ..spec.clone()
+        };
+        assert_eq!(
+            xt.id(),
+            "stability__kernel-ridge__rate-damped__s42__step-x+step-time"
+        );
         let mut grid = SweepGrid::new(&["stability"], &["lwpr"], &["pendulum-cart"], 1);
         grid.approx.push("Bad_Name".into());
         assert!(matches!(grid.runs(), Err(SweepError::InvalidGrid(_))));

@@ -186,6 +186,7 @@ fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
             approx: "coarse-grid".into(),
             rule: "doubled".into(),
             seed,
+            learn: None,
         };
         let s = Summary::read(&dir.join(spec.id()).join("summary.json")).unwrap();
         assert_eq!(
@@ -252,6 +253,7 @@ fn a_run_gives_the_same_bytes_alone_in_a_bench_sharded_and_through_the_command_l
         approx: "coarse-grid".into(),
         rule: "doubled".into(),
         seed: 1,
+        learn: None,
     };
     let alone = temp_dir("alone");
     std::fs::create_dir_all(&alone).unwrap();

@@ -27,6 +27,7 @@ fn spec(experiment: ExperimentKind, seed: u64) -> RunSpec {
         approx: "lwpr".into(),
         rule: "pendulum-cart".into(),
         seed,
+        learn: None,
     }
 }
 

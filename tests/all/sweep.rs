@@ -323,6 +323,7 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
             approx: "lwpr".into(),
             rule: "pendulum-cart".into(),
             seed,
+            learn: None,
         };
         let s = fake(&spec("stability"), &dir.join(spec("stability").id())).unwrap();
         if let ExperimentResult::Stability { controllers, .. } = s.result {
