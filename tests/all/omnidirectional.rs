@@ -42,6 +42,7 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
         [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]
     );
     for walker in ["open_loop", "model", "sagittal", "both"] {
+        eprintln!("{walker}: {}", json["i50_ns"][walker]);
         let i50 = json["i50_ns"][walker].as_array().unwrap();
         assert_eq!(i50.len(), SECTORS, "{walker}");
         assert!(
