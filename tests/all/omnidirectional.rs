@@ -48,7 +48,10 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
         let i50 = i50(walker);
         assert_eq!(i50.len(), SECTORS, "{walker}");
         // Every walker withstands some push in every direction.
-        assert!(i50.iter().all(|v| v.is_finite() && *v > 0.0), "{walker}: {i50:?}");
+        assert!(
+            i50.iter().all(|v| v.is_finite() && *v > 0.0),
+            "{walker}: {i50:?}"
+        );
     }
     // What the experiment is for: the Capture Step model recovers from pushes by stepping,
     // the open-loop walker cannot, so the model's I50 is higher, here in the sectors' mean
