@@ -44,17 +44,10 @@ impl ApproxKind {
     /// `bounds`, with the settings documented for each type as good defaults for a box of that
     /// size (inputs are scaled by the box's half-widths).
     pub fn build(self, bounds: &InputBox) -> Result<AnyApproximator, ApproxError> {
-        let half: Vec<f64> = bounds
-            .lo
-            .iter()
-            .zip(&bounds.hi)
-            .map(|(l, h)| 0.5 * (h - l))
-            .collect();
+        let half = half_widths(bounds);
         let n = half.len();
         Ok(match self {
-            ApproxKind::Lwpr => {
-                AnyApproximator::Lwpr(Lwpr::new(LwprConfig::new(n, 1).norm_in(half).init_d(10.0))?)
-            }
+            ApproxKind::Lwpr => AnyApproximator::Lwpr(Lwpr::new(Self::lwpr_config(bounds))?),
             ApproxKind::Rbf => {
                 let centres = vec![7; n];
                 let mut config = RbfConfig::new(bounds.clone(), centres, 1);
@@ -70,6 +63,28 @@ impl ApproxKind {
             }
         })
     }
+}
+
+impl ApproxKind {
+    /// The settings of the built-in `lwpr` over the input box `bounds` (what
+    /// [`ApproxKind::build`] uses): the reference defaults of [`LwprConfig::new`] with one
+    /// output, inputs divided by the box's half-widths (`norm_in`) and a spherical initial
+    /// distance metric of 10 (`init_d`, in those normalised units). A config file's
+    /// `[settings.lwpr]` table changes them from here.
+    pub fn lwpr_config(bounds: &InputBox) -> LwprConfig {
+        let half = half_widths(bounds);
+        LwprConfig::new(half.len(), 1).norm_in(half).init_d(10.0)
+    }
+}
+
+/// The half-widths of `bounds`, one per input.
+fn half_widths(bounds: &InputBox) -> Vec<f64> {
+    bounds
+        .lo
+        .iter()
+        .zip(&bounds.hi)
+        .map(|(l, h)| 0.5 * (h - l))
+        .collect()
 }
 
 impl std::str::FromStr for ApproxKind {

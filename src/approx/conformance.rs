@@ -3,8 +3,11 @@
 //!
 //! [`check_approximator`] runs the contract checks: bad input rejected with a typed error and the
 //! model bit-identical afterwards, no panic on wrong lengths or non-finite numbers,
-//! deterministic predictions, exact save/load, identical learning after a round trip, same data
-//! same model, and truncated or tampered saved models rejected without a panic. Inputs are drawn
+//! deterministic predictions, predictions that depend on the input after training on
+//! input-dependent data, exact save/load, identical learning after a round trip, same data
+//! same model, and truncated saved models, wrong sizes and non-finite values refused without
+//! a panic (what a changed value that still describes a valid model cannot be told from: see
+//! docs/approximators.md). Inputs are drawn
 //! from `[-1, 1]^input_dim`. [`check_learns`] adds a quality check on a smooth target.
 //!
 //! ```
@@ -38,6 +41,7 @@ pub const CHECKS: &[&str] = &[
     "dimensions",
     "predict_deterministic",
     "untrained_predictions_finite",
+    "predictions_depend_on_input",
     "bad_input_rejected",
     "save_load_exact",
     "learning_after_round_trip",
@@ -74,6 +78,7 @@ where
     let ctx = Ctx { d, n_out };
     predict_deterministic(&ctx, make()?)?;
     untrained_predictions_finite(&ctx, &make()?)?;
+    predictions_depend_on_input(&ctx, make()?)?;
     bad_input_rejected(&ctx, make()?)?;
     let (m, loaded) = save_load_exact(&ctx, make()?)?;
     learning_after_round_trip(&ctx, m, loaded)?;
@@ -271,6 +276,54 @@ fn untrained_predictions_finite<A: FunctionApproximator>(
         return Err(fail(
             CHECK,
             "an untrained model predicts a non-finite value",
+        ));
+    }
+    Ok(())
+}
+
+/// The smallest spread of a trained model's predictions over the probe points, as a share of
+/// the spread of [`target`] there, that counts as depending on the input.
+const MIN_INPUT_DEPENDENCE: f64 = 0.01;
+
+/// After training on [`target`] (which depends on the first input with slope 0.5), the
+/// predictions over the probe points must spread by at least [`MIN_INPUT_DEPENDENCE`] of the
+/// target's own spread in some output: a `predict` that ignores its input (a running mean,
+/// a constant, a model that reads the wrong slice) fails here.
+fn predictions_depend_on_input<A: FunctionApproximator>(
+    ctx: &Ctx,
+    mut m: A,
+) -> Result<(), ConformanceError> {
+    const CHECK: &str = "predictions_depend_on_input";
+    train(CHECK, &mut m, &ctx.stream(7, 500))?;
+    let pts = probe_points(ctx.d);
+    let pred: Vec<f64> = fingerprint(CHECK, &m)?
+        .into_iter()
+        .map(f64::from_bits)
+        .collect();
+    let truth: Vec<f64> = pts.iter().flat_map(|x| target(x, ctx.n_out)).collect();
+    let spread = |v: &[f64], k: usize| {
+        let (lo, hi) = v
+            .iter()
+            .skip(k)
+            .step_by(ctx.n_out)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &y| {
+                (lo.min(y), hi.max(y))
+            });
+        hi - lo
+    };
+    let depends = (0..ctx.n_out).any(|k| {
+        let (got, want) = (spread(&pred, k), spread(&truth, k));
+        got.is_finite() && got >= MIN_INPUT_DEPENDENCE * want
+    });
+    if !depends {
+        return Err(fail(
+            CHECK,
+            format!(
+                "after 500 samples of an input-dependent target, the predictions over {} probe \
+                 points do not depend on the input (spread below {MIN_INPUT_DEPENDENCE} of the \
+                 target's in every output)",
+                pts.len()
+            ),
         ));
     }
     Ok(())

@@ -2,8 +2,9 @@
 
 use super::schedule::{Push, PushPlan, ReferenceSchedule};
 use super::trial::TrialSetup;
+use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Kernel, Lwpr, LwprConfig};
 use crate::config::{self, ConfigError};
-use crate::control::learner::{LearnerConfig, LearnerError};
+use crate::control::learner::{InputGrid, LearnerConfig, LearnerError};
 use crate::control::walker::{FootstepPolicy, WalkerConfig, WalkerMode};
 use crate::sim::SimConfig;
 use serde::{Deserialize, Serialize};
@@ -30,6 +31,130 @@ pub struct Settings {
     pub recovery_s: f64,
     /// Walking time after a reset before a push that the fall delayed is delivered (s).
     pub resettle_s: f64,
+    /// The built-in `lwpr` approximator's settings, `[settings.lwpr]` (absent: its defaults,
+    /// and left out of a written config so that a default run's identity is unchanged).
+    #[serde(skip_serializing_if = "LwprSettings::is_default")]
+    pub lwpr: LwprSettings,
+}
+
+/// `[settings.lwpr]`: the settings of the built-in `lwpr` approximator, each key one
+/// [`LwprConfig`] field (same name, same meaning and range). A key left out keeps the built-in
+/// value ([`ApproxKind::lwpr_config`]). `n_in`, `n_out` and `norm_in` are not keys: they follow
+/// from the learner's input box (`norm_in` is its half-widths); `init_d` is the spherical
+/// initial metric `init_d * I` and `norm_out` one factor for every output.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LwprSettings {
+    /// See [`LwprConfig::init_d`] (spherical; built-in 10).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub init_d: Option<f64>,
+    /// See [`LwprConfig::init_alpha`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub init_alpha: Option<f64>,
+    /// See [`LwprConfig::w_gen`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub w_gen: Option<f64>,
+    /// See [`LwprConfig::w_prune`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub w_prune: Option<f64>,
+    /// See [`LwprConfig::meta`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meta: Option<bool>,
+    /// See [`LwprConfig::meta_rate`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meta_rate: Option<f64>,
+    /// See [`LwprConfig::penalty`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub penalty: Option<f64>,
+    /// See [`LwprConfig::diag_only`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diag_only: Option<bool>,
+    /// See [`LwprConfig::update_d`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub update_d: Option<bool>,
+    /// See [`LwprConfig::init_lambda`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub init_lambda: Option<f64>,
+    /// See [`LwprConfig::final_lambda`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub final_lambda: Option<f64>,
+    /// See [`LwprConfig::tau_lambda`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau_lambda: Option<f64>,
+    /// See [`LwprConfig::init_s2`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub init_s2: Option<f64>,
+    /// See [`LwprConfig::add_threshold`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub add_threshold: Option<f64>,
+    /// See [`LwprConfig::kernel`] (`"Gaussian"` or `"BiSquare"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kernel: Option<Kernel>,
+    /// See [`LwprConfig::norm_out`] (one factor for every output).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub norm_out: Option<f64>,
+    /// See [`LwprConfig::cutoff`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cutoff: Option<f64>,
+    /// See [`LwprConfig::max_rfs`]: at most this many receptive fields per output (an integer
+    /// >= 1; absent: unbounded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_rfs: Option<usize>,
+}
+
+impl LwprSettings {
+    /// Whether no key is set (the built-in settings).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The built-in LWPR's settings over `bounds` ([`ApproxKind::lwpr_config`]) with these
+    /// keys applied.
+    pub fn config(&self, bounds: &InputBox) -> LwprConfig {
+        let mut c = ApproxKind::lwpr_config(bounds);
+        if let Some(v) = self.init_d {
+            c = c.init_d(v);
+        }
+        let set = |field: &mut f64, v: Option<f64>| *field = v.unwrap_or(*field);
+        set(&mut c.init_alpha, self.init_alpha);
+        set(&mut c.w_gen, self.w_gen);
+        set(&mut c.w_prune, self.w_prune);
+        set(&mut c.meta_rate, self.meta_rate);
+        set(&mut c.penalty, self.penalty);
+        set(&mut c.init_lambda, self.init_lambda);
+        set(&mut c.final_lambda, self.final_lambda);
+        set(&mut c.tau_lambda, self.tau_lambda);
+        set(&mut c.init_s2, self.init_s2);
+        set(&mut c.add_threshold, self.add_threshold);
+        set(&mut c.cutoff, self.cutoff);
+        c.meta = self.meta.unwrap_or(c.meta);
+        c.diag_only = self.diag_only.unwrap_or(c.diag_only);
+        c.update_d = self.update_d.unwrap_or(c.update_d);
+        c.kernel = self.kernel.unwrap_or(c.kernel);
+        if let Some(v) = self.norm_out {
+            c.norm_out = vec![v; c.n_out];
+        }
+        c.max_rfs = self.max_rfs.or(c.max_rfs);
+        c
+    }
+
+    /// A fresh, untrained built-in LWPR over `bounds` with these settings (what the built-in
+    /// `lwpr` factory builds when the settings are given to it).
+    pub fn build(&self, bounds: &InputBox) -> Result<AnyApproximator, ApproxError> {
+        Lwpr::new(self.config(bounds)).map(AnyApproximator::Lwpr)
+    }
+
+    /// Checks every key as [`Lwpr::new`] does, over the learner's input box; the error names
+    /// the key (`max_rfs: must be at least 1`).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let bounds = InputGrid::default()
+            .input_box()
+            .map_err(|e| ConfigError::new("", e.to_string()))?;
+        self.build(&bounds).map(drop).map_err(|e| match e {
+            ApproxError::InvalidConfig { param, reason } => ConfigError::new(param, reason),
+            other => ConfigError::new("", other.to_string()),
+        })
+    }
 }
 
 impl Default for Settings {
@@ -42,6 +167,7 @@ impl Default for Settings {
             push_window_s: 3.0,
             recovery_s: 0.0,
             resettle_s: 2.0,
+            lwpr: LwprSettings::default(),
         }
     }
 }
@@ -66,6 +192,7 @@ impl Settings {
             .validate()
             .map_err(|e| ConfigError::new("sim", e.to_string()))?;
         self.walker.validate().map_err(|e| e.within("walker"))?;
+        self.lwpr.validate().map_err(|e| e.within("lwpr"))?;
         self.learner
             .validate()
             .map_err(|e| ConfigError::new("learner", e.to_string()))

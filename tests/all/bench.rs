@@ -199,6 +199,56 @@ fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
         offsets.push(c.parse::<ProbeResult>().unwrap().offset_m);
     }
     let mean = offsets.iter().sum::<f64>() / 3.0;
+    // Every row's interval and verdict, recomputed from its runs' offsets: the mean, the
+    // sample standard deviation, the two-sided 95% Student-t half width with 2 degrees of
+    // freedom (t = 4.302653), and the verdict of a learned offset that is better when higher.
+    for row in rows {
+        let (approx, rule) = (
+            row["approx"].as_str().unwrap(),
+            row["rule"].as_str().unwrap(),
+        );
+        let values: Vec<f64> = (0..3)
+            .map(|seed| {
+                let spec = RunSpec {
+                    experiment: "probe".into(),
+                    approx: approx.into(),
+                    rule: rule.into(),
+                    seed,
+                };
+                let s = Summary::read(&dir.join(spec.id()).join("summary.json")).unwrap();
+                let ExperimentResult::Custom(c) = &s.result else {
+                    panic!("{s:?}")
+                };
+                c.parse::<ProbeResult>().unwrap().offset_m
+            })
+            .collect();
+        let m = values.iter().sum::<f64>() / 3.0;
+        let sd = (values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / 2.0).sqrt();
+        let half = 4.302_652_729_911_275 * sd / 3f64.sqrt();
+        let (lo, hi) = (m - half, m + half);
+        let c = &row["vs_model"][0];
+        let got = |v: &serde_json::Value| v.as_f64().unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+        assert!(
+            close(got(&c["mean"]), m),
+            "{approx}/{rule}: {c} vs mean {m}"
+        );
+        assert!(
+            close(got(&c["ci95"][0]), lo) && close(got(&c["ci95"][1]), hi),
+            "{approx}/{rule}: {c} vs [{lo}, {hi}]"
+        );
+        let verdict = if lo > 0.0 {
+            "better"
+        } else if hi < 0.0 {
+            "worse"
+        } else {
+            "level"
+        };
+        assert_eq!(
+            c["verdict"], verdict,
+            "{approx}/{rule}: {c} vs [{lo}, {hi}]"
+        );
+    }
     let row = rows
         .iter()
         .find(|r| r["approx"] == "coarse-grid" && r["rule"] == "doubled")

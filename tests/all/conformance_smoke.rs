@@ -2,7 +2,7 @@
 //! the contract, naming the check that caught them.
 
 use serde::{Deserialize, Serialize};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::cell::Cell;
 use steplearn::approx::conformance::{
     CHECKS, ConformanceError, check_approximator, probe_points, stream, target,
 };
@@ -47,6 +47,7 @@ const UNTRAINED_NAN: u8 = 7;
 const SAVE_NOT_ATOMIC: u8 = 8;
 const DEPENDS_ON_INSTANCE: u8 = 9;
 const LOAD_UNCHECKED: u8 = 10;
+const IGNORES_INPUT: u8 = 11;
 
 /// A grid with one deliberate defect, selected by `FAULT`.
 #[derive(Clone, Serialize, Deserialize)]
@@ -63,20 +64,31 @@ struct Broken<const FAULT: u8> {
     bias: f64,
 }
 
-static MADE: AtomicU64 = AtomicU64::new(0);
+thread_local! {
+    /// Models made on this thread (per thread: tests run in parallel, and the
+    /// `WRONG_OUTPUT_DIM` fault needs two consecutive models of the suite to alternate).
+    static MADE: Cell<u64> = const { Cell::new(0) };
+    /// Predictions made on this thread (the `NONDETERMINISTIC` fault).
+    static CALLS: Cell<u64> = const { Cell::new(0) };
+}
 
-static CALLS: AtomicU64 = AtomicU64::new(0);
+/// `counter`'s value, then one more.
+fn next(counter: &'static std::thread::LocalKey<Cell<u64>>) -> u64 {
+    counter.with(|c| {
+        let n = c.get();
+        c.set(n + 1);
+        n
+    })
+}
 
 impl<const FAULT: u8> Broken<FAULT> {
     fn new() -> Self {
         Broken {
             inner: grid(),
             since_load: 1,
-            extra_out: usize::from(
-                FAULT == WRONG_OUTPUT_DIM && MADE.fetch_add(1, Ordering::Relaxed) % 2 == 1,
-            ),
+            extra_out: usize::from(FAULT == WRONG_OUTPUT_DIM && next(&MADE) % 2 == 1),
             bias: if FAULT == DEPENDS_ON_INSTANCE {
-                1e-3 * (MADE.fetch_add(1, Ordering::Relaxed) % 5) as f64
+                1e-3 * (next(&MADE) % 5) as f64
             } else {
                 0.0
             },
@@ -95,12 +107,18 @@ impl<const FAULT: u8> FunctionApproximator for Broken<FAULT> {
         if FAULT == PANICS_ON_SHORT_INPUT {
             let _ = x[1];
         }
-        self.inner.predict(x, y)?;
+        if FAULT == IGNORES_INPUT {
+            // Checks its input, then answers what it learned at the origin, wherever asked.
+            check_vector("input x", x, self.input_dim())?;
+            self.inner.predict(&vec![0.0; x.len()], y)?;
+        } else {
+            self.inner.predict(x, y)?;
+        }
         if FAULT == UNTRAINED_NAN && self.since_load == 1 {
             y[0] = f64::NAN;
         }
         if FAULT == NONDETERMINISTIC {
-            y[0] += 1e-12 * (CALLS.fetch_add(1, Ordering::Relaxed) % 7) as f64;
+            y[0] += 1e-12 * (next(&CALLS) % 7) as f64;
         }
         Ok(())
     }
@@ -246,14 +264,65 @@ fn a_load_that_skips_the_invariants_is_caught() {
 }
 
 #[test]
+fn a_predict_that_ignores_its_input_is_caught() {
+    let err = rejected_by(Broken::<IGNORES_INPUT>::new, "predictions_depend_on_input");
+    assert!(err.reason.contains("do not depend on the input"), "{err}");
+}
+
+/// Runs the whole suite on one broken approximator.
+type Suite = fn() -> Result<(), ConformanceError>;
+
+/// Each check with a broken approximator that reaches it (every earlier check passes it) and
+/// fails there.
+const BROKEN: &[(&str, Suite)] = &[
+    ("dimensions", || {
+        check_approximator(Broken::<WRONG_OUTPUT_DIM>::new)
+    }),
+    ("predict_deterministic", || {
+        check_approximator(Broken::<NONDETERMINISTIC>::new)
+    }),
+    ("untrained_predictions_finite", || {
+        check_approximator(Broken::<UNTRAINED_NAN>::new)
+    }),
+    ("predictions_depend_on_input", || {
+        check_approximator(Broken::<IGNORES_INPUT>::new)
+    }),
+    ("bad_input_rejected", || {
+        check_approximator(Broken::<NAN_ACCEPTED>::new)
+    }),
+    ("save_load_exact", || {
+        check_approximator(Broken::<LOAD_IGNORES_FILE>::new)
+    }),
+    ("learning_after_round_trip", || {
+        check_approximator(Broken::<LEARNS_DIFFERENTLY_AFTER_LOAD>::new)
+    }),
+    ("same_data_same_model", || {
+        check_approximator(Broken::<DEPENDS_ON_INSTANCE>::new)
+    }),
+    ("corrupt_saved_model_rejected", || {
+        check_approximator(Broken::<LOAD_UNCHECKED>::new)
+    }),
+    ("failed_save_harmless", || {
+        check_approximator(Broken::<SAVE_NOT_ATOMIC>::new)
+    }),
+];
+
+#[test]
 fn every_check_has_a_broken_approximator_that_only_it_catches() {
-    // Each test above names the check that must catch its broken approximator; this keeps the
-    // list complete when a check is added.
-    let source = include_str!("conformance_smoke.rs");
+    // Run, not searched for: every check of the suite fails its broken approximator (which
+    // passed every check before it), so a check added without one, or one that stops catching
+    // its defect, fails here.
     for check in CHECKS {
-        assert!(
-            source.contains(&format!("\"{check}\"")),
-            "no broken approximator for {check}"
-        );
+        let (_, suite) = BROKEN
+            .iter()
+            .find(|(name, _)| name == check)
+            .unwrap_or_else(|| panic!("no broken approximator for {check}"));
+        let err = suite().expect_err("a broken approximator passed the suite");
+        assert_eq!(err.check, *check, "caught by the wrong check: {err}");
     }
+    assert_eq!(
+        BROKEN.len(),
+        CHECKS.len(),
+        "a broken approximator for no check"
+    );
 }

@@ -239,46 +239,64 @@ fn on_the_humanoid_the_coupled_learner_learns_the_width_after_a_side_push() {
 fn experiment_omnidirectional_runs_both_planes_coupled_as_a_setting() {
     let dir = std::env::temp_dir().join(format!("steplearn-coupled-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let config = ConfigFile::from_toml(
-        "[protocols.omnidirectional]\nboth_planes = \"coupled\"\nwalk_s = 8.0\n\
-         walk_hold_s = [2.0, 3.0]\n",
-    )
-    .unwrap();
-    Bench::new(&Registry::builtin())
-        .config(config)
-        .approximators(["lwpr"])
-        .rules(["pendulum-cart"])
-        .experiments(["omnidirectional"])
-        .seeds(1)
-        .scale(0.02)
-        .out(&dir)
-        .run()
+    let summary = |both_planes: &str, out: &str| -> serde_json::Value {
+        let config = ConfigFile::from_toml(&format!(
+            "[protocols.omnidirectional]\n{both_planes}walk_s = 8.0\nwalk_hold_s = [2.0, 3.0]\n"
+        ))
         .unwrap();
-    let run = dir.join("omnidirectional__lwpr__pendulum-cart__s0");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(run.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(json["both_planes"], "coupled");
-    let i50 = json["i50_ns"]["both"].as_array().unwrap();
-    assert_eq!(i50.len(), 8);
-    assert!(i50.iter().all(|v| v.as_f64().is_some_and(f64::is_finite)));
-    // A typo in the setting is an error naming it, never a silent default.
-    let err = match ConfigFile::from_toml("[protocols.omnidirectional]\nboth_planes = \"couple\"\n")
-    {
-        Err(e) => e.to_string(),
-        Ok(c) => Bench::new(&Registry::builtin())
-            .config(c)
+        Bench::new(&Registry::builtin())
+            .config(config)
             .approximators(["lwpr"])
             .rules(["pendulum-cart"])
             .experiments(["omnidirectional"])
             .seeds(1)
             .scale(0.02)
-            .out(dir.join("bad"))
+            .out(dir.join(out))
             .run()
-            .unwrap_err()
-            .to_string(),
+            .unwrap();
+        let run = dir
+            .join(out)
+            .join("omnidirectional__lwpr__pendulum-cart__s0");
+        serde_json::from_str(&std::fs::read_to_string(run.join("summary.json")).unwrap()).unwrap()
     };
+    let coupled = summary("both_planes = \"coupled\"\n", "coupled");
+    let uncoupled = summary("", "uncoupled");
+    assert_eq!(coupled["both_planes"], "coupled");
+    assert!(uncoupled.get("both_planes").is_none(), "{uncoupled}");
+    let i50 = |s: &serde_json::Value, walker: &str| -> Vec<f64> {
+        serde_json::from_value(s["i50_ns"][walker].clone()).unwrap()
+    };
+    assert_eq!(i50(&coupled, "both").len(), 8);
+    assert!(i50(&coupled, "both").iter().all(|v| v.is_finite()));
+    // The setting changes the walker `both` and nothing else: the same seed gives the other
+    // walkers the same pushes and the same I50s, and `both` learns with another model (one
+    // approximator over both planes instead of two), which shows in its I50s or its walk.
+    for walker in ["open_loop", "model", "sagittal"] {
+        assert_eq!(i50(&coupled, walker), i50(&uncoupled, walker), "{walker}");
+    }
     assert!(
-        err.contains("both_planes") || err.contains("couple"),
+        i50(&coupled, "both") != i50(&uncoupled, "both")
+            || coupled["walk_error_m"]["both"] != uncoupled["walk_error_m"]["both"],
+        "the coupled walker behaved exactly as the uncoupled pair: {:?}",
+        i50(&coupled, "both")
+    );
+    // A typo in the setting is an error naming the key and the value, never a silent default.
+    let err = Bench::new(&Registry::builtin())
+        .config(
+            ConfigFile::from_toml("[protocols.omnidirectional]\nboth_planes = \"couple\"\n")
+                .unwrap(),
+        )
+        .approximators(["lwpr"])
+        .rules(["pendulum-cart"])
+        .experiments(["omnidirectional"])
+        .seeds(1)
+        .scale(0.02)
+        .out(dir.join("bad"))
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("both_planes") && err.contains("unknown variant `couple`"),
         "{err}"
     );
     std::fs::remove_dir_all(&dir).unwrap();

@@ -31,6 +31,7 @@ mod learner_humanoid;
 mod lipm_identities;
 mod lwpr_accuracy;
 mod lwpr_cap;
+mod lwpr_config;
 mod lwpr_golden;
 mod lwpr_properties;
 mod model_files;

@@ -18,7 +18,7 @@ use steplearn::approx::{
     MAX_INPUT, MAX_TARGET, Persist,
 };
 use steplearn::control::learner::{
-    FootstepLearner, InputGrid, LearnerConfig, LearnerInput, SavedLearner,
+    FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, SavedLearner,
 };
 use steplearn::rules::{PendulumCart, StepOutcome};
 use strum::VariantArray;
@@ -131,18 +131,60 @@ fn the_committed_corpus_is_what_this_version_writes_and_loads() {
             committed, json,
             "{name}: the file format or training changed (STEPLEARN_BLESS=1 rewrites the corpus)"
         );
-        load(name, committed).unwrap_or_else(|e| panic!("{name}: {e}"));
+        load(name, committed).unwrap_or_else(|e| panic!("{name}: {e:?}"));
     }
 }
 
-/// Loads a corpus file (mutated or not) by its kind and exercises what loaded: predictions
-/// must be finite or errors; a learner must also take queries and a touch-down without a
-/// panic.
-fn load(name: &str, text: &str) -> Result<(), String> {
+/// Why a corpus file (mutated or not) was refused: the loader's typed error.
+#[derive(Debug)]
+enum Refused {
+    /// The approximator's or checkpoint's loader ([`Persist::from_json`]).
+    File(ApproxError),
+    /// The learner refused a checkpoint that parsed ([`Learner::from_checkpoint`]).
+    Learner(LearnerError),
+}
+
+impl Refused {
+    /// Whether this is a refusal of the file itself: a parse or invariant error
+    /// ([`ApproxError::Corrupt`]), or the learner refusing the checkpoint's contents (its
+    /// approximator's or rule's state, or its shape); never an i/o error or a panic.
+    fn is_a_refusal_of_the_file(&self) -> bool {
+        match self {
+            Refused::File(e) => matches!(e, ApproxError::Corrupt(_)),
+            Refused::Learner(e) => matches!(
+                e,
+                LearnerError::Approx {
+                    source: ApproxError::Corrupt(_),
+                    ..
+                } | LearnerError::Rule(_)
+                    | LearnerError::InvalidConfig { .. }
+                    | LearnerError::WrongApproximatorShape { .. }
+            ),
+        }
+    }
+}
+
+/// Asserts that what loaded is a valid model: it passes its own invariants and saves a file
+/// that loads back to the same bytes (a corrupted file that loads is another valid model, not
+/// a damaged one).
+fn assert_valid<M: Persist>(name: &str, m: &M) {
+    m.check_invariants()
+        .unwrap_or_else(|e| panic!("{name}: loaded a model that breaks its invariants: {e}"));
+    let saved = m.to_json().unwrap();
+    let again = M::from_json(&saved)
+        .unwrap_or_else(|e| panic!("{name}: what loaded saves a file that is refused: {e}"));
+    assert_eq!(again.to_json().unwrap(), saved, "{name}: not a fixed point");
+}
+
+/// Loads a corpus file (mutated or not) by its kind and exercises what loaded: it must be a
+/// valid model ([`assert_valid`]), its predictions finite or errors; a learner must also take
+/// queries and a touch-down without a panic. A refusal is the loader's typed error.
+fn load(name: &str, text: &str) -> Result<(), Refused> {
     if name.starts_with("learner-") {
-        let saved = SavedLearner::<AnyApproximator>::from_json(text).map_err(|e| e.to_string())?;
+        let saved = SavedLearner::<AnyApproximator>::from_json(text).map_err(Refused::File)?;
+        assert_valid(name, &saved);
         let mut l =
-            Learner::from_checkpoint(saved, PendulumCart::default()).map_err(|e| e.to_string())?;
+            Learner::from_checkpoint(saved, PendulumCart::default()).map_err(Refused::Learner)?;
         for x in inputs(3, 20) {
             if let Ok(df) = l.query(LearnerInput::new(x[0], x[1], x[2])) {
                 assert!(df.is_finite(), "{name}: offset {df}");
@@ -157,7 +199,8 @@ fn load(name: &str, text: &str) -> Result<(), String> {
         let _ = l.touch_down(&step);
         Ok(())
     } else {
-        let a = AnyApproximator::from_json(text).map_err(|e| e.to_string())?;
+        let a = AnyApproximator::from_json(text).map_err(Refused::File)?;
+        assert_valid(name, &a);
         let mut y = vec![0.0; a.output_dim()];
         for x in inputs(3, 20) {
             let x = &x[..a.input_dim().min(3)];
@@ -312,7 +355,11 @@ proptest! {
         for m in &mutations {
             mutate(&mut v, m);
         }
-        let _ = load(name, &v.to_string());
+        // Either refused with the loader's typed error, or loaded as a valid model (checked
+        // inside `load`): a changed number can describe another valid model.
+        if let Err(refused) = load(name, &v.to_string()) {
+            prop_assert!(refused.is_a_refusal_of_the_file(), "{name}: {refused:?}");
+        }
     }
 
     #[test]
@@ -331,7 +378,16 @@ proptest! {
         } else {
             bytes[i] = byte;
         }
-        let _ = load(name, &String::from_utf8_lossy(&bytes));
+        match load(name, &String::from_utf8_lossy(&bytes)) {
+            // A changed byte may still be another valid model (checked inside `load`).
+            Ok(()) => prop_assert!(!cut, "{name}: a file cut at byte {i} loaded"),
+            // A file cut short is never valid JSON: always refused, as a corrupt file.
+            Err(Refused::File(ApproxError::Corrupt(_))) => {}
+            Err(refused) => {
+                prop_assert!(!cut, "{name} cut at {i}: {refused:?}");
+                prop_assert!(refused.is_a_refusal_of_the_file(), "{name}: {refused:?}");
+            }
+        }
     }
 }
 

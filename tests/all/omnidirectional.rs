@@ -41,14 +41,33 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
         sectors,
         [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]
     );
+    let i50 = |walker: &str| -> Vec<f64> {
+        serde_json::from_value(json["i50_ns"][walker].clone()).unwrap()
+    };
     for walker in ["open_loop", "model", "sagittal", "both"] {
-        let i50 = json["i50_ns"][walker].as_array().unwrap();
+        let i50 = i50(walker);
         assert_eq!(i50.len(), SECTORS, "{walker}");
+        // Every walker withstands some push in every direction.
         assert!(
-            i50.iter()
-                .all(|v| v.as_f64().is_some_and(|v| v.is_finite() && v >= 0.0))
+            i50.iter().all(|v| v.is_finite() && *v > 0.0),
+            "{walker}: {i50:?}"
         );
     }
+    // What the experiment is for: the Capture Step model recovers from pushes by stepping,
+    // the open-loop walker cannot, so the model's I50 is higher, here in the sectors' mean
+    // (measured on this seed: 9.18 against 7.14 Ns; the full protocol gives about twice the
+    // open-loop walker's I50, docs/robot.md), and no sector is lower (at this length the two
+    // are tied in five of eight).
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let (model, open_loop) = (i50("model"), i50("open_loop"));
+    assert!(
+        mean(&model) > mean(&open_loop),
+        "model {model:?}, open loop {open_loop:?}"
+    );
+    assert!(
+        model.iter().zip(&open_loop).all(|(m, o)| m >= o),
+        "model {model:?}, open loop {open_loop:?}"
+    );
     let result: OmnidirectionalResult = serde_json::from_value(json.clone()).unwrap();
     assert_eq!(result.pushes.len(), SECTORS);
     assert!(result.pushes.iter().all(|n| *n >= 2));
