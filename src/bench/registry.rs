@@ -13,7 +13,7 @@ use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::{CoupledRunLearner, Experiment, RunContext, RunLearner};
 use crate::experiments::protocol::{ProtocolTables, Table};
-use crate::experiments::settings::Settings;
+use crate::experiments::settings::{LwprSettings, Settings};
 use crate::experiments::suite;
 use crate::experiments::summary::{Summary, check_name};
 use crate::experiments::sweep::{RunError, RunSpec, Runner};
@@ -23,7 +23,10 @@ use crate::rules::{
 use std::path::Path;
 use std::sync::Arc;
 
-type ApproxFactory = Arc<dyn Fn(&InputBox) -> Result<BoxedApproximator, ApproxError> + Send + Sync>;
+/// Builds a fresh approximator over a box; the built-in `lwpr` takes the run's
+/// `[settings.lwpr]`, the others ignore them.
+type ApproxFactory =
+    Arc<dyn Fn(&InputBox, &LwprSettings) -> Result<BoxedApproximator, ApproxError> + Send + Sync>;
 type RuleFactory = Arc<dyn Fn() -> Box<dyn LearningRule> + Send + Sync>;
 
 /// Approximators, rules and experiments by name: what the bench and the command line choose
@@ -106,7 +109,13 @@ impl Registry {
         for &kind in <ApproxKind as strum::VariantArray>::VARIANTS {
             r.add_approximator(
                 kind.name(),
-                Arc::new(move |b: &InputBox| kind.build(b).map(BoxedApproximator::new)),
+                Arc::new(move |b: &InputBox, lwpr: &LwprSettings| {
+                    match kind {
+                        ApproxKind::Lwpr => lwpr.build(b),
+                        _ => kind.build(b),
+                    }
+                    .map(BoxedApproximator::new)
+                }),
             );
         }
         let mut r = r
@@ -135,9 +144,12 @@ impl Registry {
         if self.builtin.contains(&format!("approximator {approx}")) {
             return Ok(None);
         }
-        let model = find("approximator", &self.approximators, approx)?(&learner_bounds()?)
-            .and_then(|a| a.to_json())
-            .map_err(|e| BenchError::Selection(format!("approximator {approx:?}: {e}")))?;
+        let model = find("approximator", &self.approximators, approx)?(
+            &learner_bounds()?,
+            &LwprSettings::default(),
+        )
+        .and_then(|a| a.to_json())
+        .map_err(|e| BenchError::Selection(format!("approximator {approx:?}: {e}")))?;
         Ok(Some(fingerprint(model.as_bytes())))
     }
 
@@ -202,7 +214,7 @@ impl Registry {
     {
         self.add_approximator(
             name,
-            Arc::new(move |b: &InputBox| factory(b).map(BoxedApproximator::new)),
+            Arc::new(move |b: &InputBox, _: &LwprSettings| factory(b).map(BoxedApproximator::new)),
         );
         self
     }
@@ -285,29 +297,35 @@ impl Registry {
     /// ([`BenchError::CannotBuild`]).
     pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
         find("rule", &self.rules, rule)?;
-        find("approximator", &self.approximators, approx)?(&learner_bounds()?)
-            .map(|_| ())
-            .map_err(|e| BenchError::CannotBuild {
-                approx: approx.to_string(),
-                rule: rule.to_string(),
-                reason: e.to_string(),
-            })
+        find("approximator", &self.approximators, approx)?(
+            &learner_bounds()?,
+            &LwprSettings::default(),
+        )
+        .map(|_| ())
+        .map_err(|e| BenchError::CannotBuild {
+            approx: approx.to_string(),
+            rule: rule.to_string(),
+            reason: e.to_string(),
+        })
     }
 
     /// A learner builder of approximator `approx` and rule `rule`: each call gives a fresh,
-    /// untrained learner with the config it is given.
+    /// untrained learner with the config it is given; the built-in `lwpr` with the settings
+    /// `lwpr` (`[settings.lwpr]`).
     pub fn learner_builder(
         &self,
         approx: &str,
         rule: &str,
+        lwpr: &LwprSettings,
     ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
     {
+        let lwpr = lwpr.clone();
         let make_approx = find("approximator", &self.approximators, approx)?;
         let make_rule = find("rule", &self.rules, rule)?;
         let bounds = learner_bounds()?;
         Ok(
             move |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
-                let a = make_approx(&bounds)
+                let a = make_approx(&bounds, &lwpr)
                     .map_err(|source| LearnerError::Approx { applied: 0, source })?;
                 FootstepLearner::new(a, make_rule(), config)
             },
@@ -321,10 +339,12 @@ impl Registry {
         &self,
         approx: &str,
         rule: &str,
+        lwpr: &LwprSettings,
     ) -> Result<
         impl Fn(LearnerConfig) -> Result<CoupledRunLearner, LearnerError> + Sync + '_,
         BenchError,
     > {
+        let lwpr = lwpr.clone();
         let make_approx = find("approximator", &self.approximators, approx)?;
         let make_rule = find("rule", &self.rules, rule)?;
         let bounds =
@@ -332,7 +352,7 @@ impl Registry {
         Ok(
             move |config: LearnerConfig| -> Result<CoupledRunLearner, LearnerError> {
                 let approx_error = |source| LearnerError::Approx { applied: 0, source };
-                let head = || make_approx(&bounds).map_err(approx_error);
+                let head = || make_approx(&bounds, &lwpr).map_err(approx_error);
                 let stacked = Stacked::new(vec![head()?, head()?]).map_err(approx_error)?;
                 CoupledLearner::new(stacked, [make_rule(), make_rule()], config)
             },
@@ -355,7 +375,7 @@ impl Registry {
         let invalid = |e: BenchError| ExperimentError::Invalid(e.to_string());
         let experiment = self.find_experiment(&spec.experiment).map_err(invalid)?;
         let build = self
-            .learner_builder(&spec.approx, &spec.rule)
+            .learner_builder(&spec.approx, &spec.rule, &settings.lwpr)
             .map_err(invalid)?;
         // Every learner of the run explores with the run's seed, whichever way the experiment
         // builds it (`RunContext::make_learner` or the builder itself).
@@ -365,7 +385,7 @@ impl Registry {
             Ok(learner)
         };
         let build_coupled = self
-            .coupled_learner_builder(&spec.approx, &spec.rule)
+            .coupled_learner_builder(&spec.approx, &spec.rule, &settings.lwpr)
             .map_err(invalid)?;
         let seeded_coupled = |config: LearnerConfig| -> Result<CoupledRunLearner, LearnerError> {
             let mut learner = build_coupled(config)?;

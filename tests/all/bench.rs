@@ -214,6 +214,7 @@ fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
                     approx: approx.into(),
                     rule: rule.into(),
                     seed,
+                    learn: None,
                 };
                 let s = Summary::read(&dir.join(spec.id()).join("summary.json")).unwrap();
                 let ExperimentResult::Custom(c) = &s.result else {

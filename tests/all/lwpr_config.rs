@@ -158,3 +158,37 @@ fn without_the_table_the_settings_are_the_builtin_ones_and_stay_unwritten() {
         ConfigFile::default()
     );
 }
+
+/// The value of the first key `key` anywhere in `v`.
+fn find_key<'a>(v: &'a serde_json::Value, key: &str) -> Option<&'a serde_json::Value> {
+    match v {
+        serde_json::Value::Object(m) => m
+            .get(key)
+            .or_else(|| m.values().find_map(|c| find_key(c, key))),
+        serde_json::Value::Array(a) => a.iter().find_map(|c| find_key(c, key)),
+        _ => None,
+    }
+}
+
+#[test]
+fn a_run_s_learners_take_the_table() {
+    use steplearn::bench::Registry;
+    use steplearn::control::learner::LearnerConfig;
+    let registry = Registry::builtin();
+    let cap_of = |lwpr: &LwprSettings| {
+        let build = registry
+            .learner_builder("lwpr", "pendulum-cart", lwpr)
+            .unwrap();
+        let learner = build(LearnerConfig::default()).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&learner.approximator().to_json().unwrap()).unwrap();
+        find_key(&json, "max_rfs").cloned()
+    };
+    let file = ConfigFile::parse_toml("[settings.lwpr]\nmax_rfs = 4\n").unwrap();
+    assert_eq!(cap_of(&file.settings.lwpr), Some(serde_json::json!(4)));
+    // Without the table the run's LWPR is the built-in one: no cap.
+    assert!(matches!(
+        cap_of(&LwprSettings::default()),
+        None | Some(serde_json::Value::Null)
+    ));
+}

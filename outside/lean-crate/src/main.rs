@@ -9,21 +9,29 @@ use steplearn::approx::{
 use steplearn::control::learner::{FootstepLearner, LearnerConfig, LearnerInput};
 use steplearn::rules::{PendulumCart, StepOutcome};
 
-/// Predicts the running mean of every target seen so far, whatever the input.
+/// Predicts the running mean of the targets seen on the same side of 0 in the first input:
+/// two constants, the simplest model whose predictions depend on the input.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct RunningMean {
     input_dim: usize,
-    count: u64,
-    mean: Vec<f64>,
+    /// Samples seen with the first input below 0, and at or above it.
+    count: [u64; 2],
+    /// The mean target of each side, one value per output.
+    mean: [Vec<f64>; 2],
 }
 
 impl RunningMean {
     fn new(input_dim: usize, output_dim: usize) -> Self {
         RunningMean {
             input_dim,
-            count: 0,
-            mean: vec![0.0; output_dim],
+            count: [0, 0],
+            mean: [vec![0.0; output_dim], vec![0.0; output_dim]],
         }
+    }
+
+    /// The side of `x`: 0 below 0 in the first input, 1 otherwise.
+    fn side(x: &[f64]) -> usize {
+        usize::from(x[0] >= 0.0)
     }
 }
 
@@ -32,21 +40,23 @@ impl FunctionApproximator for RunningMean {
         self.input_dim
     }
     fn output_dim(&self) -> usize {
-        self.mean.len()
+        self.mean[0].len()
     }
     fn predict(&self, x: &[f64], y: &mut [f64]) -> Result<(), ApproxError> {
         check_vector("x", x, self.input_dim)?;
-        check_output("y", y, self.mean.len())?;
-        y.copy_from_slice(&self.mean);
+        check_output("y", y, self.output_dim())?;
+        y.copy_from_slice(&self.mean[Self::side(x)]);
         Ok(())
     }
     fn update(&mut self, x: &[f64], y: &[f64]) -> Result<(), ApproxError> {
         // Validate everything before changing anything.
         check_vector("x", x, self.input_dim)?;
-        check_vector("y", y, self.mean.len())?;
-        self.count += 1;
-        for (m, v) in self.mean.iter_mut().zip(y) {
-            *m += (v - *m) / self.count as f64;
+        check_vector("y", y, self.output_dim())?;
+        let side = Self::side(x);
+        self.count[side] += 1;
+        let n = self.count[side] as f64;
+        for (m, v) in self.mean[side].iter_mut().zip(y) {
+            *m += (v - *m) / n;
         }
         Ok(())
     }
@@ -54,10 +64,13 @@ impl FunctionApproximator for RunningMean {
 
 impl Persist for RunningMean {
     fn check_invariants(&self) -> Result<(), ApproxError> {
-        if self.input_dim == 0 || self.mean.is_empty() {
-            return Err(ApproxError::Corrupt("empty dimensions".into()));
+        if self.input_dim == 0
+            || self.mean[0].is_empty()
+            || self.mean[1].len() != self.mean[0].len()
+        {
+            return Err(ApproxError::Corrupt("empty or unequal dimensions".into()));
         }
-        if self.mean.iter().any(|m| !m.is_finite()) {
+        if self.mean.iter().flatten().any(|m| !m.is_finite()) {
             return Err(ApproxError::Corrupt("non-finite mean".into()));
         }
         Ok(())
