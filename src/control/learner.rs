@@ -47,7 +47,7 @@
 //! learner also learns from a step that ends in a fall (`learn_from_falls`), as the paper's
 //! robot learned from its first falls.
 //!
-//! [`LearnerConfig::literal`] is eq. (6) as written, without the four and without learning
+//! [`LearnerConfig::literal`] is eq. (6) as written, without the four, the dead zone and learning
 //! from falls.
 //!
 //! # Exploration
@@ -203,7 +203,8 @@ pub struct LearnerConfig {
     pub prior: Prior,
     /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
     /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
-    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0 (eq. 6).
+    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0.06, about
+    /// the model's median |G| stepping undisturbed (docs/learner.md); 0 is eq. (6).
     pub dead_zone: f64,
     /// Leakage (sigma-modification): each target is pulled back towards the prior dF = 0 by
     /// this share of the current prediction, `F + eta G - leakage F`, so offsets that G stops
@@ -318,7 +319,7 @@ pub(crate) fn radical_inverse(mut i: usize, base: usize) -> f64 {
 
 impl Default for LearnerConfig {
     /// eta = 1, 128 samples per step, no output clamp, gain guard 0.2, anti-windup on,
-    /// learning from falls, the default [`Prior`], trust region 2.
+    /// learning from falls, the default [`Prior`], dead zone 0.06, trust region 2.
     fn default() -> Self {
         LearnerConfig {
             eta: 1.0,
@@ -329,7 +330,7 @@ impl Default for LearnerConfig {
             learn_from_falls: true,
             fall_theta_limit: 0.3,
             prior: Prior::default(),
-            dead_zone: 0.0,
+            dead_zone: 0.06,
             leakage: 0.0,
             max_step_error: None,
             trust_region: Some(2.0),
@@ -342,14 +343,15 @@ impl Default for LearnerConfig {
 
 impl LearnerConfig {
     /// Eq. (6) as written: no gain guard, no anti-windup, no prior (the approximator starts as
-    /// built), no trust region, no learning from falls, eta = 1. On the humanoid this learner
-    /// is unstable (see the module docs).
+    /// built), no trust region, no dead zone, no learning from falls, eta = 1. On the humanoid
+    /// this learner is unstable (see the module docs).
     pub fn literal() -> Self {
         LearnerConfig {
             max_gain: None,
             anti_windup: false,
             prior: Prior::none(),
             trust_region: None,
+            dead_zone: 0.0,
             learn_from_falls: false,
             ..LearnerConfig::default()
         }
