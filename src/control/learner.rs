@@ -203,8 +203,10 @@ pub struct LearnerConfig {
     pub prior: Prior,
     /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
     /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
-    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0.06, about
-    /// the model's median |G| stepping undisturbed (docs/learner.md); 0 is eq. (6).
+    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0 (eq. 6).
+    /// A run's `step-x` and `step-time` learners take it from the settings (default there:
+    /// about the model's median |G| stepping undisturbed, docs/learner.md); its `step-y`
+    /// learner, whose lateral G is of that size, and the coupled learner learn without it.
     pub dead_zone: f64,
     /// Leakage (sigma-modification): each target is pulled back towards the prior dF = 0 by
     /// this share of the current prediction, `F + eta G - leakage F`, so offsets that G stops
@@ -319,7 +321,8 @@ pub(crate) fn radical_inverse(mut i: usize, base: usize) -> f64 {
 
 impl Default for LearnerConfig {
     /// eta = 1, 128 samples per step, no output clamp, gain guard 0.2, anti-windup on,
-    /// learning from falls, the default [`Prior`], dead zone 0.06, trust region 2.
+    /// learning from falls, the default [`Prior`], no dead zone, trust region 2 (the
+    /// experiments' settings add a dead zone, [`crate::experiments::settings::DEFAULT_DEAD_ZONE`]).
     fn default() -> Self {
         LearnerConfig {
             eta: 1.0,
@@ -330,7 +333,7 @@ impl Default for LearnerConfig {
             learn_from_falls: true,
             fall_theta_limit: 0.3,
             prior: Prior::default(),
-            dead_zone: 0.06,
+            dead_zone: 0.0,
             leakage: 0.0,
             max_step_error: None,
             trust_region: Some(2.0),

@@ -79,7 +79,12 @@ impl RunContext<'_> {
                 Ok((
                     p,
                     match p {
-                        StepParameter::StepX | StepParameter::StepY => (self.learner)(config)?,
+                        StepParameter::StepX => (self.learner)(config)?,
+                        // The lateral G (a lean) is of the size of the sagittal dead zone.
+                        StepParameter::StepY => (self.learner)(LearnerConfig {
+                            dead_zone: 0.0,
+                            ..config
+                        })?,
                         StepParameter::StepTime => {
                             let rule: Box<dyn LearningRule> = Box::new(StepTime::default());
                             let mut learner = (self.learner)(config)?.with_rule(rule);
@@ -100,7 +105,11 @@ impl RunContext<'_> {
 
     /// A fresh coupled learner with the settings' learner config.
     pub fn make_coupled_learner(&self) -> Result<CoupledRunLearner, LearnerError> {
-        (self.coupled_learner)(self.settings.learner)
+        // One dead zone serves both offsets; the lateral G is of the size of the sagittal one.
+        (self.coupled_learner)(LearnerConfig {
+            dead_zone: 0.0,
+            ..self.settings.learner
+        })
     }
 }
 

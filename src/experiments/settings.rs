@@ -157,12 +157,20 @@ impl LwprSettings {
     }
 }
 
+/// The experiments' dead zone on the sagittal G (`[settings.learner] dead_zone`): about the
+/// model's median |G| stepping undisturbed with the tracking swing, so the learner leaves the
+/// step-to-step spread alone (chosen in docs/learner.md, "The dead zone").
+pub const DEFAULT_DEAD_ZONE: f64 = 0.06;
+
 impl Default for Settings {
     fn default() -> Self {
         Settings {
             sim: SimConfig::default(),
             walker: WalkerConfig::new(WalkerMode::CaptureStep),
-            learner: LearnerConfig::default(),
+            learner: LearnerConfig {
+                dead_zone: DEFAULT_DEAD_ZONE,
+                ..LearnerConfig::default()
+            },
             scale: 1.0,
             push_window_s: 3.0,
             recovery_s: 0.0,

@@ -436,29 +436,78 @@ pub fn is_current(runner: &dyn Runner, spec: &RunSpec, out: &Path) -> bool {
         }
 }
 
-fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
+/// The file in a run's directory that a worker holds locked while it computes the run (an
+/// advisory lock of the operating system, released when the worker ends or dies), so that
+/// workers sharing a directory compute each run once.
+pub const CLAIM_FILE: &str = "claim.lock";
+
+/// The status of a run whose `summary.json` exists: reused, or why not.
+fn existing(dir: &Path, identity: Option<&str>) -> RunStatus {
+    if let Err(e) = Summary::read(&dir.join(SUMMARY_FILE)) {
+        return RunStatus::Failed(format!(
+            "existing result is unreadable and was left untouched (delete it to re-run): {e}"
+        ));
+    }
+    match identity.map(|i| check_identity(dir, i)) {
+        None | Some(Ok(())) => RunStatus::Skipped,
+        Some(Err(why)) => RunStatus::Failed(why),
+    }
+}
+
+/// Claims the run in `dir`: its claim file locked by this worker. With `wait`, waits while
+/// another worker holds it; without, `None` if another does.
+fn claim(dir: &Path, wait: bool) -> Result<Option<std::fs::File>, ReportError> {
+    let path = dir.join(CLAIM_FILE);
+    let io = |e| ReportError::io(&path, e);
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(io)?;
+    if wait {
+        file.lock().map_err(io)?;
+        return Ok(Some(file));
+    }
+    match file.try_lock() {
+        Ok(()) => Ok(Some(file)),
+        Err(std::fs::TryLockError::WouldBlock) => Ok(None),
+        Err(std::fs::TryLockError::Error(e)) => Err(io(e)),
+    }
+}
+
+/// Runs `spec` unless it is finished or another worker holds it: `None` in that last case
+/// (never with `wait`, which waits for the other worker and then takes what it left).
+fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner, wait: bool) -> Option<RunStatus> {
     let dir = out.join(spec.id());
     let summary_path = dir.join(SUMMARY_FILE);
     let identity = match runner.identity(spec) {
         Ok(identity) => identity,
-        Err(e) => return RunStatus::Failed(format!("invalid run: {e}")),
+        Err(e) => return Some(RunStatus::Failed(format!("invalid run: {e}"))),
     };
     if summary_path.exists() {
-        if let Err(e) = Summary::read(&summary_path) {
-            return RunStatus::Failed(format!(
-                "existing result is unreadable and was left untouched (delete it to re-run): {e}"
-            ));
-        }
-        return match identity.map(|i| check_identity(&dir, &i)) {
-            None | Some(Ok(())) => RunStatus::Skipped,
-            Some(Err(why)) => RunStatus::Failed(why),
-        };
+        return Some(existing(&dir, identity.as_deref()));
     }
     if let Err(e) = create_dir(&dir) {
-        return RunStatus::Failed(e.to_string());
+        return Some(RunStatus::Failed(e.to_string()));
     }
+    let _claim = match claim(&dir, wait) {
+        Ok(Some(file)) => file,
+        Ok(None) => return None,
+        Err(e) => return Some(RunStatus::Failed(format!("claiming the run failed: {e}"))),
+    };
+    // Another worker may have finished it before this one held the claim.
+    if summary_path.exists() {
+        return Some(existing(&dir, identity.as_deref()));
+    }
+    Some(compute(spec, &dir, runner, identity))
+}
+
+/// Computes a claimed run into `dir` and writes its record, identity and summary.
+fn compute(spec: &RunSpec, dir: &Path, runner: &dyn Runner, identity: Option<String>) -> RunStatus {
+    let summary_path = dir.join(SUMMARY_FILE);
     let start = Instant::now();
-    let result = catch_unwind(AssertUnwindSafe(|| runner.run(spec, &dir)));
+    let result = catch_unwind(AssertUnwindSafe(|| runner.run(spec, dir)));
     let wall_time_s = start.elapsed().as_secs_f64();
     let summary = match result {
         Ok(Ok(summary)) => summary,
@@ -499,6 +548,11 @@ fn run_one(spec: &RunSpec, out: &Path, runner: &dyn Runner) -> RunStatus {
 /// Runs `runs` in parallel into `out` (created if needed), skipping finished runs. Returns one
 /// outcome per run, in the order of `runs`; `on_finished` is called (from worker threads) as
 /// each run ends, e.g. to advance a progress bar. A failing run does not stop the others.
+///
+/// Any number of processes may share `out`: each run is claimed ([`CLAIM_FILE`]) while it is
+/// computed, so it is computed once. A worker first runs what no other holds, then waits for
+/// the runs others hold and takes what they left (finished: skipped; not, because the other
+/// worker died: computed), so every worker returns with the whole selection finished.
 pub fn run_sweep(
     runs: &[RunSpec],
     out: &Path,
@@ -507,15 +561,28 @@ pub fn run_sweep(
     on_finished: &(dyn Fn(&RunOutcome) + Sync),
 ) -> Result<Vec<RunOutcome>, SweepError> {
     create_dir(out)?;
+    let finish = |spec: &RunSpec, status: RunStatus| {
+        let outcome = RunOutcome {
+            spec: spec.clone(),
+            status,
+        };
+        on_finished(&outcome);
+        outcome
+    };
     let work = || -> Vec<RunOutcome> {
+        let first: Vec<Option<RunOutcome>> = runs
+            .par_iter()
+            .map(|spec| run_one(spec, out, runner, false).map(|s| finish(spec, s)))
+            .collect();
         runs.par_iter()
-            .map(|spec| {
-                let outcome = RunOutcome {
-                    spec: spec.clone(),
-                    status: run_one(spec, out, runner),
-                };
-                on_finished(&outcome);
-                outcome
+            .zip(first)
+            .map(|(spec, outcome)| {
+                outcome.unwrap_or_else(|| {
+                    let status = run_one(spec, out, runner, true).unwrap_or_else(|| {
+                        RunStatus::Failed("the run stayed claimed by another worker".into())
+                    });
+                    finish(spec, status)
+                })
             })
             .collect()
     };

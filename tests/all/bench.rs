@@ -149,8 +149,15 @@ fn bad_registrations_and_selections_are_typed_errors_before_anything_runs() {
 fn a_users_names_run_into_a_leaderboard_with_a_verdict_per_row() {
     let dir = temp_dir("leaderboard");
     let r = registry();
+    // The probe teaches one small step; the experiments' dead zone (for the walker's step
+    // noise) would swallow its G, so this bench learns from every step.
+    let config = steplearn::experiments::config_file::ConfigFile::from_toml(
+        "[settings.learner]\ndead_zone = 0.0\n",
+    )
+    .unwrap();
     let bench = || {
         Bench::new(&r)
+            .config(config.clone())
             .approximators(["coarse-grid", "lwpr"])
             .rules(["doubled", "pendulum-cart"])
             .experiments(["probe"])

@@ -230,10 +230,11 @@ fn robustness_learns_from_scratch_and_keeps_what_it_learned() {
     assert!(r.episodes[0].steps.len() > 3);
     // It keeps what it learned: the first touch-down of every later episode has an offset
     // learned in the episodes before (nothing has trained the learner in this episode yet),
-    // where a fresh learner's is exactly 0 (measured: -12.7 and -12.2 mm).
+    // where a fresh learner's is exactly 0 (measured with the experiments' dead zone: 0.49 mm
+    // and more; without it -12.7 and -12.2 mm).
     for e in &r.episodes[1..] {
         let first = e.steps[0].learned_offset;
-        assert!(first.abs() > 1e-3, "push {}: first offset {first}", e.push);
+        assert!(first.abs() > 1e-4, "push {}: first offset {first}", e.push);
     }
     match r.pushes_until_first_absorbed() {
         Some(n) => assert!(!r.episodes[n - 1].fell && r.episodes[..n - 1].iter().all(|e| e.fell)),

@@ -463,3 +463,89 @@ fn real_experiments_are_byte_identical_under_1_and_4_threads() {
         assert!(a.1 == b.1, "{} differs between 1 and 4 threads", a.0);
     }
 }
+
+#[test]
+fn workers_sharing_a_directory_compute_each_run_once() {
+    let runs = grid();
+    // One undisturbed worker, for the bytes.
+    let alone = temp_dir("workers-alone");
+    run_sweep(&runs, &alone, &fake, &SweepOptions::default(), &|_| {}).unwrap();
+    // Three workers at once on one directory, each with its own two threads.
+    let shared = temp_dir("workers-shared");
+    let calls = AtomicUsize::new(0);
+    let counting = |spec: &RunSpec, d: &Path| -> Result<Summary, RunError> {
+        calls.fetch_add(1, Ordering::Relaxed);
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        fake(spec, d)
+    };
+    let outcomes: Vec<Vec<_>> = std::thread::scope(|s| {
+        let workers: Vec<_> = (0..3)
+            .map(|_| {
+                s.spawn(|| {
+                    run_sweep(
+                        &runs,
+                        &shared,
+                        &counting,
+                        &SweepOptions { threads: Some(2) },
+                        &|_| {},
+                    )
+                    .unwrap()
+                })
+            })
+            .collect();
+        workers.into_iter().map(|w| w.join().unwrap()).collect()
+    });
+    assert_eq!(
+        calls.load(Ordering::Relaxed),
+        runs.len(),
+        "each run computed once"
+    );
+    for worker in &outcomes {
+        // Every worker returns with the whole selection finished.
+        assert!(
+            worker
+                .iter()
+                .all(|o| matches!(o.status, RunStatus::Done { .. } | RunStatus::Skipped))
+        );
+    }
+    let done: usize = outcomes
+        .iter()
+        .flatten()
+        .filter(|o| matches!(o.status, RunStatus::Done { .. }))
+        .count();
+    assert_eq!(done, runs.len());
+    assert_eq!(summaries(&shared), summaries(&alone));
+}
+
+#[test]
+fn a_run_whose_worker_died_is_taken_over() {
+    let runs = grid()[..2].to_vec();
+    let dir = temp_dir("workers-died");
+    // A worker that claimed the first run and then died: its lock goes when its file closes.
+    let held = dir.join(runs[0].id());
+    std::fs::create_dir_all(&held).unwrap();
+    let lock = std::fs::File::create(held.join(steplearn::experiments::sweep::CLAIM_FILE)).unwrap();
+    lock.lock().unwrap();
+    let calls = AtomicUsize::new(0);
+    let counting = |spec: &RunSpec, d: &Path| -> Result<Summary, RunError> {
+        calls.fetch_add(1, Ordering::Relaxed);
+        fake(spec, d)
+    };
+    let outcomes = std::thread::scope(|s| {
+        let worker =
+            s.spawn(|| run_sweep(&runs, &dir, &counting, &SweepOptions::default(), &|_| {}));
+        // The other run is computed while the first waits for its claim.
+        while !dir.join(runs[1].id()).join("summary.json").exists() {
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert_eq!(calls.load(Ordering::Relaxed), 1);
+        drop(lock);
+        worker.join().unwrap().unwrap()
+    });
+    assert_eq!(calls.load(Ordering::Relaxed), 2);
+    assert!(
+        outcomes
+            .iter()
+            .all(|o| matches!(o.status, RunStatus::Done { .. }))
+    );
+}
