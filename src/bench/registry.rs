@@ -319,7 +319,7 @@ impl Registry {
         lwpr: &LwprSettings,
     ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
     {
-        let lwpr = lwpr.clone();
+        let lwpr = *lwpr;
         let make_approx = find("approximator", &self.approximators, approx)?;
         let make_rule = find("rule", &self.rules, rule)?;
         let bounds = learner_bounds()?;
@@ -344,7 +344,7 @@ impl Registry {
         impl Fn(LearnerConfig) -> Result<CoupledRunLearner, LearnerError> + Sync + '_,
         BenchError,
     > {
-        let lwpr = lwpr.clone();
+        let lwpr = *lwpr;
         let make_approx = find("approximator", &self.approximators, approx)?;
         let make_rule = find("rule", &self.rules, rule)?;
         let bounds =
