@@ -8,7 +8,7 @@
 //! every input recorded in the step: so what the walker learned from a sagittal error can
 //! change the width it steps with in a leaning state, and the other way round. It is the same
 //! implementation as the uncoupled [`FootstepLearner`](super::learner::FootstepLearner), so
-//! every safeguard of [`LearnerConfig`](super::learner::LearnerConfig) holds for both offsets.
+//! every safeguard of [`LearnerConfig`] holds for both offsets.
 //!
 //! The walker calls it through [`FootstepPolicy`], which hands over both planes at once.
 
