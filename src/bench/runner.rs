@@ -5,7 +5,9 @@ use super::{BenchError, Registry};
 use crate::config::limits::MAX_SEEDS;
 use crate::control::step_parameter::LearnSet;
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::sweep::{RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, run_sweep};
+use crate::experiments::sweep::{
+    RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, check_distinct_sets, run_sweep,
+};
 use crate::report::write_atomic;
 use std::path::{Path, PathBuf};
 
@@ -231,13 +233,7 @@ impl<'r> Bench<'r> {
                 "no set of learned step parameters selected".into(),
             ));
         }
-        for (i, set) in learn.iter().enumerate() {
-            if learn[..i].contains(set) {
-                return Err(BenchError::Selection(format!(
-                    "learned set {set} selected twice"
-                )));
-            }
-        }
+        check_distinct_sets(&learn).map_err(BenchError::Selection)?;
         Ok(SweepGrid {
             experiments,
             approx,

@@ -299,12 +299,17 @@ impl Prior {
 
     /// The `i`-th point of the prior (Halton sequence, bases 2, 3, 5, scaled to the box).
     pub fn point(&self, i: usize) -> [f64; LEARNER_INPUTS] {
+        self.point_of(i)
+    }
+
+    /// The `i`-th point of the prior over `I` inputs (at most [`MAX_OFFSET_INPUTS`]), each
+    /// group of three spread over the box: Halton, one prime base per input (2, 3, 5, 7, ...).
+    fn point_of<const I: usize>(&self, i: usize) -> [f64; I] {
         let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
-        let mut x = [0.0; LEARNER_INPUTS];
-        for (a, base) in [2usize, 3, 5].into_iter().enumerate() {
-            x[a] = lo[a] + (hi[a] - lo[a]) * radical_inverse(i + 1, base);
-        }
-        x
+        std::array::from_fn(|a| {
+            let (l, h) = (lo[a % LEARNER_INPUTS], hi[a % LEARNER_INPUTS]);
+            l + (h - l) * radical_inverse(i + 1, HALTON_BASES[a])
+        })
     }
 }
 
@@ -936,7 +941,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     ) -> Result<Self, LearnerError> {
         let mut learner = Self::assemble(approx, rules, config)?;
         for i in 0..config.prior.samples {
-            let x = learner.prior_point(i);
+            let x = config.prior.point_of::<I>(i);
             learner
                 .approx
                 .update(&x, &[0.0; O])
@@ -974,18 +979,6 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             trained: [MeanStd::new(); I],
             last_offset: [0.0; O],
             exploration: [0.0; O],
-        })
-    }
-
-    /// The `i`-th point of the prior: Halton over the prior's box, for each group of inputs.
-    fn prior_point(&self, i: usize) -> [f64; I] {
-        let (lo, hi) = (
-            self.config.prior.lo.to_array(),
-            self.config.prior.hi.to_array(),
-        );
-        std::array::from_fn(|a| {
-            let (l, h) = (lo[a % LEARNER_INPUTS], hi[a % LEARNER_INPUTS]);
-            l + (h - l) * radical_inverse(i + 1, HALTON_BASES[a])
         })
     }
 

@@ -87,16 +87,13 @@ impl PartialOrd for RunSpec {
 impl Ord for RunSpec {
     /// By experiment, approximator, rule, seed, then set (no set first; sets by their names).
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        let key = |r: &RunSpec| {
-            (
-                r.experiment.clone(),
-                r.approx.clone(),
-                r.rule.clone(),
-                r.seed,
-                r.learn.map(|s| s.names()),
-            )
-        };
-        key(self).cmp(&key(other))
+        (&self.experiment, &self.approx, &self.rule, self.seed)
+            .cmp(&(&other.experiment, &other.approx, &other.rule, other.seed))
+            .then_with(|| {
+                self.learn
+                    .map(|s| s.names())
+                    .cmp(&other.learn.map(|s| s.names()))
+            })
     }
 }
 
@@ -124,6 +121,18 @@ impl RunSpec {
             && summary.rule == self.rule
             && summary.seed == self.seed
             && self.learn.is_none_or(|set| summary.learn == set)
+    }
+}
+
+/// Checks that no set of learned step parameters is given twice; the error names the set.
+pub fn check_distinct_sets(sets: &[LearnSet]) -> Result<(), String> {
+    match sets
+        .iter()
+        .enumerate()
+        .find(|(i, set)| sets[..*i].contains(set))
+    {
+        Some((_, set)) => Err(format!("learned set {set} selected twice")),
+        None => Ok(()),
     }
 }
 
@@ -196,13 +205,7 @@ impl SweepGrid {
                 check_name(what, n).map_err(SweepError::InvalidGrid)?;
             }
         }
-        for (i, set) in self.learn.iter().enumerate() {
-            if self.learn[..i].contains(set) {
-                return Err(SweepError::InvalidGrid(format!(
-                    "learned set {set} given twice"
-                )));
-            }
-        }
+        check_distinct_sets(&self.learn).map_err(SweepError::InvalidGrid)?;
         let sets = self.learn_sets();
         let mut runs = Vec::new();
         for experiment in &self.experiments {
