@@ -4,14 +4,15 @@
 use super::BenchError;
 use crate::Named;
 use crate::approx::{
-    ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist, Stacked,
+    ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist,
 };
 use crate::config::ConfigError;
-use crate::control::coupled::{CoupledLearner, coupled_bounds};
-use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
 use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::experiment::{CoupledRunLearner, Experiment, RunContext, RunLearner};
+use crate::experiments::experiment::{
+    Experiment, RunComponents, RunContext, RunLearner, learner_bounds,
+};
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::{LwprSettings, Settings};
 use crate::experiments::suite;
@@ -87,11 +88,6 @@ fn find<'a, T>(what: &str, entries: &'a [(String, T)], name: &str) -> Result<&'a
 }
 
 /// The learner's input box (theta_E, theta_E_dot, F_R), which approximator factories receive.
-fn learner_bounds() -> Result<InputBox, BenchError> {
-    InputGrid::default()
-        .input_box()
-        .map_err(|e| BenchError::Selection(e.to_string()))
-}
 
 impl Registry {
     /// An empty registry.
@@ -145,7 +141,7 @@ impl Registry {
             return Ok(None);
         }
         let model = find("approximator", &self.approximators, approx)?(
-            &learner_bounds()?,
+            &learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))?,
             &LwprSettings::default(),
         )
         .and_then(|a| a.to_json())
@@ -298,7 +294,7 @@ impl Registry {
     pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
         find("rule", &self.rules, rule)?;
         find("approximator", &self.approximators, approx)?(
-            &learner_bounds()?,
+            &learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))?,
             &LwprSettings::default(),
         )
         .map(|_| ())
@@ -309,9 +305,25 @@ impl Registry {
         })
     }
 
+    /// The run components ([`RunComponents`]) of approximator `approx` and rule `rule`, the
+    /// built-in `lwpr` with the settings `lwpr` (`[settings.lwpr]`): what a [`RunContext`]
+    /// builds every learner of a run from.
+    pub fn components(
+        &self,
+        approx: &str,
+        rule: &str,
+        lwpr: &LwprSettings,
+    ) -> Result<RegisteredComponents, BenchError> {
+        Ok(RegisteredComponents {
+            approx: find("approximator", &self.approximators, approx)?.clone(),
+            rule: find("rule", &self.rules, rule)?.clone(),
+            lwpr: *lwpr,
+        })
+    }
+
     /// A learner builder of approximator `approx` and rule `rule`: each call gives a fresh,
-    /// untrained learner with the config it is given; the built-in `lwpr` with the settings
-    /// `lwpr` (`[settings.lwpr]`).
+    /// untrained `step-x` learner with the config it is given (its rule not reseeded); the
+    /// built-in `lwpr` with the settings `lwpr` (`[settings.lwpr]`).
     pub fn learner_builder(
         &self,
         approx: &str,
@@ -319,42 +331,14 @@ impl Registry {
         lwpr: &LwprSettings,
     ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
     {
-        let lwpr = *lwpr;
-        let make_approx = find("approximator", &self.approximators, approx)?;
-        let make_rule = find("rule", &self.rules, rule)?;
-        let bounds = learner_bounds()?;
+        let components = self.components(approx, rule, lwpr)?;
+        let bounds = learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))?;
         Ok(
             move |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
-                let a = make_approx(&bounds, &lwpr)
+                let a = components
+                    .approximator(&bounds)
                     .map_err(|source| LearnerError::Approx { applied: 0, source })?;
-                FootstepLearner::new(a, make_rule(), config)
-            },
-        )
-    }
-
-    /// A builder of coupled learners (both planes in one model) of approximator `approx` and
-    /// rule `rule`: the factory builds each of the two outputs' approximators over both
-    /// planes' inputs ([`coupled_bounds`]), and each plane gets a fresh rule.
-    pub fn coupled_learner_builder(
-        &self,
-        approx: &str,
-        rule: &str,
-        lwpr: &LwprSettings,
-    ) -> Result<
-        impl Fn(LearnerConfig) -> Result<CoupledRunLearner, LearnerError> + Sync + '_,
-        BenchError,
-    > {
-        let lwpr = *lwpr;
-        let make_approx = find("approximator", &self.approximators, approx)?;
-        let make_rule = find("rule", &self.rules, rule)?;
-        let bounds =
-            coupled_bounds(&learner_bounds()?).map_err(|e| BenchError::Selection(e.to_string()))?;
-        Ok(
-            move |config: LearnerConfig| -> Result<CoupledRunLearner, LearnerError> {
-                let approx_error = |source| LearnerError::Approx { applied: 0, source };
-                let head = || make_approx(&bounds, &lwpr).map_err(approx_error);
-                let stacked = Stacked::new(vec![head()?, head()?]).map_err(approx_error)?;
-                CoupledLearner::new(stacked, [make_rule(), make_rule()], config)
+                FootstepLearner::new(a, components.rule(), config)
             },
         )
     }
@@ -374,32 +358,16 @@ impl Registry {
         let settings = &settings_of(spec, settings);
         let invalid = |e: BenchError| ExperimentError::Invalid(e.to_string());
         let experiment = self.find_experiment(&spec.experiment).map_err(invalid)?;
-        let build = self
-            .learner_builder(&spec.approx, &spec.rule, &settings.lwpr)
+        let components = self
+            .components(&spec.approx, &spec.rule, &settings.lwpr)
             .map_err(invalid)?;
-        // Every learner of the run explores with the run's seed, whichever way the experiment
-        // builds it (`RunContext::make_learner` or the builder itself).
-        let seeded = |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
-            let mut learner = build(config)?;
-            learner.reseed(spec.seed);
-            Ok(learner)
-        };
-        let build_coupled = self
-            .coupled_learner_builder(&spec.approx, &spec.rule, &settings.lwpr)
-            .map_err(invalid)?;
-        let seeded_coupled = |config: LearnerConfig| -> Result<CoupledRunLearner, LearnerError> {
-            let mut learner = build_coupled(config)?;
-            learner.reseed(spec.seed);
-            Ok(learner)
-        };
         let ctx = RunContext {
             settings,
             protocols,
             seed: spec.seed,
             approx: &spec.approx,
             rule: &spec.rule,
-            learner: &seeded,
-            coupled_learner: &seeded_coupled,
+            components: &components,
         };
         let result = experiment.run(&ctx, dir)?;
         if result.name() != spec.experiment {
@@ -531,5 +499,22 @@ impl Runner for RegistryRunner<'_> {
             self.settings,
             self.protocols,
         )?))
+    }
+}
+
+/// A registered approximator and rule, as a run's [`RunComponents`] ([`Registry::components`]).
+pub struct RegisteredComponents {
+    approx: ApproxFactory,
+    rule: RuleFactory,
+    lwpr: LwprSettings,
+}
+
+impl RunComponents for RegisteredComponents {
+    fn approximator(&self, bounds: &InputBox) -> Result<BoxedApproximator, ApproxError> {
+        (self.approx)(bounds, &self.lwpr)
+    }
+
+    fn rule(&self) -> Box<dyn LearningRule> {
+        (self.rule)()
     }
 }

@@ -36,11 +36,16 @@ pub fn coupled_bounds(bounds: &InputBox) -> Result<InputBox, crate::approx::Appr
     )
 }
 
+/// The two planes in output order.
+const PLANE_PARAMETERS: [StepParameter; PLANES] = [StepParameter::StepX, StepParameter::StepY];
+
 impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, COUPLED_INPUTS, PLANES> {
     /// A learner around `approx` (6 inputs, 2 outputs) with the sagittal and the lateral rule,
-    /// holding the prior of `config` over both planes (its box for each plane's three inputs).
+    /// holding the prior of `config` over both planes (its box for each plane's three inputs);
+    /// each output has its parameter's settings (`step-x`, `step-y`,
+    /// [`LearnerConfig::offset`]).
     pub fn new(approx: A, rules: [R; PLANES], config: LearnerConfig) -> Result<Self, LearnerError> {
-        Self::with_rules(approx, rules, config)
+        Self::for_parameters(approx, rules, PLANE_PARAMETERS, config)
     }
 
     /// The raw outputs `(dF, dW)` at `x`.
@@ -89,9 +94,6 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> OffsetLearner<A, R, COUPL
         self.fall_all(outcomes)
     }
 }
-
-/// The two planes in output order.
-const PLANE_PARAMETERS: [StepParameter; PLANES] = [StepParameter::StepX, StepParameter::StepY];
 
 impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
     for OffsetLearner<A, R, COUPLED_INPUTS, PLANES>

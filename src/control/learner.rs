@@ -59,387 +59,23 @@
 //! as before. The rule's state travels in the learner's checkpoint.
 //!
 
-use super::step_parameter::LearnSet;
+use super::learner_config::check_range;
+pub use super::learner_config::{
+    CheckedLearnerConfig, FallSettings, GuardSettings, LEARNER_INPUTS, LearnerConfig, LearnerInput,
+    MAX_OFFSET_INPUTS, MAX_PRIOR_SAMPLES, MAX_SAMPLES_PER_STEP, MemorySettings, OffsetSettings,
+    ParameterSettings, Prior, TrustFallback, TrustSettings,
+};
+pub use super::learner_error::LearnerError;
+use super::step_parameter::StepParameter;
 use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
-use crate::rules::{LearningRule, RuleError, StepOutcome};
+use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use thiserror::Error;
 
 /// Retries of the gain guard before it gives up on a touch-down (and leaves the model as it
 /// was).
 const GUARD_RETRIES: usize = 6;
-
-/// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
-pub const LEARNER_INPUTS: usize = 3;
-
-/// One query point of the learner.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LearnerInput {
-    /// Trunk deviation angle theta_E (rad).
-    pub theta_e: f64,
-    /// Its rate theta_E_dot (rad/s).
-    pub theta_e_dot: f64,
-    /// Reference step size F_R (m).
-    pub f_r: f64,
-}
-
-impl LearnerInput {
-    /// The input at (theta_E, theta_E_dot, F_R).
-    pub fn new(theta_e: f64, theta_e_dot: f64, f_r: f64) -> Self {
-        LearnerInput {
-            theta_e,
-            theta_e_dot,
-            f_r,
-        }
-    }
-
-    /// The input as the approximator sees it: `[theta_E, theta_E_dot, F_R]`.
-    pub fn to_array(self) -> [f64; LEARNER_INPUTS] {
-        [self.theta_e, self.theta_e_dot, self.f_r]
-    }
-}
-
-/// Errors of the learner. A rejected call leaves the learner as it was (see each method).
-#[derive(Debug, Error)]
-pub enum LearnerError {
-    /// The configuration is invalid.
-    #[error("invalid learner configuration: {param} {reason}")]
-    InvalidConfig {
-        /// The field's name.
-        param: &'static str,
-        /// Why, with the value.
-        reason: String,
-    },
-    /// The rule rejected a saved rule state (see [`LearningRule::set_state`]).
-    #[error("rule: {0}")]
-    Rule(#[from] RuleError),
-    /// The approximator does not map the learner's inputs to its outputs.
-    #[error(
-        "approximator must map {} inputs to {} outputs, it maps {inputs} to {outputs}",
-        expected.0,
-        expected.1
-    )]
-    WrongApproximatorShape {
-        /// The inputs and outputs the learner needs.
-        expected: (usize, usize),
-        /// Its input dimension.
-        inputs: usize,
-        /// Its output dimension.
-        outputs: usize,
-    },
-    /// A query input or a step outcome held NaN or an infinity.
-    #[error("{what} is not finite: {value}")]
-    NonFinite {
-        /// What was not finite (e.g. `"theta_e"`, `"gradient G"`).
-        what: &'static str,
-        /// The value.
-        value: f64,
-    },
-    /// The approximator rejected a call; `applied` training samples of this touch-down had
-    /// already been applied (0 unless the approximator fails on a sample the learner had
-    /// checked to be finite).
-    #[error("approximator error after {applied} applied updates: {source}")]
-    Approx {
-        /// Updates of this touch-down applied before the error.
-        applied: usize,
-        /// The approximator's error.
-        source: ApproxError,
-    },
-}
-
-impl LearnerError {
-    fn config(param: &'static str, reason: impl Into<String>) -> Self {
-        LearnerError::InvalidConfig {
-            param,
-            reason: reason.into(),
-        }
-    }
-
-    fn approx(source: ApproxError) -> Self {
-        LearnerError::Approx { applied: 0, source }
-    }
-}
-
-/// Settings of the learner.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct LearnerConfig {
-    /// Learning rate eta of eq. (6) (paper: 1). Must be finite and > 0.
-    pub eta: f64,
-    /// At most this many inputs are kept per step (>= 2). When the buffer is full, every
-    /// second sample is dropped and only every second later query is recorded (the stride
-    /// doubles), so the kept samples stay evenly spread over the whole step and memory is
-    /// bounded whatever the tick rate and step duration. A step of n ticks keeps between
-    /// `max_samples_per_step / 2` and `max_samples_per_step` samples once n exceeds the bound;
-    /// all of them otherwise. Default 128 (every tick of a 0.5 s step at 250 Hz).
-    pub max_samples_per_step: usize,
-    /// If set, the offset returned by [`FootstepLearner::query`] is clamped to +-this (m);
-    /// training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
-    pub max_offset: Option<f64>,
-    /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
-    /// unit of G (see [`TouchDownReport::gain`] and the module docs for the limit). If the
-    /// approximator's response to the full step eta G would exceed it, the step is scaled down
-    /// and applied again to the approximator as it was. `None` turns the guard off (eq. 6 as
-    /// written). Default 0.2. Must be finite and > 0.
-    pub max_gain: Option<f64>,
-    /// Anti-windup (conditional integration): a training target never goes further past an end
-    /// of the offsets that could still change the step at that tick than the prediction already
-    /// is (the reach told by [`FootstepLearner::set_reach`]: on the walker, the step range minus
-    /// the analytic step). Default on.
-    pub anti_windup: bool,
-    /// Learn from a step that ended in a fall ([`FootstepLearner::fall`]): the step in
-    /// progress at the fall is treated as if it had touched down, with theta_E clamped to
-    /// +-`fall_theta_limit`. On by default: the paper's robot "learned from this experience"
-    /// when its first pushes made it fall (both ways are compared in `docs/learner.md`).
-    pub learn_from_falls: bool,
-    /// |theta_E| and |theta_E_dot| / 10 at a fall are clamped to this before the rule sees them
-    /// (rad, finite, > 0; default 0.3): past the fall threshold the angle says nothing more.
-    pub fall_theta_limit: f64,
-    /// The prior held from the start: dF = 0, trained into the approximator at
-    /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`].
-    pub prior: Prior,
-    /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
-    /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
-    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0 (eq. 6).
-    /// A run's `step-x` and `step-time` learners take it from the settings (default there:
-    /// about the model's median |G| stepping undisturbed, docs/learner.md); its `step-y`
-    /// learner, whose lateral G is of that size, and the coupled learner learn without it.
-    pub dead_zone: f64,
-    /// Leakage (sigma-modification): each target is pulled back towards the prior dF = 0 by
-    /// this share of the current prediction, `F + eta G - leakage F`, so offsets that G stops
-    /// asking for decay. In [0, 1); default 0 (eq. 6).
-    pub leakage: f64,
-    /// If set, a touch-down teaches nothing (the step is discarded) when the step error
-    /// without the learner's part, |F_E - dF| with dF the offset of the step's last query,
-    /// exceeds this (m): a step the model itself missed by that much was disturbed (a push, a
-    /// reference change), and the rule's saturated tracking term only winds the offset up
-    /// there. Errors the learner's own offset causes still teach. Finite and > 0; default
-    /// none (eq. 6 learns from every step).
-    pub max_step_error: Option<f64>,
-    /// If set (k > 0), the learner acts only where it has learned: the offset is applied in
-    /// full where every input lies within k standard deviations of the mean of the inputs it
-    /// was trained at, fades linearly to 0 at 1.5 k and is 0 beyond (the model alone decides
-    /// in states the learner never learned from). Default 2: without it the offset learned
-    /// walking reaches the catch steps after pushes (docs/learner.md has what that cost).
-    pub trust_region: Option<f64>,
-    /// What the offset fades to outside the trust region (default [`TrustFallback::Zero`]).
-    pub trust_fallback: TrustFallback,
-    /// Share of a step's recorded inputs that are trained at touch-down: the latest ones
-    /// (in (0, 1]; default 1, eq. 6: every input of the step). The swing foot lands where the
-    /// last commands put it (the generator filters the commanded placement over 0.05 s), so
-    /// offsets queried early in a step barely move the step that G measures.
-    pub train_share: f64,
-    /// The step parameters a walker's learner learns, each with a learner of these settings
-    /// ([`StepLearner`](super::step_learner::StepLearner)); default the paper's `step-x`
-    /// (left out of written configs).
-    #[serde(skip_serializing_if = "LearnSet::is_paper")]
-    pub learn: LearnSet,
-}
-
-/// What the learned offset fades to where the trust region does not cover the input.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, strum::Display)]
-#[serde(rename_all = "kebab-case")]
-#[strum(serialize_all = "kebab-case")]
-pub enum TrustFallback {
-    /// dF = 0: the model alone decides in states the learner never learned from.
-    #[default]
-    Zero,
-    /// The offset learned at the nominal state: the prediction at the mean trained theta_E
-    /// and theta_E_dot, with F_R clamped into the trust region. A steady correction of a
-    /// model error (a leg that under-reaches) is kept after a push, while the state-dependent
-    /// part is used only near the data.
-    Nominal,
-}
-
-/// The most samples a prior may hold (each trains the approximator once at construction).
-pub const MAX_PRIOR_SAMPLES: usize = 1_000_000;
-
-/// The most samples the learner may record in one step (its memory per step is this many
-/// inputs).
-pub const MAX_SAMPLES_PER_STEP: usize = 100_000;
-
-/// The learner's initial belief dF = 0, trained into the approximator before any step so
-/// that it holds it with confidence (an untrained LWPR moves nearly all the way to its first
-/// targets, which makes eq. 6 at eta = 1 unstable; see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Prior {
-    /// Number of samples (0: no prior, the approximator starts as built; at most
-    /// [`MAX_PRIOR_SAMPLES`]).
-    pub samples: usize,
-    /// Lower corner of the box the samples cover.
-    pub lo: LearnerInput,
-    /// Upper corner.
-    pub hi: LearnerInput,
-}
-
-impl Default for Prior {
-    /// 1000 points of a Halton sequence over theta_E in [-0.3, 0.3] rad, theta_E_dot in
-    /// [-1.5, 1.5] rad/s and F_R in [-0.1, 0.2] m: the states the walker meets without pushes.
-    fn default() -> Self {
-        Prior {
-            samples: 1000,
-            lo: LearnerInput::new(-0.3, -1.5, -0.1),
-            hi: LearnerInput::new(0.3, 1.5, 0.2),
-        }
-    }
-}
-
-impl Prior {
-    /// No prior: the approximator starts as built.
-    pub fn none() -> Self {
-        Prior {
-            samples: 0,
-            ..Prior::default()
-        }
-    }
-
-    /// The `i`-th point of the prior (Halton sequence, bases 2, 3, 5, scaled to the box).
-    pub fn point(&self, i: usize) -> [f64; LEARNER_INPUTS] {
-        self.point_of(i)
-    }
-
-    /// The `i`-th point of the prior over `I` inputs (at most [`MAX_OFFSET_INPUTS`]), each
-    /// group of three spread over the box: Halton, one prime base per input (2, 3, 5, 7, ...).
-    fn point_of<const I: usize>(&self, i: usize) -> [f64; I] {
-        let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
-        std::array::from_fn(|a| {
-            let (l, h) = (lo[a % LEARNER_INPUTS], hi[a % LEARNER_INPUTS]);
-            l + (h - l) * radical_inverse(i + 1, HALTON_BASES[a])
-        })
-    }
-}
-
-/// The van der Corput radical inverse of `i` in `base`, in [0, 1).
-pub(crate) fn radical_inverse(mut i: usize, base: usize) -> f64 {
-    let (mut inv, mut f) = (0.0, 1.0 / base as f64);
-    while i > 0 {
-        inv += (i % base) as f64 * f;
-        i /= base;
-        f /= base as f64;
-    }
-    inv
-}
-
-impl Default for LearnerConfig {
-    /// eta = 1, 128 samples per step, no output clamp, gain guard 0.2, anti-windup on,
-    /// learning from falls, the default [`Prior`], no dead zone, trust region 2 (the
-    /// experiments' settings add a dead zone, [`crate::experiments::settings::DEFAULT_DEAD_ZONE`]).
-    fn default() -> Self {
-        LearnerConfig {
-            eta: 1.0,
-            max_samples_per_step: 128,
-            max_offset: None,
-            max_gain: Some(0.2),
-            anti_windup: true,
-            learn_from_falls: true,
-            fall_theta_limit: 0.3,
-            prior: Prior::default(),
-            dead_zone: 0.0,
-            leakage: 0.0,
-            max_step_error: None,
-            trust_region: Some(2.0),
-            trust_fallback: TrustFallback::Zero,
-            train_share: 1.0,
-            learn: LearnSet::default(),
-        }
-    }
-}
-
-impl LearnerConfig {
-    /// Eq. (6) as written: no gain guard, no anti-windup, no prior (the approximator starts as
-    /// built), no trust region, no dead zone, no learning from falls, eta = 1. On the humanoid
-    /// this learner is unstable (see the module docs).
-    pub fn literal() -> Self {
-        LearnerConfig {
-            max_gain: None,
-            anti_windup: false,
-            prior: Prior::none(),
-            trust_region: None,
-            dead_zone: 0.0,
-            learn_from_falls: false,
-            ..LearnerConfig::default()
-        }
-    }
-
-    /// Checks every field.
-    pub fn validate(&self) -> Result<(), LearnerError> {
-        if !(self.eta.is_finite() && self.eta > 0.0) {
-            return Err(LearnerError::config(
-                "eta",
-                format!("must be finite and > 0, got {}", self.eta),
-            ));
-        }
-        if !(2..=MAX_SAMPLES_PER_STEP).contains(&self.max_samples_per_step) {
-            return Err(LearnerError::config(
-                "max_samples_per_step",
-                format!(
-                    "must be in [2, {MAX_SAMPLES_PER_STEP}], got {}",
-                    self.max_samples_per_step
-                ),
-            ));
-        }
-        if self.prior.samples > MAX_PRIOR_SAMPLES {
-            return Err(LearnerError::config(
-                "prior.samples",
-                format!(
-                    "must be at most {MAX_PRIOR_SAMPLES}, got {}",
-                    self.prior.samples
-                ),
-            ));
-        }
-        for (name, v) in [
-            ("max_offset", self.max_offset),
-            ("max_gain", self.max_gain),
-            ("max_step_error", self.max_step_error),
-            ("trust_region", self.trust_region),
-        ] {
-            if let Some(m) = v
-                && !(m.is_finite() && m > 0.0)
-            {
-                return Err(LearnerError::config(
-                    name,
-                    format!("must be finite and > 0, got {m}"),
-                ));
-            }
-        }
-        if !(self.fall_theta_limit.is_finite() && self.fall_theta_limit > 0.0) {
-            return Err(LearnerError::config(
-                "fall_theta_limit",
-                format!("must be finite and > 0, got {}", self.fall_theta_limit),
-            ));
-        }
-        if !(self.dead_zone.is_finite() && self.dead_zone >= 0.0) {
-            return Err(LearnerError::config(
-                "dead_zone",
-                format!("must be finite and >= 0, got {}", self.dead_zone),
-            ));
-        }
-        if !(self.train_share > 0.0 && self.train_share <= 1.0) {
-            return Err(LearnerError::config(
-                "train_share",
-                format!("must be in (0, 1], got {}", self.train_share),
-            ));
-        }
-        if !(self.leakage >= 0.0 && self.leakage < 1.0) {
-            return Err(LearnerError::config(
-                "leakage",
-                format!("must be in [0, 1), got {}", self.leakage),
-            ));
-        }
-        let (lo, hi) = (self.prior.lo.to_array(), self.prior.hi.to_array());
-        for (axis, name) in ["prior.theta_e", "prior.theta_e_dot", "prior.f_r"]
-            .into_iter()
-            .enumerate()
-        {
-            check_range(name, lo[axis], hi[axis], 1)?;
-        }
-        Ok(())
-    }
-}
 
 /// What a touch-down did. The default (all zero) is a touch-down that taught nothing.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
@@ -492,19 +128,6 @@ impl Default for InputGrid {
 }
 
 use crate::stats::{MeanStd, linspace};
-
-fn check_range(param: &'static str, lo: f64, hi: f64, n: usize) -> Result<(), LearnerError> {
-    if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
-        return Err(LearnerError::config(
-            param,
-            format!("needs finite bounds with lo <= hi, got [{lo}, {hi}]"),
-        ));
-    }
-    if n == 0 {
-        return Err(LearnerError::config(param, "needs at least 1 point"));
-    }
-    Ok(())
-}
 
 impl InputGrid {
     /// Checks that the bounds are finite and ordered and every axis has at least one point.
@@ -571,6 +194,10 @@ impl Default for MapSpec {
 pub struct SavedLearner<A> {
     /// The learner's settings.
     pub config: LearnerConfig,
+    /// The step parameter it learns (left out for the paper's `step-x`, and absent from files
+    /// from before other parameters could be learned).
+    #[serde(default, skip_serializing_if = "StepParameter::is_step_x")]
+    pub parameter: StepParameter,
     /// The trained approximator.
     pub approximator: A,
     /// Per-axis mean and std of the inputs the learner was trained at (its trust region);
@@ -865,12 +492,6 @@ impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
     }
 }
 
-/// Bases of the Halton sequence the prior is spread over, one per input (the first primes).
-const HALTON_BASES: [usize; MAX_OFFSET_INPUTS] = [2, 3, 5, 7, 11, 13, 17, 19, 23];
-
-/// Most inputs an [`OffsetLearner`] takes: three per learned plane or parameter.
-pub const MAX_OFFSET_INPUTS: usize = 9;
-
 /// The name of input `axis` in errors: each group of three is (lean, lean rate, reference).
 fn input_name(axis: usize) -> &'static str {
     const NAMES: [&str; 6] = [
@@ -899,7 +520,14 @@ pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usiz
     approx: A,
     /// One rule per offset, in output order.
     rules: [R; O],
+    /// The settings as given (what [`Self::config`] returns and a checkpoint saves).
     config: LearnerConfig,
+    /// The same settings, checked and grouped.
+    settings: CheckedLearnerConfig,
+    /// The step parameter of each offset, in output order.
+    parameters: [StepParameter; O],
+    /// Each offset's own settings (its parameter's).
+    offsets: [OffsetSettings; O],
     /// Inputs recorded in the current step (at most `max_samples_per_step`), each with each
     /// offset's reach (lowest, highest offset that can still change the step; unbounded unless
     /// told by [`OffsetLearner::set_reach_of`]).
@@ -933,13 +561,39 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
 {
     /// A learner around `approx` (`I` inputs, `O` outputs) with one rule per output, holding
     /// the prior of `config` (zero offsets trained in at `config.prior.samples` Halton points
-    /// of the prior's box, repeated for every group of three inputs; none if 0).
+    /// of the prior's box, repeated for every group of three inputs; none if 0). Its offsets
+    /// are the first `O` step parameters in their fixed order ([`StepParameter::ALL`]: `step-x`,
+    /// then `step-y`, then `step-time`), each with its parameter's settings
+    /// ([`LearnerConfig::offset`]).
     pub fn with_rules(
         approx: A,
         rules: [R; O],
         config: LearnerConfig,
     ) -> Result<Self, LearnerError> {
-        let mut learner = Self::assemble(approx, rules, config)?;
+        if O > StepParameter::ALL.len() {
+            return Err(LearnerError::config(
+                "shape",
+                format!("{O} offsets need their step parameters named (for_parameters)"),
+            ));
+        }
+        Self::for_parameters(
+            approx,
+            rules,
+            std::array::from_fn(|k| StepParameter::ALL[k]),
+            config,
+        )
+    }
+
+    /// A learner of the step parameters `parameters` (one per output, each taught by its rule
+    /// and with its parameter's settings, [`LearnerConfig::offset`]) around `approx`, holding
+    /// the prior of `config` as [`Self::with_rules`] does.
+    pub fn for_parameters(
+        approx: A,
+        rules: [R; O],
+        parameters: [StepParameter; O],
+        config: LearnerConfig,
+    ) -> Result<Self, LearnerError> {
+        let mut learner = Self::assemble(approx, rules, parameters, config)?;
         for i in 0..config.prior.samples {
             let x = config.prior.point_of::<I>(i);
             learner
@@ -951,8 +605,13 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     }
 
     /// A learner around `approx` as it is (no prior trained in).
-    fn assemble(approx: A, rules: [R; O], config: LearnerConfig) -> Result<Self, LearnerError> {
-        config.validate()?;
+    fn assemble(
+        approx: A,
+        rules: [R; O],
+        parameters: [StepParameter; O],
+        config: LearnerConfig,
+    ) -> Result<Self, LearnerError> {
+        let settings = config.check()?;
         if I == 0 || !I.is_multiple_of(LEARNER_INPUTS) || I > MAX_OFFSET_INPUTS || O == 0 {
             return Err(LearnerError::config(
                 "shape",
@@ -973,6 +632,9 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             approx,
             rules,
             config,
+            settings,
+            parameters,
+            offsets: parameters.map(|p| settings.offset(p)),
             step: StepSamples::with_capacity(config.max_samples_per_step),
             before: Vec::with_capacity(config.max_samples_per_step),
             desired: Vec::with_capacity(config.max_samples_per_step),
@@ -985,6 +647,16 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     /// The settings.
     pub fn config(&self) -> &LearnerConfig {
         &self.config
+    }
+
+    /// The settings, checked and grouped.
+    pub fn settings(&self) -> &CheckedLearnerConfig {
+        &self.settings
+    }
+
+    /// The step parameter of each offset, in output order.
+    pub fn parameters(&self) -> [StepParameter; O] {
+        self.parameters
     }
 
     /// The approximator.
@@ -1026,7 +698,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
         }
         let trust = self.trust(&x);
         let mut y = self.predict_all(&x)?.map(|v| v * trust);
-        if trust < 1.0 && self.config.trust_fallback == TrustFallback::Nominal {
+        if trust < 1.0 && self.settings.trust.fallback == TrustFallback::Nominal {
             let nominal = self.predict_all(&self.nominal_input(&x))?;
             for (v, n) in y.iter_mut().zip(nominal) {
                 *v += (1.0 - trust) * n;
@@ -1053,10 +725,10 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
         self.step.record(
             x,
             [[f64::NEG_INFINITY, f64::INFINITY]; O],
-            self.config.max_samples_per_step,
+            self.settings.memory.max_samples_per_step,
         );
-        if let Some(m) = self.config.max_offset {
-            for v in &mut y {
+        for (v, o) in y.iter_mut().zip(&self.offsets) {
+            if let Some(m) = o.max_offset {
                 *v = v.clamp(-m, m);
             }
         }
@@ -1066,22 +738,22 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
 
     /// Index of the first recorded input trained at touch-down (`train_share`).
     fn first_trained(&self) -> usize {
-        self.step.first_trained(self.config.train_share)
+        self.step.first_trained(self.settings.memory.train_share)
     }
 
     /// The nominal state near `x`: the mean trained lean and lean rate of every group, its
     /// reference clamped into the trust region (the prior's centre before any training).
     fn nominal_input(&self, x: &[f64; I]) -> [f64; I] {
         let (lo, hi) = (
-            self.config.prior.lo.to_array(),
-            self.config.prior.hi.to_array(),
+            self.settings.prior.lo.to_array(),
+            self.settings.prior.hi.to_array(),
         );
         std::array::from_fn(|a| {
             let t = &self.trained[a];
             if t.count() == 0 {
                 0.5 * (lo[a % LEARNER_INPUTS] + hi[a % LEARNER_INPUTS])
             } else if a % LEARNER_INPUTS == 2 {
-                let half = self.config.trust_region.unwrap_or(0.0) * self.trust_std(a);
+                let half = self.settings.trust.region.unwrap_or(0.0) * self.trust_std(a);
                 x[a].clamp(t.mean() - half, t.mean() + half)
             } else {
                 t.mean()
@@ -1093,8 +765,8 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     /// inputs, at least 2% of the prior box's width.
     fn trust_std(&self, axis: usize) -> f64 {
         let (lo, hi) = (
-            self.config.prior.lo.to_array(),
-            self.config.prior.hi.to_array(),
+            self.settings.prior.lo.to_array(),
+            self.settings.prior.hi.to_array(),
         );
         let a = axis % LEARNER_INPUTS;
         self.trained[axis]
@@ -1104,7 +776,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
 
     /// The share of the offsets applied at `x` (1 without a trust region).
     fn trust(&self, x: &[f64; I]) -> f64 {
-        match self.config.trust_region {
+        match self.settings.trust.region {
             Some(k) => trust_share(k, x, &self.trained, |a| self.trust_std(a)),
             None => 1.0,
         }
@@ -1156,11 +828,11 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
         &mut self,
         outcomes: [&StepOutcome; O],
     ) -> Result<Option<[TouchDownReport; O]>, LearnerError> {
-        if !self.config.learn_from_falls || self.step.inputs.is_empty() {
+        if !self.settings.falls.learn || self.step.inputs.is_empty() {
             self.discard_step();
             return Ok(None);
         }
-        let clamped = outcomes.map(|o| clamped_at_fall(o, self.config.fall_theta_limit));
+        let clamped = outcomes.map(|o| clamped_at_fall(o, self.settings.falls.theta_limit));
         match self.end_step(std::array::from_fn(|k| &clamped[k]), true) {
             Ok(r) => Ok(Some(r)),
             Err(e) => {
@@ -1188,7 +860,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
                 }
             }
         }
-        if let Some(m) = self.config.max_step_error
+        if let Some(m) = self.settings.trust.max_step_error
             && (0..O).any(|k| (outcomes[k].f_e - self.last_offset[k]).abs() > m)
         {
             self.discard_step();
@@ -1204,9 +876,11 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
                 });
             }
         }
-        let dz = self.config.dead_zone;
-        let g = raw.map(|g| g.signum() * (g.abs() - dz).max(0.0));
-        let step_size = g.map(|g| self.config.eta * g);
+        let g: [f64; O] = std::array::from_fn(|k| {
+            let dz = self.offsets[k].dead_zone;
+            raw[k].signum() * (raw[k].abs() - dz).max(0.0)
+        });
+        let step_size: [f64; O] = std::array::from_fn(|k| self.offsets[k].eta * g[k]);
         self.before.clear();
         self.desired.clear();
         let first = self.first_trained();
@@ -1217,8 +891,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
             let before = self.predict_all(x)?;
             let mut desired = [0.0; O];
             for k in 0..O {
-                let mut change = step_size[k] - self.config.leakage * before[k];
-                if self.config.anti_windup {
+                let mut change = step_size[k] - self.offsets[k].leakage * before[k];
+                if self.settings.guard.anti_windup {
                     change = windup(change, before[k], reach[k]);
                 }
                 let target = before[k] + change;
@@ -1244,7 +918,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
             }
         };
         let guard = self
-            .config
+            .settings
+            .guard
             .max_gain
             .filter(|_| asked.iter().any(|a| *a > 0.0));
         let (inputs, before, desired) = (&self.step.inputs[first..], &self.before, &self.desired);
@@ -1305,14 +980,31 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
         self.exploration[0]
     }
 
+    /// The same learner, learning `parameter` from now on (with that parameter's settings,
+    /// [`LearnerConfig::offset`]); the rule is unchanged.
+    pub fn as_parameter(mut self, parameter: StepParameter) -> Self {
+        self.parameters = [parameter];
+        self.offsets = [self.settings.offset(parameter)];
+        self
+    }
+
+    /// The step parameter this learner learns.
+    pub fn parameter(&self) -> StepParameter {
+        self.parameters[0]
+    }
+
     /// The same learner (approximator, prior, trust-region statistics, step in progress),
-    /// taught by `rule` from now on: how a learner of another step parameter is built from a
-    /// fresh one of the run's approximator (the prior does not depend on the rule).
+    /// taught by `rule` from now on: with [`Self::as_parameter`], how a learner of another
+    /// step parameter is built from a fresh one of the run's approximator (the prior does not
+    /// depend on the rule).
     pub fn with_rule<R2: LearningRule>(self, rule: R2) -> FootstepLearner<A, R2> {
         OffsetLearner {
             approx: self.approx,
             rules: [rule],
             config: self.config,
+            settings: self.settings,
+            parameters: self.parameters,
+            offsets: self.offsets,
             step: self.step,
             before: self.before,
             desired: self.desired,
@@ -1461,6 +1153,7 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule>
     pub fn checkpoint(&self) -> SavedLearner<A> {
         SavedLearner {
             config: self.config,
+            parameter: self.parameters[0],
             approximator: self.approx.clone(),
             trained: self.trained,
             step: StepInProgress {
@@ -1494,7 +1187,8 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule>
         if let Some(state) = &saved.rule_state {
             rule.set_state(state)?;
         }
-        let mut learner = Self::assemble(saved.approximator, [rule], saved.config)?;
+        let mut learner =
+            Self::assemble(saved.approximator, [rule], [saved.parameter], saved.config)?;
         let step = saved.step;
         learner.trained = saved.trained;
         learner.step.inputs.extend_from_slice(&step.recorded);

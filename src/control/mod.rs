@@ -7,6 +7,8 @@ pub mod capture_step;
 pub mod coupled;
 pub mod estimator;
 pub mod learner;
+pub mod learner_config;
+pub mod learner_error;
 pub mod lipm;
 pub mod lipm_plant;
 pub mod motion;

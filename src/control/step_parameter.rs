@@ -18,6 +18,7 @@ use thiserror::Error;
     Copy,
     PartialEq,
     Eq,
+    Default,
     Serialize,
     Deserialize,
     strum::EnumString,
@@ -27,7 +28,8 @@ use thiserror::Error;
 #[serde(rename_all = "kebab-case")]
 #[strum(serialize_all = "kebab-case")]
 pub enum StepParameter {
-    /// The sagittal footstep offset dF (m, forward positive): the paper's.
+    /// The sagittal footstep offset dF (m, forward positive): the paper's (the default).
+    #[default]
     StepX,
     /// The lateral step-width offset dW (m, towards the swing leg's side).
     StepY,
@@ -38,6 +40,11 @@ pub enum StepParameter {
 impl StepParameter {
     /// Every parameter, in their fixed order.
     pub const ALL: [StepParameter; 3] = [Self::StepX, Self::StepY, Self::StepTime];
+
+    /// Whether this is the paper's `step-x`.
+    pub fn is_step_x(&self) -> bool {
+        *self == StepParameter::StepX
+    }
 
     /// Position in [`Self::ALL`].
     pub fn index(self) -> usize {

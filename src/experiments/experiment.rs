@@ -10,10 +10,10 @@ use super::error::ExperimentError;
 use super::paired::Paired;
 use super::protocol::{ProtocolTables, Table};
 use super::settings::Settings;
-use crate::approx::{BoxedApproximator, Stacked};
+use crate::approx::{ApproxError, BoxedApproximator, InputBox, Stacked};
 use crate::config::ConfigError;
-use crate::control::coupled::CoupledLearner;
-use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
+use crate::control::coupled::{CoupledLearner, coupled_bounds};
+use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
 use crate::control::step_learner::StepLearner;
 use crate::control::step_parameter::{LearnSet, StepParameter};
 use crate::experiments::summary::{ExperimentResult, Summary};
@@ -26,16 +26,19 @@ pub type RunLearner = FootstepLearner<BoxedApproximator, Box<dyn LearningRule>>;
 /// A learner of a set of step parameters: one [`RunLearner`] per parameter.
 pub type RunStepLearner = StepLearner<BoxedApproximator, Box<dyn LearningRule>>;
 
-/// Builds a fresh, untrained learner of a run's approximator and rule with a learner config.
-pub type LearnerBuilder<'a> = dyn Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + 'a;
-
 /// The coupled learner of a run (both planes in one model): two of the run's approximators
 /// over both planes' inputs, one per output, and the run's rule for each plane.
 pub type CoupledRunLearner = CoupledLearner<Stacked<BoxedApproximator>, Box<dyn LearningRule>>;
 
-/// Builds a fresh, untrained coupled learner of a run's approximator and rule.
-pub type CoupledBuilder<'a> =
-    dyn Fn(LearnerConfig) -> Result<CoupledRunLearner, LearnerError> + Sync + 'a;
+/// What a run's learners are made of: its approximator and its rule, chosen by name. Each call
+/// gives a fresh one. Every learner of a run, whatever its shape, is assembled from these by
+/// [`RunContext`], so an experiment never builds a learner any other way.
+pub trait RunComponents: Sync {
+    /// A fresh, untrained approximator of the run over `bounds` (its input box).
+    fn approximator(&self, bounds: &InputBox) -> Result<BoxedApproximator, ApproxError>;
+    /// A fresh rule of the run.
+    fn rule(&self) -> Box<dyn LearningRule>;
+}
 
 /// What one run of an experiment is given.
 pub struct RunContext<'a> {
@@ -50,24 +53,55 @@ pub struct RunContext<'a> {
     pub approx: &'a str,
     /// The rule's registered name.
     pub rule: &'a str,
-    /// Builds a fresh, untrained learner of the run's approximator and rule with `config`, its
-    /// rule reseeded with the run's seed (so that a rule that explores explores differently per
-    /// seed, reproducibly).
-    pub learner: &'a LearnerBuilder<'a>,
-    /// Builds a fresh coupled learner (both planes in one model) of the run's approximator and
-    /// rule with `config`, its rules reseeded with the run's seed.
-    pub coupled_learner: &'a CoupledBuilder<'a>,
+    /// The run's approximator and rule, from which [`RunContext`]'s `make_*` methods build
+    /// every learner (each rule reseeded with the run's seed, so that a rule that explores
+    /// explores differently per seed, reproducibly).
+    pub components: &'a dyn RunComponents,
+}
+
+/// The box the learner's inputs are spread over ([`InputGrid::default`]'s): what a run's
+/// approximators are sized from.
+pub fn learner_bounds() -> Result<InputBox, ApproxError> {
+    InputGrid::default().input_box()
 }
 
 impl RunContext<'_> {
-    /// A fresh learner with the settings' learner config.
+    /// A fresh `step-x` learner with the settings' learner config.
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
-        (self.learner)(self.settings.learner)
+        self.make_learner_with(self.settings.learner)
     }
 
-    /// A fresh learner of `set` with the settings' learner config: for each parameter a
-    /// learner of the run's approximator, with the run's rule for `step-x` and `step-y` and
-    /// the LIPM step-time rule ([`StepTime`]) for `step-time`.
+    /// A fresh `step-x` learner with `config` (an experiment that compares learner settings).
+    pub fn make_learner_with(&self, config: LearnerConfig) -> Result<RunLearner, LearnerError> {
+        self.make_parameter_learner(StepParameter::StepX, config)
+    }
+
+    /// A fresh learner of one step parameter with `config`: the run's approximator over the
+    /// learner's inputs, the run's rule for `step-x` and `step-y` and the LIPM step-time rule
+    /// ([`StepTime`]) for `step-time`, the parameter's own settings
+    /// ([`LearnerConfig::offset`]).
+    pub fn make_parameter_learner(
+        &self,
+        parameter: StepParameter,
+        config: LearnerConfig,
+    ) -> Result<RunLearner, LearnerError> {
+        let approx_error = |source| LearnerError::Approx { applied: 0, source };
+        let bounds = learner_bounds().map_err(approx_error)?;
+        let approx = self
+            .components
+            .approximator(&bounds)
+            .map_err(approx_error)?;
+        let rule: Box<dyn LearningRule> = match parameter {
+            StepParameter::StepX | StepParameter::StepY => self.components.rule(),
+            StepParameter::StepTime => Box::new(StepTime::default()),
+        };
+        let mut learner = FootstepLearner::for_parameters(approx, [rule], [parameter], config)?;
+        learner.reseed(self.seed);
+        Ok(learner)
+    }
+
+    /// A fresh learner of `set` with the settings' learner config: one
+    /// [`Self::make_parameter_learner`] per parameter.
     pub fn make_learner_of(&self, set: LearnSet) -> Result<RunStepLearner, LearnerError> {
         let config = LearnerConfig {
             learn: set,
@@ -75,25 +109,7 @@ impl RunContext<'_> {
         };
         let learners = set
             .iter()
-            .map(|p| {
-                Ok((
-                    p,
-                    match p {
-                        StepParameter::StepX => (self.learner)(config)?,
-                        // The lateral G (a lean) is of the size of the sagittal dead zone.
-                        StepParameter::StepY => (self.learner)(LearnerConfig {
-                            dead_zone: 0.0,
-                            ..config
-                        })?,
-                        StepParameter::StepTime => {
-                            let rule: Box<dyn LearningRule> = Box::new(StepTime::default());
-                            let mut learner = (self.learner)(config)?.with_rule(rule);
-                            learner.reseed(self.seed);
-                            learner
-                        }
-                    },
-                ))
-            })
+            .map(|p| Ok((p, self.make_parameter_learner(p, config)?)))
             .collect::<Result<Vec<_>, LearnerError>>()?;
         StepLearner::new(learners)
     }
@@ -103,13 +119,20 @@ impl RunContext<'_> {
         self.make_learner_of(self.settings.learner.learn)
     }
 
-    /// A fresh coupled learner with the settings' learner config.
+    /// A fresh coupled learner (`step-x` and `step-y` from one model over both planes' inputs,
+    /// [`coupled_bounds`]) with the settings' learner config: two of the run's approximators
+    /// stacked, one per output, and a rule of the run for each plane.
     pub fn make_coupled_learner(&self) -> Result<CoupledRunLearner, LearnerError> {
-        // One dead zone serves both offsets; the lateral G is of the size of the sagittal one.
-        (self.coupled_learner)(LearnerConfig {
-            dead_zone: 0.0,
-            ..self.settings.learner
-        })
+        let approx_error = |source| LearnerError::Approx { applied: 0, source };
+        let bounds = learner_bounds()
+            .and_then(|b| coupled_bounds(&b))
+            .map_err(approx_error)?;
+        let head = || self.components.approximator(&bounds).map_err(approx_error);
+        let stacked = Stacked::new(vec![head()?, head()?]).map_err(approx_error)?;
+        let rules = [self.components.rule(), self.components.rule()];
+        let mut learner = CoupledLearner::new(stacked, rules, self.settings.learner)?;
+        learner.reseed(self.seed);
+        Ok(learner)
     }
 }
 

@@ -525,7 +525,9 @@ impl Experiment for Robustness {
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {
         let p: RobustnessProtocol = ctx.protocols.get(self.name())?;
         let p = &p;
-        let r = run(ctx.settings, p, ctx.seed, ctx.learner)?;
+        let r = run(ctx.settings, p, ctx.seed, &|config| {
+            ctx.make_learner_with(config)
+        })?;
         r.write(dir)?;
         Ok(r.summary_result())
     }

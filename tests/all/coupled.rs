@@ -351,3 +351,31 @@ fn max_step_error_and_the_nominal_fallback_act_on_the_coupled_learner_too() {
     // share is 0 and the offset is the nominal one exactly (with the zero fallback: 0).
     assert_eq!(df_far, df_nominal);
 }
+
+#[test]
+fn each_offset_takes_its_own_parameters_dead_zone() {
+    // The shared dead zone 0.15 covers both planes' G of 0.1; the step-y table (default: no
+    // dead zone) lets the lateral one through, so only the width learns.
+    let mut learner = coupled(LearnerConfig {
+        trust_region: None,
+        dead_zone: 0.15,
+        ..LearnerConfig::default()
+    });
+    assert_eq!(
+        learner.parameters(),
+        [StepParameter::StepX, StepParameter::StepY]
+    );
+    let x = at(SAGITTAL, LATERAL);
+    let [df_before, dw_before] = learner.predict(&x).unwrap();
+    learner.query(SAGITTAL, LATERAL).unwrap();
+    let [s, l] = learner
+        .touch_down([&outcome(0.1, 0.0), &outcome(0.1, 0.0)])
+        .unwrap();
+    assert!(s.gradient > 0.1 - 1e-9 && l.gradient > 0.1 - 1e-9);
+    let [df, dw] = learner.predict(&x).unwrap();
+    assert!(dw > dw_before + 1e-4, "dW {dw_before} -> {dw}");
+    assert!(
+        (df - df_before).abs() < 0.01 * (dw - dw_before),
+        "dF {df_before} -> {df}"
+    );
+}

@@ -1029,3 +1029,166 @@ fn new_learner_settings_are_validated() {
         assert!(matches!(err, LearnerError::InvalidConfig { .. }), "{err}");
     }
 }
+
+#[test]
+fn a_parameter_table_sets_its_offset_apart_from_the_shared_settings() {
+    use steplearn::control::learner::ParameterSettings;
+    use steplearn::control::step_parameter::StepParameter;
+    let x = input(0.0, 0.0, 0.0);
+    // Shared: dead zone 0.1, eta 1. The step-x table: no dead zone, eta 0.5.
+    let cfg = LearnerConfig {
+        dead_zone: 0.1,
+        step_x: ParameterSettings {
+            dead_zone: Some(0.0),
+            eta: Some(0.5),
+            ..ParameterSettings::default()
+        },
+        ..LearnerConfig::literal()
+    };
+    let learned = |parameter: StepParameter| {
+        let mut learner = FootstepLearner::for_parameters(
+            BinTable::new([10, 8, 6], 1.0),
+            [Fixed(0.3, AtomicUsize::new(0))],
+            [parameter],
+            cfg,
+        )
+        .unwrap();
+        assert_eq!(learner.parameter(), parameter);
+        learner.query(x).unwrap();
+        learner.touch_down(&StepOutcome::default()).unwrap();
+        learner.predict(x).unwrap()
+    };
+    // step-x: 0.5 * 0.3; step-time (no table): 1 * (0.3 - 0.1); step-y: its default table
+    // has no dead zone, 1 * 0.3.
+    assert!((learned(StepParameter::StepX) - 0.15).abs() < 1e-12);
+    assert!((learned(StepParameter::StepTime) - 0.2).abs() < 1e-12);
+    assert!((learned(StepParameter::StepY) - 0.3).abs() < 1e-12);
+    // `new` is the paper's step-x; `as_parameter` switches to another parameter's settings.
+    let mut switched = FootstepLearner::new(
+        BinTable::new([10, 8, 6], 1.0),
+        Fixed(0.3, AtomicUsize::new(0)),
+        cfg,
+    )
+    .unwrap()
+    .as_parameter(StepParameter::StepTime);
+    switched.query(x).unwrap();
+    switched.touch_down(&StepOutcome::default()).unwrap();
+    assert!((switched.predict(x).unwrap() - 0.2).abs() < 1e-12);
+}
+
+#[test]
+fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
+    use steplearn::control::learner::ParameterSettings;
+    let cases = [
+        (
+            "step-time.eta",
+            LearnerConfig {
+                step_time: ParameterSettings {
+                    eta: Some(-1.0),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+        (
+            "step-y.leakage",
+            LearnerConfig {
+                step_y: ParameterSettings {
+                    leakage: Some(1.0),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+        (
+            "step-x.dead_zone",
+            LearnerConfig {
+                step_x: ParameterSettings {
+                    dead_zone: Some(f64::NAN),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+        (
+            "step-x.max_offset",
+            LearnerConfig {
+                step_x: ParameterSettings {
+                    max_offset: Some(0.0),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+    ];
+    for (key, cfg) in cases {
+        match cfg.check() {
+            Err(LearnerError::InvalidConfig { param, .. }) => assert_eq!(param, key),
+            other => panic!("{key}: expected a refusal, got {other:?}"),
+        }
+        assert!(
+            FootstepLearner::new(table(), PendulumCart::default(), cfg).is_err(),
+            "{key}: a learner was built"
+        );
+    }
+}
+
+#[test]
+fn parameter_tables_read_from_toml_and_a_default_config_writes_none() {
+    use steplearn::control::step_parameter::StepParameter;
+    let written = toml::to_string(&LearnerConfig::default()).unwrap();
+    assert!(!written.contains("step-"), "{written}");
+    let cfg: LearnerConfig =
+        toml::from_str("dead_zone = 0.06\n[step-time]\neta = 0.5\nleakage = 0.1\n").unwrap();
+    let time = cfg.offset(StepParameter::StepTime);
+    assert_eq!((time.eta, time.dead_zone, time.leakage), (0.5, 0.06, 0.1));
+    assert_eq!(cfg.offset(StepParameter::StepX).dead_zone, 0.06);
+    assert_eq!(cfg.offset(StepParameter::StepY).dead_zone, 0.0);
+    let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
+    assert_eq!(back, cfg);
+    let unknown = toml::from_str::<LearnerConfig>("[step-time]\nmax_gain = 0.1\n");
+    assert!(
+        unknown.unwrap_err().to_string().contains("max_gain"),
+        "a learner-wide key in a parameter's table is refused"
+    );
+}
+
+#[test]
+fn checked_settings_hold_every_value_in_its_group() {
+    use steplearn::control::step_parameter::StepParameter;
+    let cfg = LearnerConfig {
+        max_gain: Some(0.3),
+        anti_windup: false,
+        learn_from_falls: false,
+        fall_theta_limit: 0.2,
+        trust_region: Some(1.5),
+        trust_fallback: TrustFallback::Nominal,
+        max_step_error: Some(0.04),
+        max_samples_per_step: 64,
+        train_share: 0.5,
+        eta: 0.7,
+        ..LearnerConfig::default()
+    };
+    let c = cfg.check().unwrap();
+    assert_eq!(
+        (c.guard().max_gain, c.guard().anti_windup),
+        (Some(0.3), false)
+    );
+    assert_eq!((c.falls().learn, c.falls().theta_limit), (false, 0.2));
+    assert_eq!(
+        (
+            c.trust().region,
+            c.trust().fallback,
+            c.trust().max_step_error
+        ),
+        (Some(1.5), TrustFallback::Nominal, Some(0.04))
+    );
+    assert_eq!(
+        (c.memory().max_samples_per_step, c.memory().train_share),
+        (64, 0.5)
+    );
+    assert_eq!(c.offset(StepParameter::StepTime).eta, 0.7);
+    assert_eq!(c.prior(), cfg.prior);
+    let learner = FootstepLearner::new(table(), PendulumCart::default(), cfg).unwrap();
+    assert_eq!(learner.settings(), &c);
+}

@@ -228,3 +228,35 @@ fn a_checkpoint_whose_step_does_not_fit_its_learner_is_refused() {
     assert!(Learner::load(&path, PendulumCart::default()).is_err());
     assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
 }
+
+#[test]
+fn a_checkpoint_keeps_the_parameter_its_learner_learns() {
+    use steplearn::control::step_parameter::StepParameter;
+    let approx = || {
+        ApproxKind::Lwpr
+            .build(&InputGrid::default().input_box().unwrap())
+            .unwrap()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("learner.json");
+    let time = FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default())
+        .unwrap()
+        .as_parameter(StepParameter::StepTime);
+    time.save(&path).unwrap();
+    assert!(
+        std::fs::read_to_string(&path)
+            .unwrap()
+            .contains("\"step-time\"")
+    );
+    let loaded: FootstepLearner<AnyApproximator, PendulumCart> =
+        FootstepLearner::load(&path, PendulumCart::default()).unwrap();
+    assert_eq!(loaded.parameter(), StepParameter::StepTime);
+    assert_eq!(
+        loaded.settings().offset(StepParameter::StepTime),
+        time.settings().offset(StepParameter::StepTime)
+    );
+    // The paper's step-x is left out of the file, so files from before read as step-x.
+    let paper =
+        FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default()).unwrap();
+    assert!(!json(&paper.checkpoint()).contains("\"parameter\""));
+}

@@ -1,0 +1,620 @@
+//! The learner's settings: [`LearnerConfig`] as a config file writes it (`[settings.learner]`,
+//! flat keys, with a table per learned parameter for the settings a parameter may change), and
+//! [`CheckedLearnerConfig`], the same settings checked once ([`LearnerConfig::check`]) and
+//! grouped by the safeguard they belong to. A learner holds only checked settings.
+
+use super::learner_error::LearnerError;
+use super::step_parameter::{LearnSet, StepParameter};
+use serde::{Deserialize, Serialize};
+
+/// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
+pub const LEARNER_INPUTS: usize = 3;
+
+/// One query point of the learner.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LearnerInput {
+    /// Trunk deviation angle theta_E (rad).
+    pub theta_e: f64,
+    /// Its rate theta_E_dot (rad/s).
+    pub theta_e_dot: f64,
+    /// Reference step size F_R (m).
+    pub f_r: f64,
+}
+
+impl LearnerInput {
+    /// The input at (theta_E, theta_E_dot, F_R).
+    pub fn new(theta_e: f64, theta_e_dot: f64, f_r: f64) -> Self {
+        LearnerInput {
+            theta_e,
+            theta_e_dot,
+            f_r,
+        }
+    }
+
+    /// The input as the approximator sees it: `[theta_E, theta_E_dot, F_R]`.
+    pub fn to_array(self) -> [f64; LEARNER_INPUTS] {
+        [self.theta_e, self.theta_e_dot, self.f_r]
+    }
+}
+
+/// Settings of the learner.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LearnerConfig {
+    /// Learning rate eta of eq. (6) (paper: 1). Must be finite and > 0.
+    pub eta: f64,
+    /// At most this many inputs are kept per step (>= 2). When the buffer is full, every
+    /// second sample is dropped and only every second later query is recorded (the stride
+    /// doubles), so the kept samples stay evenly spread over the whole step and memory is
+    /// bounded whatever the tick rate and step duration. A step of n ticks keeps between
+    /// `max_samples_per_step / 2` and `max_samples_per_step` samples once n exceeds the bound;
+    /// all of them otherwise. Default 128 (every tick of a 0.5 s step at 250 Hz).
+    pub max_samples_per_step: usize,
+    /// If set, the offset returned by [`FootstepLearner::query`] is clamped to +-this (m);
+    /// training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
+    pub max_offset: Option<f64>,
+    /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
+    /// unit of G (see [`TouchDownReport::gain`] and the module docs for the limit). If the
+    /// approximator's response to the full step eta G would exceed it, the step is scaled down
+    /// and applied again to the approximator as it was. `None` turns the guard off (eq. 6 as
+    /// written). Default 0.2. Must be finite and > 0.
+    pub max_gain: Option<f64>,
+    /// Anti-windup (conditional integration): a training target never goes further past an end
+    /// of the offsets that could still change the step at that tick than the prediction already
+    /// is (the reach told by [`FootstepLearner::set_reach`]: on the walker, the step range minus
+    /// the analytic step). Default on.
+    pub anti_windup: bool,
+    /// Learn from a step that ended in a fall ([`FootstepLearner::fall`]): the step in
+    /// progress at the fall is treated as if it had touched down, with theta_E clamped to
+    /// +-`fall_theta_limit`. On by default: the paper's robot "learned from this experience"
+    /// when its first pushes made it fall (both ways are compared in `docs/learner.md`).
+    pub learn_from_falls: bool,
+    /// |theta_E| and |theta_E_dot| / 10 at a fall are clamped to this before the rule sees them
+    /// (rad, finite, > 0; default 0.3): past the fall threshold the angle says nothing more.
+    pub fall_theta_limit: f64,
+    /// The prior held from the start: dF = 0, trained into the approximator at
+    /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`].
+    pub prior: Prior,
+    /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
+    /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
+    /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0 (eq. 6).
+    /// A run's `step-x` and `step-time` learners take it from the settings (default there:
+    /// about the model's median |G| stepping undisturbed, docs/learner.md); its `step-y`
+    /// learner, whose lateral G is of that size, and the coupled learner learn without it.
+    pub dead_zone: f64,
+    /// Leakage (sigma-modification): each target is pulled back towards the prior dF = 0 by
+    /// this share of the current prediction, `F + eta G - leakage F`, so offsets that G stops
+    /// asking for decay. In [0, 1); default 0 (eq. 6).
+    pub leakage: f64,
+    /// If set, a touch-down teaches nothing (the step is discarded) when the step error
+    /// without the learner's part, |F_E - dF| with dF the offset of the step's last query,
+    /// exceeds this (m): a step the model itself missed by that much was disturbed (a push, a
+    /// reference change), and the rule's saturated tracking term only winds the offset up
+    /// there. Errors the learner's own offset causes still teach. Finite and > 0; default
+    /// none (eq. 6 learns from every step).
+    pub max_step_error: Option<f64>,
+    /// If set (k > 0), the learner acts only where it has learned: the offset is applied in
+    /// full where every input lies within k standard deviations of the mean of the inputs it
+    /// was trained at, fades linearly to 0 at 1.5 k and is 0 beyond (the model alone decides
+    /// in states the learner never learned from). Default 2: without it the offset learned
+    /// walking reaches the catch steps after pushes (docs/learner.md has what that cost).
+    pub trust_region: Option<f64>,
+    /// What the offset fades to outside the trust region (default [`TrustFallback::Zero`]).
+    pub trust_fallback: TrustFallback,
+    /// Share of a step's recorded inputs that are trained at touch-down: the latest ones
+    /// (in (0, 1]; default 1, eq. 6: every input of the step). The swing foot lands where the
+    /// last commands put it (the generator filters the commanded placement over 0.05 s), so
+    /// offsets queried early in a step barely move the step that G measures.
+    pub train_share: f64,
+    /// The step parameters a walker's learner learns, each with a learner of these settings
+    /// ([`StepLearner`](super::step_learner::StepLearner)); default the paper's `step-x`
+    /// (left out of written configs).
+    #[serde(skip_serializing_if = "LearnSet::is_paper")]
+    pub learn: LearnSet,
+    /// `[settings.learner.step-x]`: what the `step-x` offset changes of the settings above
+    /// (default: nothing).
+    #[serde(rename = "step-x", skip_serializing_if = "ParameterSettings::is_empty")]
+    pub step_x: ParameterSettings,
+    /// `[settings.learner.step-y]`: what the `step-y` offset changes. Default `dead_zone = 0`:
+    /// the lateral G (a lean) is of the size of the sagittal dead zone. A table given in a
+    /// config replaces this default as a whole.
+    #[serde(
+        rename = "step-y",
+        skip_serializing_if = "ParameterSettings::is_default_step_y"
+    )]
+    pub step_y: ParameterSettings,
+    /// `[settings.learner.step-time]`: what the `step-time` offset changes (default: nothing).
+    #[serde(
+        rename = "step-time",
+        skip_serializing_if = "ParameterSettings::is_empty"
+    )]
+    pub step_time: ParameterSettings,
+}
+
+/// The settings one learned parameter may set apart from the others
+/// (`[settings.learner.step-x]`, `[settings.learner.step-y]`, `[settings.learner.step-time]`):
+/// each key given replaces `[settings.learner]`'s value for that parameter's offset; a key left
+/// out keeps it. They are the settings that act on one offset (its rate, dead zone, leakage and
+/// clamp); the rest act on the whole learner (one approximator, one trust region, one guard).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ParameterSettings {
+    /// The offset's learning rate eta.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eta: Option<f64>,
+    /// The dead zone on the offset's gradient.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dead_zone: Option<f64>,
+    /// The offset's leakage.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub leakage: Option<f64>,
+    /// The clamp on the offset's query.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_offset: Option<f64>,
+}
+
+impl ParameterSettings {
+    /// Nothing set apart.
+    pub fn is_empty(&self) -> bool {
+        *self == ParameterSettings::default()
+    }
+
+    /// The `step-y` offset's default: no dead zone.
+    pub fn default_step_y() -> Self {
+        ParameterSettings {
+            dead_zone: Some(0.0),
+            ..ParameterSettings::default()
+        }
+    }
+
+    /// Whether this is [`Self::default_step_y`] (left out of a written config).
+    pub fn is_default_step_y(&self) -> bool {
+        *self == Self::default_step_y()
+    }
+}
+
+/// The settings of one learned offset, resolved ([`LearnerConfig::offset`]): the learner-wide
+/// value unless the parameter's table sets its own.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OffsetSettings {
+    /// Learning rate eta of eq. (6), finite and > 0.
+    pub eta: f64,
+    /// Dead zone on G, finite and >= 0.
+    pub dead_zone: f64,
+    /// Leakage, in [0, 1).
+    pub leakage: f64,
+    /// Clamp on the queried offset, finite and > 0 if set.
+    pub max_offset: Option<f64>,
+}
+
+/// The gain guard and anti-windup: what bounds one touch-down's update.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GuardSettings {
+    /// The largest learning gain one touch-down may apply (finite and > 0; none: unguarded).
+    pub max_gain: Option<f64>,
+    /// Conditional integration against each offset's reach.
+    pub anti_windup: bool,
+}
+
+/// Learning from a step that ended in a fall.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FallSettings {
+    /// Whether a fall teaches.
+    pub learn: bool,
+    /// The clamp on |theta_E| at a fall (rad, finite and > 0).
+    pub theta_limit: f64,
+}
+
+/// Where the learner acts and which steps teach it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TrustSettings {
+    /// Trust region in standard deviations of the trained inputs (finite and > 0; none: the
+    /// offset acts everywhere).
+    pub region: Option<f64>,
+    /// What the offset fades to outside it.
+    pub fallback: TrustFallback,
+    /// A touch-down the model missed by more than this (m) teaches nothing.
+    pub max_step_error: Option<f64>,
+}
+
+/// What the learner remembers of a step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MemorySettings {
+    /// Inputs kept per step, in [2, [`MAX_SAMPLES_PER_STEP`]].
+    pub max_samples_per_step: usize,
+    /// Share of a step's recorded inputs trained at touch-down, in (0, 1].
+    pub train_share: f64,
+}
+
+/// A [`LearnerConfig`] that [`LearnerConfig::check`] accepted, grouped by what each setting
+/// does. Only `check` makes one, so a learner that holds one holds valid settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CheckedLearnerConfig {
+    pub(crate) offsets: [OffsetSettings; StepParameter::ALL.len()],
+    pub(crate) guard: GuardSettings,
+    pub(crate) falls: FallSettings,
+    pub(crate) trust: TrustSettings,
+    pub(crate) memory: MemorySettings,
+    pub(crate) prior: Prior,
+    pub(crate) learn: LearnSet,
+}
+
+impl CheckedLearnerConfig {
+    /// The settings of `parameter`'s offset.
+    pub fn offset(&self, parameter: StepParameter) -> OffsetSettings {
+        self.offsets[parameter.index()]
+    }
+
+    /// The gain guard and anti-windup.
+    pub fn guard(&self) -> GuardSettings {
+        self.guard
+    }
+
+    /// Learning from falls.
+    pub fn falls(&self) -> FallSettings {
+        self.falls
+    }
+
+    /// The trust region and the step-error filter.
+    pub fn trust(&self) -> TrustSettings {
+        self.trust
+    }
+
+    /// The per-step memory.
+    pub fn memory(&self) -> MemorySettings {
+        self.memory
+    }
+
+    /// The prior.
+    pub fn prior(&self) -> Prior {
+        self.prior
+    }
+
+    /// The learned step parameters.
+    pub fn learn(&self) -> LearnSet {
+        self.learn
+    }
+}
+
+/// What the learned offset fades to where the trust region does not cover the input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, strum::Display)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum TrustFallback {
+    /// dF = 0: the model alone decides in states the learner never learned from.
+    #[default]
+    Zero,
+    /// The offset learned at the nominal state: the prediction at the mean trained theta_E
+    /// and theta_E_dot, with F_R clamped into the trust region. A steady correction of a
+    /// model error (a leg that under-reaches) is kept after a push, while the state-dependent
+    /// part is used only near the data.
+    Nominal,
+}
+
+/// The most samples a prior may hold (each trains the approximator once at construction).
+pub const MAX_PRIOR_SAMPLES: usize = 1_000_000;
+
+/// The most samples the learner may record in one step (its memory per step is this many
+/// inputs).
+pub const MAX_SAMPLES_PER_STEP: usize = 100_000;
+
+/// The learner's initial belief dF = 0, trained into the approximator before any step so
+/// that it holds it with confidence (an untrained LWPR moves nearly all the way to its first
+/// targets, which makes eq. 6 at eta = 1 unstable; see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Prior {
+    /// Number of samples (0: no prior, the approximator starts as built; at most
+    /// [`MAX_PRIOR_SAMPLES`]).
+    pub samples: usize,
+    /// Lower corner of the box the samples cover.
+    pub lo: LearnerInput,
+    /// Upper corner.
+    pub hi: LearnerInput,
+}
+
+impl Default for Prior {
+    /// 1000 points of a Halton sequence over theta_E in [-0.3, 0.3] rad, theta_E_dot in
+    /// [-1.5, 1.5] rad/s and F_R in [-0.1, 0.2] m: the states the walker meets without pushes.
+    fn default() -> Self {
+        Prior {
+            samples: 1000,
+            lo: LearnerInput::new(-0.3, -1.5, -0.1),
+            hi: LearnerInput::new(0.3, 1.5, 0.2),
+        }
+    }
+}
+
+impl Prior {
+    /// No prior: the approximator starts as built.
+    pub fn none() -> Self {
+        Prior {
+            samples: 0,
+            ..Prior::default()
+        }
+    }
+
+    /// The `i`-th point of the prior (Halton sequence, bases 2, 3, 5, scaled to the box).
+    pub fn point(&self, i: usize) -> [f64; LEARNER_INPUTS] {
+        self.point_of(i)
+    }
+
+    /// The `i`-th point of the prior over `I` inputs (at most [`MAX_OFFSET_INPUTS`]), each
+    /// group of three spread over the box: Halton, one prime base per input (2, 3, 5, 7, ...).
+    pub(crate) fn point_of<const I: usize>(&self, i: usize) -> [f64; I] {
+        let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
+        std::array::from_fn(|a| {
+            let (l, h) = (lo[a % LEARNER_INPUTS], hi[a % LEARNER_INPUTS]);
+            l + (h - l) * radical_inverse(i + 1, HALTON_BASES[a])
+        })
+    }
+}
+
+/// The van der Corput radical inverse of `i` in `base`, in [0, 1).
+pub(crate) fn radical_inverse(mut i: usize, base: usize) -> f64 {
+    let (mut inv, mut f) = (0.0, 1.0 / base as f64);
+    while i > 0 {
+        inv += (i % base) as f64 * f;
+        i /= base;
+        f /= base as f64;
+    }
+    inv
+}
+
+impl Default for LearnerConfig {
+    /// eta = 1, 128 samples per step, no output clamp, gain guard 0.2, anti-windup on,
+    /// learning from falls, the default [`Prior`], no dead zone, trust region 2 (the
+    /// experiments' settings add a dead zone, [`crate::experiments::settings::DEFAULT_DEAD_ZONE`]).
+    fn default() -> Self {
+        LearnerConfig {
+            eta: 1.0,
+            max_samples_per_step: 128,
+            max_offset: None,
+            max_gain: Some(0.2),
+            anti_windup: true,
+            learn_from_falls: true,
+            fall_theta_limit: 0.3,
+            prior: Prior::default(),
+            dead_zone: 0.0,
+            leakage: 0.0,
+            max_step_error: None,
+            trust_region: Some(2.0),
+            trust_fallback: TrustFallback::Zero,
+            train_share: 1.0,
+            learn: LearnSet::default(),
+            step_x: ParameterSettings::default(),
+            step_y: ParameterSettings::default_step_y(),
+            step_time: ParameterSettings::default(),
+        }
+    }
+}
+
+impl LearnerConfig {
+    /// Eq. (6) as written: no gain guard, no anti-windup, no prior (the approximator starts as
+    /// built), no trust region, no dead zone, no learning from falls, eta = 1. On the humanoid
+    /// this learner is unstable (see the module docs).
+    pub fn literal() -> Self {
+        LearnerConfig {
+            max_gain: None,
+            anti_windup: false,
+            prior: Prior::none(),
+            trust_region: None,
+            dead_zone: 0.0,
+            learn_from_falls: false,
+            ..LearnerConfig::default()
+        }
+    }
+
+    /// Checks every field ([`Self::check`] without keeping the result).
+    pub fn validate(&self) -> Result<(), LearnerError> {
+        self.check().map(|_| ())
+    }
+
+    /// The table of settings `parameter` sets apart.
+    pub fn parameter_settings(&self, parameter: StepParameter) -> &ParameterSettings {
+        match parameter {
+            StepParameter::StepX => &self.step_x,
+            StepParameter::StepY => &self.step_y,
+            StepParameter::StepTime => &self.step_time,
+        }
+    }
+
+    /// The settings of `parameter`'s offset: `[settings.learner]`'s, with what the parameter's
+    /// table sets apart (not checked; see [`Self::check`]).
+    pub fn offset(&self, parameter: StepParameter) -> OffsetSettings {
+        let own = self.parameter_settings(parameter);
+        OffsetSettings {
+            eta: own.eta.unwrap_or(self.eta),
+            dead_zone: own.dead_zone.unwrap_or(self.dead_zone),
+            leakage: own.leakage.unwrap_or(self.leakage),
+            max_offset: own.max_offset.or(self.max_offset),
+        }
+    }
+
+    /// Checks every setting, each parameter's table included, once, and groups them into the
+    /// values a learner holds.
+    pub fn check(&self) -> Result<CheckedLearnerConfig, LearnerError> {
+        self.check_shared()?;
+        let mut offsets = [self.offset(StepParameter::StepX); StepParameter::ALL.len()];
+        for p in StepParameter::ALL {
+            let o = self.offset(p);
+            check_offset(p, &o)?;
+            offsets[p.index()] = o;
+        }
+        Ok(CheckedLearnerConfig {
+            offsets,
+            guard: GuardSettings {
+                max_gain: self.max_gain,
+                anti_windup: self.anti_windup,
+            },
+            falls: FallSettings {
+                learn: self.learn_from_falls,
+                theta_limit: self.fall_theta_limit,
+            },
+            trust: TrustSettings {
+                region: self.trust_region,
+                fallback: self.trust_fallback,
+                max_step_error: self.max_step_error,
+            },
+            memory: MemorySettings {
+                max_samples_per_step: self.max_samples_per_step,
+                train_share: self.train_share,
+            },
+            prior: self.prior,
+            learn: self.learn,
+        })
+    }
+
+    /// The learner-wide checks.
+    fn check_shared(&self) -> Result<(), LearnerError> {
+        if !(self.eta.is_finite() && self.eta > 0.0) {
+            return Err(LearnerError::config(
+                "eta",
+                format!("must be finite and > 0, got {}", self.eta),
+            ));
+        }
+        if !(2..=MAX_SAMPLES_PER_STEP).contains(&self.max_samples_per_step) {
+            return Err(LearnerError::config(
+                "max_samples_per_step",
+                format!(
+                    "must be in [2, {MAX_SAMPLES_PER_STEP}], got {}",
+                    self.max_samples_per_step
+                ),
+            ));
+        }
+        if self.prior.samples > MAX_PRIOR_SAMPLES {
+            return Err(LearnerError::config(
+                "prior.samples",
+                format!(
+                    "must be at most {MAX_PRIOR_SAMPLES}, got {}",
+                    self.prior.samples
+                ),
+            ));
+        }
+        for (name, v) in [
+            ("max_offset", self.max_offset),
+            ("max_gain", self.max_gain),
+            ("max_step_error", self.max_step_error),
+            ("trust_region", self.trust_region),
+        ] {
+            if let Some(m) = v
+                && !(m.is_finite() && m > 0.0)
+            {
+                return Err(LearnerError::config(
+                    name,
+                    format!("must be finite and > 0, got {m}"),
+                ));
+            }
+        }
+        if !(self.fall_theta_limit.is_finite() && self.fall_theta_limit > 0.0) {
+            return Err(LearnerError::config(
+                "fall_theta_limit",
+                format!("must be finite and > 0, got {}", self.fall_theta_limit),
+            ));
+        }
+        if !(self.dead_zone.is_finite() && self.dead_zone >= 0.0) {
+            return Err(LearnerError::config(
+                "dead_zone",
+                format!("must be finite and >= 0, got {}", self.dead_zone),
+            ));
+        }
+        if !(self.train_share > 0.0 && self.train_share <= 1.0) {
+            return Err(LearnerError::config(
+                "train_share",
+                format!("must be in (0, 1], got {}", self.train_share),
+            ));
+        }
+        if !(self.leakage >= 0.0 && self.leakage < 1.0) {
+            return Err(LearnerError::config(
+                "leakage",
+                format!("must be in [0, 1), got {}", self.leakage),
+            ));
+        }
+        let (lo, hi) = (self.prior.lo.to_array(), self.prior.hi.to_array());
+        for (axis, name) in ["prior.theta_e", "prior.theta_e_dot", "prior.f_r"]
+            .into_iter()
+            .enumerate()
+        {
+            check_range(name, lo[axis], hi[axis], 1)?;
+        }
+        Ok(())
+    }
+}
+
+pub(crate) fn check_range(
+    param: &'static str,
+    lo: f64,
+    hi: f64,
+    n: usize,
+) -> Result<(), LearnerError> {
+    if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+        return Err(LearnerError::config(
+            param,
+            format!("needs finite bounds with lo <= hi, got [{lo}, {hi}]"),
+        ));
+    }
+    if n == 0 {
+        return Err(LearnerError::config(param, "needs at least 1 point"));
+    }
+    Ok(())
+}
+
+/// Bases of the Halton sequence the prior is spread over, one per input (the first primes).
+const HALTON_BASES: [usize; MAX_OFFSET_INPUTS] = [2, 3, 5, 7, 11, 13, 17, 19, 23];
+
+/// Most inputs an [`OffsetLearner`] takes: three per learned plane or parameter.
+pub const MAX_OFFSET_INPUTS: usize = 9;
+/// Checks one offset's resolved settings; an error names the parameter's table where the value
+/// came from it.
+fn check_offset(parameter: StepParameter, o: &OffsetSettings) -> Result<(), LearnerError> {
+    const KEYS: [[&str; 4]; 3] = [
+        [
+            "step-x.eta",
+            "step-x.dead_zone",
+            "step-x.leakage",
+            "step-x.max_offset",
+        ],
+        [
+            "step-y.eta",
+            "step-y.dead_zone",
+            "step-y.leakage",
+            "step-y.max_offset",
+        ],
+        [
+            "step-time.eta",
+            "step-time.dead_zone",
+            "step-time.leakage",
+            "step-time.max_offset",
+        ],
+    ];
+    let keys = KEYS[parameter.index()];
+    let name = |k: usize| keys[k];
+    if !(o.eta.is_finite() && o.eta > 0.0) {
+        return Err(LearnerError::config(
+            name(0),
+            format!("must be finite and > 0, got {}", o.eta),
+        ));
+    }
+    if !(o.dead_zone.is_finite() && o.dead_zone >= 0.0) {
+        return Err(LearnerError::config(
+            name(1),
+            format!("must be finite and >= 0, got {}", o.dead_zone),
+        ));
+    }
+    if !(o.leakage >= 0.0 && o.leakage < 1.0) {
+        return Err(LearnerError::config(
+            name(2),
+            format!("must be in [0, 1), got {}", o.leakage),
+        ));
+    }
+    if let Some(m) = o.max_offset
+        && !(m.is_finite() && m > 0.0)
+    {
+        return Err(LearnerError::config(
+            name(3),
+            format!("must be finite and > 0, got {m}"),
+        ));
+    }
+    Ok(())
+}
