@@ -87,8 +87,6 @@ fn find<'a, T>(what: &str, entries: &'a [(String, T)], name: &str) -> Result<&'a
         })
 }
 
-/// The learner's input box (theta_E, theta_E_dot, F_R), which approximator factories receive.
-
 impl Registry {
     /// An empty registry.
     pub fn new() -> Self {
