@@ -7,14 +7,14 @@
 //! in progress. A policy answers for the parameters it [`learns`](FootstepPolicy::learns) and
 //! ignores the others. The inputs and outcomes of the step parameters:
 //!
-//! - [`StepParameter::StepX`] and [`StepParameter::StepTime`]: the sagittal plane, input
+//! - `step-x` and `step-time`: the sagittal plane, input
 //!   `(theta_E, theta_E_dot, F_R)`, outcome `(theta_E, theta_E_dot, F_E, F_R)` (eq. 1-2);
-//! - [`StepParameter::StepY`]: the frontal plane mirrored to the swing leg's side, input
+//! - `step-y`: the frontal plane mirrored to the swing leg's side, input
 //!   `(lean, lean rate, W_R - 2 delta)`, outcome the lean, its rate and the width error
 //!   `W - W_R` (see [`Walker`](super::walker::Walker)).
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
-use super::step_parameter::{LearnSet, PerParameter, StepParameter};
+use super::step_parameter::{LearnSet, PerParameter};
 use crate::approx::FunctionApproximator;
 use crate::rules::{LearningRule, StepOutcome};
 
@@ -52,32 +52,36 @@ pub trait FootstepPolicy {
 }
 
 impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for FootstepLearner<A, R> {
+    /// The learner's own parameter ([`FootstepLearner::parameter`]).
+    fn learns(&self) -> LearnSet {
+        LearnSet::of(&[self.parameter()]).expect("one parameter")
+    }
     fn offsets(
         &mut self,
         inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
+        let p = self.parameter();
         let mut out = PerParameter::default();
-        out[StepParameter::StepX] = self.query(inputs[StepParameter::StepX])?;
+        out[p] = self.query(inputs[p])?;
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
-        let [lo, hi] = reach[StepParameter::StepX];
+        let [lo, hi] = reach[self.parameter()];
         FootstepLearner::set_reach(self, lo, hi)
     }
     fn touch_down(
         &mut self,
         outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
+        let p = self.parameter();
         let mut out = StepReports::default();
-        out[StepParameter::StepX] = Some(FootstepLearner::touch_down(
-            self,
-            &outcomes[StepParameter::StepX],
-        )?);
+        out[p] = Some(FootstepLearner::touch_down(self, &outcomes[p])?);
         Ok(out)
     }
     fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
+        let p = self.parameter();
         let mut out = StepReports::default();
-        out[StepParameter::StepX] = FootstepLearner::fall(self, &outcomes[StepParameter::StepX])?;
+        out[p] = FootstepLearner::fall(self, &outcomes[p])?;
         Ok(out)
     }
     fn discard_step(&mut self) {
