@@ -397,3 +397,29 @@ fn custom_results_round_trip_and_cannot_pose_as_built_ins() {
     assert!(clash.to_json().is_err());
     assert!(CustomResult::new("probe", &3.0).is_err(), "not an object");
 }
+
+#[test]
+fn the_registrys_built_in_rules_are_the_rule_kinds_with_their_defaults() {
+    use steplearn::Named;
+    use steplearn::rules::{RuleConfig, RuleKind, StepOutcome};
+    use strum::VariantArray;
+    let registry = Registry::builtin();
+    let kinds: Vec<&str> = RuleKind::VARIANTS.iter().map(|k| k.name()).collect();
+    assert_eq!(registry.rule_names(), kinds);
+    // Each builds the kind's default rule: the same gradient on a step.
+    let step = StepOutcome {
+        theta_e: 0.07,
+        theta_e_dot: -0.3,
+        f_e: 0.02,
+        f_r: 0.1,
+    };
+    let settings = steplearn::experiments::settings::LwprSettings::default();
+    for kind in RuleKind::VARIANTS {
+        let learner = registry
+            .learner_builder("lwpr", kind.name(), &settings)
+            .unwrap()(steplearn::control::learner::LearnerConfig::default())
+        .unwrap();
+        let expected = RuleConfig::from(*kind).build().unwrap().gradient(&step);
+        assert_eq!(learner.rule().gradient(&step), expected, "{kind}");
+    }
+}
