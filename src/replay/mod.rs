@@ -39,7 +39,9 @@ pub const FRAME_S: f64 = 0.02;
 #[derive(Debug, Error)]
 pub enum ReplayError {
     /// The run directory or its `run-config.toml` is missing.
-    #[error("{0}: no run here (no {IDENTITY_FILE}; give the directory `steplearn experiment --out` wrote)")]
+    #[error(
+        "{0}: no run here (no {IDENTITY_FILE}; give the directory `steplearn experiment --out` wrote)"
+    )]
     MissingRun(PathBuf),
     /// The run's `run-config.toml` cannot be read or parsed.
     #[error("{path}: not a run configuration: {reason}")]
@@ -228,7 +230,10 @@ fn replay_robustness(
         impulse: protocol.impulse,
         direction: protocol.direction,
         window_s: settings.push_window_s,
-        walks: vec![learned.finish("learned"), without.finish("no learning (dF = 0)")],
+        walks: vec![
+            learned.finish("learned"),
+            without.finish("no learning (dF = 0)"),
+        ],
     })
 }
 

@@ -40,7 +40,7 @@ function main() {
   const bones = [[0, 1], [1, 2], [0, 3], [3, 4], [4, 5], [5, 6], [6, 7], [5, 7],
     [0, 8], [8, 9], [9, 10], [10, 11], [11, 12], [10, 12]];
   const up = new THREE.Vector3(0, 1, 0);
-  const spacing = 0.8;
+  const spacing = 1.0;
   let overlaid = false;
 
   const actors = walks.map((w, i) => {
@@ -91,9 +91,9 @@ function main() {
   const target = new THREE.Vector3();
   {
     const f = walks[0].frames[0].com;
-    target.set(f[0], f[1] + (walks.length - 1) * spacing / 2, 0.4);
+    target.set(f[0], f[1] + (walks.length - 1) * spacing / 2, f[2] * 0.8);
   }
-  const orbit = { r: 3.2, az: -1.2, el: 0.35 };
+  const orbit = { r: 4.5, az: -0.7, el: 0.3 };
   const placeCamera = () => {
     camera.position.set(
       target.x + orbit.r * Math.cos(orbit.el) * Math.cos(orbit.az),
