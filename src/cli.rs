@@ -189,6 +189,18 @@ enum Command {
         /// The sweep's output directory.
         dir: PathBuf,
     },
+    /// Re-simulates push K of a finished run (from its run-config.toml) and writes one
+    /// self-contained HTML page that draws it in 3D (robustness runs so far).
+    Replay {
+        /// The run's directory (what `steplearn experiment --out` wrote).
+        run_dir: PathBuf,
+        /// The push to replay (1-based).
+        #[arg(long)]
+        push: usize,
+        /// The page to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 /// A push direction on the command line.
@@ -591,6 +603,12 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
         Command::Config { check: Some(path) } => {
             ConfigFile::load_for(&path, registry.experiments())?;
             println!("ok");
+            Ok(())
+        }
+        Command::Replay { run_dir, push, out } => {
+            let replay = crate::replay::replay_to_file(registry, &run_dir, push, &out)
+                .map_err(|e| e.to_string())?;
+            println!("{}", crate::replay::summary_line(&replay, &out));
             Ok(())
         }
         Command::Merge { dir } => {

@@ -55,6 +55,8 @@ pub mod experiments;
 pub mod names;
 pub use names::Named;
 #[cfg(feature = "experiments")]
+pub mod replay;
+#[cfg(feature = "experiments")]
 pub mod report;
 pub mod robot;
 pub mod rules;

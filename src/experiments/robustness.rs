@@ -18,7 +18,7 @@ use super::paired::{Direction, Paired};
 use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::{Push, ReferenceSchedule};
 use super::settings::Settings;
-use super::trial::{StepCells, StepRecord, run_trial};
+use super::trial::{StepCells, StepRecord, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::config::limits::{MAX_GAP_S, MAX_GRID_POINTS, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
@@ -234,29 +234,8 @@ where
     protocol
         .validate()
         .map_err(|e| e.within("protocols.robustness"))?;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (s0, s1) = protocol.settle_s;
-    let push_times: Vec<f64> = (0..settings.scaled(protocol.pushes, 1))
-        .map(|_| {
-            if s1 > s0 {
-                rng.random_range(s0..s1)
-            } else {
-                s0
-            }
-        })
-        .collect();
-    let setup = |push_time: f64| {
-        settings.trial(
-            WalkerMode::LearnerOnly,
-            ReferenceSchedule::constant(protocol.map.f_r),
-            vec![Push {
-                time: push_time,
-                impulse: protocol.impulse,
-            }],
-            protocol.direction,
-            push_time + settings.push_window_s,
-        )
-    };
+    let push_times = push_times(settings, protocol, seed);
+    let setup = |push_time: f64| episode_setup(settings, protocol, push_time);
     // A fall before the push resets the robot and delays the push; without a delivered push
     // the episode counts as a fall.
     let fell = |log: &super::trial::TrialLog| log.pushes.first().is_none_or(|p| p.fell);
@@ -406,6 +385,41 @@ impl RobustnessResult {
         }
         Ok(())
     }
+}
+
+/// The push time of every episode of a run with `seed` (episode time, s), in order: what
+/// [`run`] draws before its episodes.
+pub fn push_times(settings: &Settings, protocol: &RobustnessProtocol, seed: u64) -> Vec<f64> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (s0, s1) = protocol.settle_s;
+    (0..settings.scaled(protocol.pushes, 1))
+        .map(|_| {
+            if s1 > s0 {
+                rng.random_range(s0..s1)
+            } else {
+                s0
+            }
+        })
+        .collect()
+}
+
+/// The trial of one episode whose push comes at `push_time` (episode time, s): the same for
+/// the learned walker and the walker without learning.
+pub fn episode_setup(
+    settings: &Settings,
+    protocol: &RobustnessProtocol,
+    push_time: f64,
+) -> TrialSetup {
+    settings.trial(
+        WalkerMode::LearnerOnly,
+        ReferenceSchedule::constant(protocol.map.f_r),
+        vec![Push {
+            time: push_time,
+            impulse: protocol.impulse,
+        }],
+        protocol.direction,
+        push_time + settings.push_window_s,
+    )
 }
 
 /// The learner config of experiment D: the settings' without the dF = 0 prior unless the

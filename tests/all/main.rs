@@ -38,6 +38,7 @@ mod model_files;
 mod motion_generator;
 mod omnidirectional;
 mod rbf_properties;
+mod replay;
 mod rules_policy_gradient;
 mod sim_body;
 mod sim_dynamics;

@@ -1,0 +1,273 @@
+//! What a replay records of one walker on one push: frames of the simulator's ground truth and
+//! of the walker's own quantities, subsampled in time, plus every touch-down and the fall.
+//!
+//! [`Recorder`] is an [`Observer`] of [`run_trial`](crate::experiments::trial::run_trial): the
+//! replay re-runs the experiment's own trial with it attached, so what it records is what the
+//! trial produced. Every number is rounded to [`DECIMALS`] decimals when it is recorded, so the
+//! JSON a page embeds parses back to exactly the recorded values.
+
+use crate::control::walker::Tick;
+use crate::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord};
+use crate::robot::Side;
+use crate::sim::GroundTruth;
+use serde::{Deserialize, Serialize};
+
+/// Decimals kept of every recorded number.
+pub const DECIMALS: i32 = 4;
+
+/// `x` rounded to [`DECIMALS`] decimals.
+pub fn round(x: f64) -> f64 {
+    let k = 10f64.powi(DECIMALS);
+    let r = (x * k).round() / k;
+    // no negative zero in the JSON
+    if r == 0.0 { 0.0 } else { r }
+}
+
+fn round3(p: [f64; 3]) -> [f64; 3] {
+    p.map(round)
+}
+
+/// One moment of a walker: where its bodies are and what its controller did.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Frame {
+    /// Trial time (s).
+    pub t: f64,
+    /// Centre of mass (world, m).
+    pub com: [f64; 3],
+    /// The instantaneous capture point on the ground, `com + v / omega` with
+    /// `omega = sqrt(g / com height)` (world, m; z = 0).
+    pub cp: [f64; 3],
+    /// Stick figure: pelvis, neck, head centre, then per leg (left, right) hip, knee, ankle,
+    /// heel, toe (world, m).
+    pub pts: Vec<[f64; 3]>,
+    /// The commanded footstep of the swing foot (world, m; z = 0), when the walker is
+    /// stepping.
+    pub cmd: Option<[f64; 3]>,
+    /// The learned sagittal offset dF used this tick (m).
+    pub d_f: f64,
+    /// The learned lateral offset dW used this tick (m).
+    pub d_w: f64,
+    /// The learned step-time offset dT used this tick (s).
+    pub d_t: f64,
+    /// Trunk deviation angle theta_E (rad, positive leaning forward).
+    pub lean: f64,
+}
+
+/// A touch-down: where the step was commanded and where the foot landed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Touchdown {
+    /// Trial time (s).
+    pub t: f64,
+    /// The command of the tick before the touch-down (world, m; z = 0), if there was one.
+    pub cmd: Option<[f64; 3]>,
+    /// The sole centre of the foot that landed (world, m).
+    pub landed: [f64; 3],
+}
+
+/// One walker's recording of a push.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Walk {
+    /// Which walker (`learned`, `no learning`, `model`, ...).
+    pub name: String,
+    /// The frames in time order.
+    pub frames: Vec<Frame>,
+    /// Touch-downs within the recorded span.
+    pub steps: Vec<Touchdown>,
+    /// When the push was delivered (trial time, s), if it was.
+    pub push_time: Option<f64>,
+    /// When the walker fell within the recorded span (trial time, s), if it did.
+    pub fall_time: Option<f64>,
+    /// Whether the walker fell within the push's window (the trial's own verdict).
+    pub fell: bool,
+    /// Falls in the whole trial.
+    pub falls: usize,
+    /// Touch-downs in the whole trial.
+    pub trial_steps: usize,
+}
+
+/// Records frames between `from` and `to` (trial time), one every `every` seconds, and the
+/// touch-downs, push and fall in that span. The walker is not recorded after its first fall in
+/// the span (the trial resets the robot there).
+#[derive(Debug)]
+pub struct Recorder {
+    from: f64,
+    to: f64,
+    every: f64,
+    next: f64,
+    frames: Vec<Frame>,
+    steps: Vec<Touchdown>,
+    push: Option<PushRecord>,
+    fall_time: Option<f64>,
+    /// The tick waiting for its ground truth: (time, tick quantities).
+    pending: Option<(f64, Pending)>,
+    /// The world command of the last tick, for the touch-down that follows it.
+    last_cmd: Option<[f64; 3]>,
+    last_support: Option<Side>,
+    falls: usize,
+    trial_steps: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    step_x: f64,
+    step_y: f64,
+    stepping: bool,
+    support: Side,
+    touch_down: bool,
+    d_f: f64,
+    d_w: f64,
+    d_t: f64,
+    lean: f64,
+}
+
+/// Gravity used for the capture point (m/s^2).
+const G: f64 = 9.81;
+
+fn yaw(q: [f64; 4]) -> f64 {
+    let [w, x, y, z] = q;
+    (2.0 * (w * z + x * y)).atan2(1.0 - 2.0 * (y * y + z * z))
+}
+
+fn side_index(side: Side) -> usize {
+    match side {
+        Side::Left => 0,
+        Side::Right => 1,
+    }
+}
+
+impl Recorder {
+    /// A recorder of `[from, to]` (trial time, s), one frame every `every` seconds.
+    pub fn new(from: f64, to: f64, every: f64) -> Self {
+        Recorder {
+            from,
+            to,
+            every,
+            next: from,
+            frames: Vec::new(),
+            steps: Vec::new(),
+            push: None,
+            fall_time: None,
+            pending: None,
+            last_cmd: None,
+            last_support: None,
+            falls: 0,
+            trial_steps: 0,
+        }
+    }
+
+    fn recording(&self, t: f64) -> bool {
+        t >= self.from && t <= self.to && self.fall_time.is_none()
+    }
+
+    /// The recording, named `name`.
+    pub fn finish(self, name: &str) -> Walk {
+        Walk {
+            name: name.to_string(),
+            frames: self.frames,
+            steps: self.steps,
+            push_time: self.push.map(|p| round(p.time)),
+            fall_time: self.fall_time,
+            fell: self.push.is_none_or(|p| p.fell),
+            falls: self.falls,
+            trial_steps: self.trial_steps,
+        }
+    }
+}
+
+impl Observer for Recorder {
+    fn on_tick(&mut self, time: f64, tick: &Tick) {
+        let stepping = tick.decision.is_some() || tick.command.step_time > 0.0;
+        self.pending = Some((
+            time,
+            Pending {
+                step_x: tick.command.step_x,
+                step_y: tick.command.step_y,
+                stepping,
+                support: tick.estimate.support,
+                touch_down: tick.step.is_some(),
+                d_f: tick.learned_offset,
+                d_w: tick.lateral_offset,
+                d_t: tick.time_offset,
+                lean: tick.estimate.theta_e,
+            },
+        ));
+    }
+
+    fn on_step(&mut self, _step: &StepRecord) {
+        self.trial_steps += 1;
+    }
+
+    fn on_push(&mut self, push: &PushRecord) {
+        self.push = Some(*push);
+    }
+
+    fn on_fall(&mut self, fall: &FallRecord) {
+        self.falls += 1;
+        if self.recording(fall.time) {
+            self.fall_time = Some(round(fall.time));
+        }
+        self.last_cmd = None;
+        self.last_support = None;
+    }
+
+    fn wants_truth(&self) -> bool {
+        true
+    }
+
+    fn on_truth(&mut self, time: f64, truth: &GroundTruth) {
+        // Ticks while getting up after a fall have no walker tick: nothing pending.
+        let Some((t, p)) = self.pending.take().filter(|(t, _)| *t == time) else {
+            return;
+        };
+        let support = &truth.soles[side_index(p.support)];
+        let (s, c) = yaw(support.orientation).sin_cos();
+        let cmd = p.stepping.then(|| {
+            [
+                support.position[0] + c * p.step_x - s * p.step_y,
+                support.position[1] + s * p.step_x + c * p.step_y,
+                0.0,
+            ]
+        });
+        if p.touch_down && self.recording(t) {
+            // The foot that landed is the one that was swinging: not the previous support.
+            let landed = match self.last_support {
+                Some(prev) => 1 - side_index(prev),
+                None => side_index(p.support),
+            };
+            self.steps.push(Touchdown {
+                t: round(t),
+                cmd: self.last_cmd.map(round3),
+                landed: round3(truth.soles[landed].position),
+            });
+        }
+        self.last_cmd = cmd;
+        self.last_support = Some(p.support);
+        if !self.recording(t) || t < self.next {
+            return;
+        }
+        self.next += self.every * ((t - self.next) / self.every).floor().max(0.0) + self.every;
+        let h = truth.com[2].max(1e-3);
+        let omega = (G / h).sqrt();
+        let cp = [
+            truth.com[0] + truth.com_vel[0] / omega,
+            truth.com[1] + truth.com_vel[1] / omega,
+            0.0,
+        ];
+        let sk = &truth.skeleton;
+        let mut pts = vec![sk.pelvis, sk.neck, sk.head];
+        for leg in &sk.legs {
+            pts.extend_from_slice(leg);
+        }
+        self.frames.push(Frame {
+            t: round(t),
+            com: round3(truth.com),
+            cp: round3(cp),
+            pts: pts.into_iter().map(round3).collect(),
+            cmd: cmd.map(round3),
+            d_f: round(p.d_f),
+            d_w: round(p.d_w),
+            d_t: round(p.d_t),
+            lean: round(p.lean),
+        });
+    }
+}
