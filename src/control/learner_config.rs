@@ -51,21 +51,21 @@ pub struct LearnerConfig {
     /// `max_samples_per_step / 2` and `max_samples_per_step` samples once n exceeds the bound;
     /// all of them otherwise. Default 128 (every tick of a 0.5 s step at 250 Hz).
     pub max_samples_per_step: usize,
-    /// If set, the offset returned by [`FootstepLearner::query`] is clamped to +-this (m);
+    /// If set, the offset returned by [`FootstepLearner::query`](super::learner::FootstepLearner::query) is clamped to +-this (m);
     /// training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
     pub max_offset: Option<f64>,
     /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
-    /// unit of G (see [`TouchDownReport::gain`] and the module docs for the limit). If the
+    /// unit of G (see [`TouchDownReport::gain`](super::learner::TouchDownReport::gain) and the module docs for the limit). If the
     /// approximator's response to the full step eta G would exceed it, the step is scaled down
     /// and applied again to the approximator as it was. `None` turns the guard off (eq. 6 as
     /// written). Default 0.2. Must be finite and > 0.
     pub max_gain: Option<f64>,
     /// Anti-windup (conditional integration): a training target never goes further past an end
     /// of the offsets that could still change the step at that tick than the prediction already
-    /// is (the reach told by [`FootstepLearner::set_reach`]: on the walker, the step range minus
+    /// is (the reach told by [`FootstepLearner::set_reach`](super::learner::FootstepLearner::set_reach): on the walker, the step range minus
     /// the analytic step). Default on.
     pub anti_windup: bool,
-    /// Learn from a step that ended in a fall ([`FootstepLearner::fall`]): the step in
+    /// Learn from a step that ended in a fall ([`FootstepLearner::fall`](super::learner::FootstepLearner::fall)): the step in
     /// progress at the fall is treated as if it had touched down, with theta_E clamped to
     /// +-`fall_theta_limit`. On by default: the paper's robot "learned from this experience"
     /// when its first pushes made it fall (both ways are compared in `docs/learner.md`).
@@ -74,7 +74,7 @@ pub struct LearnerConfig {
     /// (rad, finite, > 0; default 0.3): past the fall threshold the angle says nothing more.
     pub fall_theta_limit: f64,
     /// The prior held from the start: dF = 0, trained into the approximator at
-    /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`].
+    /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`](super::learner::FootstepLearner::new).
     pub prior: Prior,
     /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
     /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
@@ -563,7 +563,7 @@ pub(crate) fn check_range(
 /// Bases of the Halton sequence the prior is spread over, one per input (the first primes).
 const HALTON_BASES: [usize; MAX_OFFSET_INPUTS] = [2, 3, 5, 7, 11, 13, 17, 19, 23];
 
-/// Most inputs an [`OffsetLearner`] takes: three per learned plane or parameter.
+/// Most inputs an [`OffsetLearner`](super::learner::OffsetLearner) takes: three per learned plane or parameter.
 pub const MAX_OFFSET_INPUTS: usize = 9;
 /// Checks one offset's resolved settings; an error names the parameter's table where the value
 /// came from it.

@@ -16,7 +16,7 @@ pub enum LearnerError {
         /// Why, with the value.
         reason: String,
     },
-    /// The rule rejected a saved rule state (see [`LearningRule::set_state`]).
+    /// The rule rejected a saved rule state (see [`LearningRule::set_state`](crate::rules::LearningRule::set_state)).
     #[error("rule: {0}")]
     Rule(#[from] RuleError),
     /// The approximator does not map the learner's inputs to its outputs.

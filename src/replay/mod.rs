@@ -1,11 +1,11 @@
 //! `steplearn replay RUN_DIR --push K --out FILE.html`: push K of a finished run, re-simulated
 //! and drawn in 3D in one self-contained page.
 //!
-//! A run is bit-reproducible from its `run-config.toml`: [`record`] reads it, checks that this
+//! A run is bit-reproducible from its `run-config.toml`: [`record()`] reads it, checks that this
 //! registry would write the same identity (same experiment, approximator, rule, settings,
 //! protocol and results format), rebuilds the experiment's trials for the run's seed with the
 //! experiment's own functions, and runs them with [`run_trial`], the trial code every
-//! experiment uses, with a [`Recorder`] attached. [`page`] writes the recording as one HTML
+//! experiment uses, with a [`Recorder`] attached. [`page()`] writes the recording as one HTML
 //! page with three.js inlined ([`page::THREE_VERSION`]).
 //!
 //! Supported so far: experiment D (`robustness`): push K's episode of the learned walker
@@ -237,7 +237,7 @@ fn replay_robustness(
     })
 }
 
-/// [`record`], then writes the page to `out`.
+/// [`record()`], then writes the page to `out`.
 pub fn replay_to_file(
     registry: &Registry,
     dir: &Path,

@@ -4,6 +4,7 @@
 mod approx_batch;
 mod bench;
 mod bench_sets;
+mod browser;
 mod capture_step_closed_loop;
 mod capture_step_with_estimator;
 mod cli;

@@ -171,18 +171,6 @@ fn the_command_writes_the_page() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("out of range"));
 }
 
-/// The first headless browser found, if any.
-fn browser() -> Option<&'static str> {
-    ["chromium", "chromium-browser", "google-chrome"]
-        .into_iter()
-        .find(|b| {
-            Command::new(b)
-                .arg("--version")
-                .output()
-                .is_ok_and(|o| o.status.success())
-        })
-}
-
 /// The value of `name="..."` in the DOM's `<body ...>` tag.
 fn body_attr(dom: &str, name: &str) -> Option<String> {
     let body = &dom[dom.find("<body")?..];
@@ -194,15 +182,7 @@ fn body_attr(dom: &str, name: &str) -> Option<String> {
 
 #[test]
 fn the_page_draws_and_plays_in_a_real_browser() {
-    let Some(browser) = browser() else {
-        // CI installs Chromium (.ci/run); there a missing browser is a failure, not a skip.
-        assert!(
-            std::env::var("CI").as_deref() != Ok("true"),
-            "no chromium found under CI=true (install Debian's `chromium` package)"
-        );
-        eprintln!(
-            "skipped: no chromium found (install Debian's `chromium` package to run this test)"
-        );
+    let Some(browser) = crate::browser::chromium() else {
         return;
     };
     let r = record(&Registry::builtin(), run_dir(), 2).unwrap();
