@@ -7,11 +7,12 @@ use crate::approx::{
     ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist,
 };
 use crate::config::ConfigError;
-use crate::control::learner::{FootstepLearner, LearnerConfig, LearnerError};
+use crate::control::learner::{LearnerConfig, LearnerError};
+use crate::control::step_parameter::StepParameter;
 use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::{
-    Experiment, RunComponents, RunContext, RunLearner, learner_bounds,
+    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, parameter_learner,
 };
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::{LwprSettings, Settings};
@@ -87,6 +88,11 @@ fn find<'a, T>(what: &str, entries: &'a [(String, T)], name: &str) -> Result<&'a
         })
 }
 
+/// The learner's input box ([`learner_bounds`]) that approximator factories receive.
+fn bench_bounds() -> Result<InputBox, BenchError> {
+    learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))
+}
+
 impl Registry {
     /// An empty registry.
     pub fn new() -> Self {
@@ -139,7 +145,7 @@ impl Registry {
             return Ok(None);
         }
         let model = find("approximator", &self.approximators, approx)?(
-            &learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))?,
+            &bench_bounds()?,
             &LwprSettings::default(),
         )
         .and_then(|a| a.to_json())
@@ -292,7 +298,7 @@ impl Registry {
     pub fn check_combination(&self, approx: &str, rule: &str) -> Result<(), BenchError> {
         find("rule", &self.rules, rule)?;
         find("approximator", &self.approximators, approx)?(
-            &learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))?,
+            &bench_bounds()?,
             &LwprSettings::default(),
         )
         .map(|_| ())
@@ -330,22 +336,16 @@ impl Registry {
     ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
     {
         let components = self.components(approx, rule, lwpr)?;
-        let bounds = learner_bounds().map_err(|e| BenchError::Selection(e.to_string()))?;
-        Ok(
-            move |config: LearnerConfig| -> Result<RunLearner, LearnerError> {
-                let a = components
-                    .approximator(&bounds)
-                    .map_err(|source| LearnerError::Approx { applied: 0, source })?;
-                FootstepLearner::new(a, components.rule(), config)
-            },
-        )
+        Ok(move |config: LearnerConfig| {
+            parameter_learner(&components, StepParameter::StepX, config)
+        })
     }
 
     /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and
     /// CSV into `dir` and returns its summary (the caller writes `summary.json`). The run's
     /// learners learn the spec's set ([`RunSpec::learn`]) where it gives one, else the
     /// settings'. Every learner of the run has its rule reseeded with the run's seed
-    /// ([`FootstepLearner::reseed`]).
+    /// ([`FootstepLearner::reseed`](crate::control::learner::FootstepLearner::reseed)).
     pub fn run_spec(
         &self,
         spec: &RunSpec,

@@ -526,8 +526,6 @@ pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usiz
     settings: CheckedLearnerConfig,
     /// The step parameter of each offset, in output order.
     parameters: [StepParameter; O],
-    /// Each offset's own settings (its parameter's).
-    offsets: [OffsetSettings; O],
     /// Inputs recorded in the current step (at most `max_samples_per_step`), each with each
     /// offset's reach (lowest, highest offset that can still change the step; unbounded unless
     /// told by [`OffsetLearner::set_reach_of`]).
@@ -634,7 +632,6 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             config,
             settings,
             parameters,
-            offsets: parameters.map(|p| settings.offset(p)),
             step: StepSamples::with_capacity(config.max_samples_per_step),
             before: Vec::with_capacity(config.max_samples_per_step),
             desired: Vec::with_capacity(config.max_samples_per_step),
@@ -657,6 +654,11 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     /// The step parameter of each offset, in output order.
     pub fn parameters(&self) -> [StepParameter; O] {
         self.parameters
+    }
+
+    /// The settings of offset `k` (its parameter's, [`LearnerConfig::offset`]).
+    fn offset(&self, k: usize) -> OffsetSettings {
+        self.settings.offset(self.parameters[k])
     }
 
     /// The approximator.
@@ -727,8 +729,8 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             [[f64::NEG_INFINITY, f64::INFINITY]; O],
             self.settings.memory.max_samples_per_step,
         );
-        for (v, o) in y.iter_mut().zip(&self.offsets) {
-            if let Some(m) = o.max_offset {
+        for (k, v) in y.iter_mut().enumerate() {
+            if let Some(m) = self.offset(k).max_offset {
                 *v = v.clamp(-m, m);
             }
         }
@@ -877,10 +879,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
             }
         }
         let g: [f64; O] = std::array::from_fn(|k| {
-            let dz = self.offsets[k].dead_zone;
+            let dz = self.offset(k).dead_zone;
             raw[k].signum() * (raw[k].abs() - dz).max(0.0)
         });
-        let step_size: [f64; O] = std::array::from_fn(|k| self.offsets[k].eta * g[k]);
+        let step_size: [f64; O] = std::array::from_fn(|k| self.offset(k).eta * g[k]);
         self.before.clear();
         self.desired.clear();
         let first = self.first_trained();
@@ -891,7 +893,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
             let before = self.predict_all(x)?;
             let mut desired = [0.0; O];
             for k in 0..O {
-                let mut change = step_size[k] - self.offsets[k].leakage * before[k];
+                let mut change = step_size[k] - self.offset(k).leakage * before[k];
                 if self.settings.guard.anti_windup {
                     change = windup(change, before[k], reach[k]);
                 }
@@ -984,7 +986,6 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
     /// [`LearnerConfig::offset`]); the rule is unchanged.
     pub fn as_parameter(mut self, parameter: StepParameter) -> Self {
         self.parameters = [parameter];
-        self.offsets = [self.settings.offset(parameter)];
         self
     }
 
@@ -1004,7 +1005,6 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
             config: self.config,
             settings: self.settings,
             parameters: self.parameters,
-            offsets: self.offsets,
             step: self.step,
             before: self.before,
             desired: self.desired,

@@ -51,22 +51,25 @@ pub struct LearnerConfig {
     /// `max_samples_per_step / 2` and `max_samples_per_step` samples once n exceeds the bound;
     /// all of them otherwise. Default 128 (every tick of a 0.5 s step at 250 Hz).
     pub max_samples_per_step: usize,
-    /// If set, the offset returned by [`FootstepLearner::query`](super::learner::FootstepLearner::query) is clamped to +-this (m);
-    /// training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
+    /// If set, the offset returned by
+    /// [`FootstepLearner::query`](super::learner::FootstepLearner::query) is clamped to +-this
+    /// (m); training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
     pub max_offset: Option<f64>,
     /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
-    /// unit of G (see [`TouchDownReport::gain`](super::learner::TouchDownReport::gain) and the module docs for the limit). If the
-    /// approximator's response to the full step eta G would exceed it, the step is scaled down
-    /// and applied again to the approximator as it was. `None` turns the guard off (eq. 6 as
-    /// written). Default 0.2. Must be finite and > 0.
+    /// unit of G (see [`TouchDownReport::gain`](super::learner::TouchDownReport::gain) and the
+    /// module docs for the limit). If the approximator's response to the full step eta G would
+    /// exceed it, the step is scaled down and applied again to the approximator as it was.
+    /// `None` turns the guard off (eq. 6 as written). Default 0.2. Must be finite and > 0.
     pub max_gain: Option<f64>,
     /// Anti-windup (conditional integration): a training target never goes further past an end
     /// of the offsets that could still change the step at that tick than the prediction already
-    /// is (the reach told by [`FootstepLearner::set_reach`](super::learner::FootstepLearner::set_reach): on the walker, the step range minus
-    /// the analytic step). Default on.
+    /// is (the reach told by
+    /// [`FootstepLearner::set_reach`](super::learner::FootstepLearner::set_reach): on the
+    /// walker, the step range minus the analytic step). Default on.
     pub anti_windup: bool,
-    /// Learn from a step that ended in a fall ([`FootstepLearner::fall`](super::learner::FootstepLearner::fall)): the step in
-    /// progress at the fall is treated as if it had touched down, with theta_E clamped to
+    /// Learn from a step that ended in a fall
+    /// ([`FootstepLearner::fall`](super::learner::FootstepLearner::fall)): the step in progress
+    /// at the fall is treated as if it had touched down, with theta_E clamped to
     /// +-`fall_theta_limit`. On by default: the paper's robot "learned from this experience"
     /// when its first pushes made it fall (both ways are compared in `docs/learner.md`).
     pub learn_from_falls: bool,
@@ -74,7 +77,8 @@ pub struct LearnerConfig {
     /// (rad, finite, > 0; default 0.3): past the fall threshold the angle says nothing more.
     pub fall_theta_limit: f64,
     /// The prior held from the start: dF = 0, trained into the approximator at
-    /// [`Prior::samples`] evenly spread points of its box by [`FootstepLearner::new`](super::learner::FootstepLearner::new).
+    /// [`Prior::samples`] evenly spread points of its box by
+    /// [`FootstepLearner::new`](super::learner::FootstepLearner::new).
     pub prior: Prior,
     /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
     /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
@@ -435,11 +439,18 @@ impl LearnerConfig {
     /// Checks every setting, each parameter's table included, once, and groups them into the
     /// values a learner holds.
     pub fn check(&self) -> Result<CheckedLearnerConfig, LearnerError> {
+        let shared = OffsetSettings {
+            eta: self.eta,
+            dead_zone: self.dead_zone,
+            leakage: self.leakage,
+            max_offset: self.max_offset,
+        };
+        check_offset(SHARED_OFFSET_KEYS, &shared)?;
         self.check_shared()?;
-        let mut offsets = [self.offset(StepParameter::StepX); StepParameter::ALL.len()];
+        let mut offsets = [shared; StepParameter::ALL.len()];
         for p in StepParameter::ALL {
             let o = self.offset(p);
-            check_offset(p, &o)?;
+            check_offset(PARAMETER_OFFSET_KEYS[p.index()], &o)?;
             offsets[p.index()] = o;
         }
         Ok(CheckedLearnerConfig {
@@ -468,12 +479,6 @@ impl LearnerConfig {
 
     /// The learner-wide checks.
     fn check_shared(&self) -> Result<(), LearnerError> {
-        if !(self.eta.is_finite() && self.eta > 0.0) {
-            return Err(LearnerError::config(
-                "eta",
-                format!("must be finite and > 0, got {}", self.eta),
-            ));
-        }
         if !(2..=MAX_SAMPLES_PER_STEP).contains(&self.max_samples_per_step) {
             return Err(LearnerError::config(
                 "max_samples_per_step",
@@ -493,7 +498,6 @@ impl LearnerConfig {
             ));
         }
         for (name, v) in [
-            ("max_offset", self.max_offset),
             ("max_gain", self.max_gain),
             ("max_step_error", self.max_step_error),
             ("trust_region", self.trust_region),
@@ -513,22 +517,10 @@ impl LearnerConfig {
                 format!("must be finite and > 0, got {}", self.fall_theta_limit),
             ));
         }
-        if !(self.dead_zone.is_finite() && self.dead_zone >= 0.0) {
-            return Err(LearnerError::config(
-                "dead_zone",
-                format!("must be finite and >= 0, got {}", self.dead_zone),
-            ));
-        }
         if !(self.train_share > 0.0 && self.train_share <= 1.0) {
             return Err(LearnerError::config(
                 "train_share",
                 format!("must be in (0, 1], got {}", self.train_share),
-            ));
-        }
-        if !(self.leakage >= 0.0 && self.leakage < 1.0) {
-            return Err(LearnerError::config(
-                "leakage",
-                format!("must be in [0, 1), got {}", self.leakage),
             ));
         }
         let (lo, hi) = (self.prior.lo.to_array(), self.prior.hi.to_array());
@@ -563,48 +555,53 @@ pub(crate) fn check_range(
 /// Bases of the Halton sequence the prior is spread over, one per input (the first primes).
 const HALTON_BASES: [usize; MAX_OFFSET_INPUTS] = [2, 3, 5, 7, 11, 13, 17, 19, 23];
 
-/// Most inputs an [`OffsetLearner`](super::learner::OffsetLearner) takes: three per learned plane or parameter.
+/// Most inputs an [`OffsetLearner`](super::learner::OffsetLearner) takes: three per learned
+/// plane or parameter.
 pub const MAX_OFFSET_INPUTS: usize = 9;
-/// Checks one offset's resolved settings; an error names the parameter's table where the value
-/// came from it.
-fn check_offset(parameter: StepParameter, o: &OffsetSettings) -> Result<(), LearnerError> {
-    const KEYS: [[&str; 4]; 3] = [
-        [
-            "step-x.eta",
-            "step-x.dead_zone",
-            "step-x.leakage",
-            "step-x.max_offset",
-        ],
-        [
-            "step-y.eta",
-            "step-y.dead_zone",
-            "step-y.leakage",
-            "step-y.max_offset",
-        ],
-        [
-            "step-time.eta",
-            "step-time.dead_zone",
-            "step-time.leakage",
-            "step-time.max_offset",
-        ],
-    ];
-    let keys = KEYS[parameter.index()];
-    let name = |k: usize| keys[k];
+
+/// The keys of the offset settings in `[settings.learner]`: eta, dead zone, leakage, clamp.
+const SHARED_OFFSET_KEYS: [&str; 4] = ["eta", "dead_zone", "leakage", "max_offset"];
+
+/// The same keys in each parameter's table, in [`StepParameter::ALL`]'s order.
+const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
+    [
+        "step-x.eta",
+        "step-x.dead_zone",
+        "step-x.leakage",
+        "step-x.max_offset",
+    ],
+    [
+        "step-y.eta",
+        "step-y.dead_zone",
+        "step-y.leakage",
+        "step-y.max_offset",
+    ],
+    [
+        "step-time.eta",
+        "step-time.dead_zone",
+        "step-time.leakage",
+        "step-time.max_offset",
+    ],
+];
+
+/// Checks one offset's settings; an error names the value by its key in `keys` (eta, dead
+/// zone, leakage, clamp), so a value from a parameter's table is named with its table.
+fn check_offset(keys: [&'static str; 4], o: &OffsetSettings) -> Result<(), LearnerError> {
     if !(o.eta.is_finite() && o.eta > 0.0) {
         return Err(LearnerError::config(
-            name(0),
+            keys[0],
             format!("must be finite and > 0, got {}", o.eta),
         ));
     }
     if !(o.dead_zone.is_finite() && o.dead_zone >= 0.0) {
         return Err(LearnerError::config(
-            name(1),
+            keys[1],
             format!("must be finite and >= 0, got {}", o.dead_zone),
         ));
     }
     if !(o.leakage >= 0.0 && o.leakage < 1.0) {
         return Err(LearnerError::config(
-            name(2),
+            keys[2],
             format!("must be in [0, 1), got {}", o.leakage),
         ));
     }
@@ -612,7 +609,7 @@ fn check_offset(parameter: StepParameter, o: &OffsetSettings) -> Result<(), Lear
         && !(m.is_finite() && m > 0.0)
     {
         return Err(LearnerError::config(
-            name(3),
+            keys[3],
             format!("must be finite and > 0, got {m}"),
         ));
     }

@@ -65,6 +65,26 @@ pub fn learner_bounds() -> Result<InputBox, ApproxError> {
     InputGrid::default().input_box()
 }
 
+/// A fresh, untrained learner of `parameter` with `config` from `components`: an approximator
+/// over [`learner_bounds`], the components' rule for `step-x` and `step-y` and the LIPM
+/// step-time rule ([`StepTime`]) for `step-time`. Its rule is not reseeded
+/// ([`RunContext::make_parameter_learner`] reseeds it with the run's seed).
+pub fn parameter_learner(
+    components: &dyn RunComponents,
+    parameter: StepParameter,
+    config: LearnerConfig,
+) -> Result<RunLearner, LearnerError> {
+    let bounds = learner_bounds().map_err(LearnerError::approx)?;
+    let approx = components
+        .approximator(&bounds)
+        .map_err(LearnerError::approx)?;
+    let rule: Box<dyn LearningRule> = match parameter {
+        StepParameter::StepX | StepParameter::StepY => components.rule(),
+        StepParameter::StepTime => Box::new(StepTime::default()),
+    };
+    FootstepLearner::for_parameters(approx, [rule], [parameter], config)
+}
+
 impl RunContext<'_> {
     /// A fresh `step-x` learner with the settings' learner config.
     pub fn make_learner(&self) -> Result<RunLearner, LearnerError> {
@@ -85,17 +105,7 @@ impl RunContext<'_> {
         parameter: StepParameter,
         config: LearnerConfig,
     ) -> Result<RunLearner, LearnerError> {
-        let approx_error = |source| LearnerError::Approx { applied: 0, source };
-        let bounds = learner_bounds().map_err(approx_error)?;
-        let approx = self
-            .components
-            .approximator(&bounds)
-            .map_err(approx_error)?;
-        let rule: Box<dyn LearningRule> = match parameter {
-            StepParameter::StepX | StepParameter::StepY => self.components.rule(),
-            StepParameter::StepTime => Box::new(StepTime::default()),
-        };
-        let mut learner = FootstepLearner::for_parameters(approx, [rule], [parameter], config)?;
+        let mut learner = parameter_learner(self.components, parameter, config)?;
         learner.reseed(self.seed);
         Ok(learner)
     }
@@ -123,12 +133,15 @@ impl RunContext<'_> {
     /// [`coupled_bounds`]) with the settings' learner config: two of the run's approximators
     /// stacked, one per output, and a rule of the run for each plane.
     pub fn make_coupled_learner(&self) -> Result<CoupledRunLearner, LearnerError> {
-        let approx_error = |source| LearnerError::Approx { applied: 0, source };
         let bounds = learner_bounds()
             .and_then(|b| coupled_bounds(&b))
-            .map_err(approx_error)?;
-        let head = || self.components.approximator(&bounds).map_err(approx_error);
-        let stacked = Stacked::new(vec![head()?, head()?]).map_err(approx_error)?;
+            .map_err(LearnerError::approx)?;
+        let head = || {
+            self.components
+                .approximator(&bounds)
+                .map_err(LearnerError::approx)
+        };
+        let stacked = Stacked::new(vec![head()?, head()?]).map_err(LearnerError::approx)?;
         let rules = [self.components.rule(), self.components.rule()];
         let mut learner = CoupledLearner::new(stacked, rules, self.settings.learner)?;
         learner.reseed(self.seed);

@@ -18,6 +18,7 @@ pub mod record;
 use crate::bench::{BenchError, Registry};
 use crate::control::learner::LearnerError;
 use crate::experiments::ExperimentKind;
+use crate::experiments::experiment::RunContext;
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::robustness::{self, RobustnessProtocol};
 use crate::experiments::settings::Settings;
@@ -202,9 +203,18 @@ fn replay_robustness(
             pushes: times.len(),
         });
     }
-    let build = registry.learner_builder(&config.approx, &config.rule, &settings.lwpr)?;
-    let mut learner = build(robustness::learner_config(settings, protocol))?;
-    learner.reseed(config.seed);
+    // The run's learner, built as the run built it (`RunContext`, reseeded with its seed).
+    let components = registry.components(&config.approx, &config.rule, &settings.lwpr)?;
+    let protocols = config.protocols();
+    let ctx = RunContext {
+        settings,
+        protocols: &protocols,
+        seed: config.seed,
+        approx: &config.approx,
+        rule: &config.rule,
+        components: &components,
+    };
+    let mut learner = ctx.make_learner_with(robustness::learner_config(settings, protocol))?;
     // The episodes before push K, as the run walked them: the learner learns from them.
     for &t in &times[..push - 1] {
         run_trial(
@@ -246,7 +256,8 @@ pub fn replay_to_file(
 ) -> Result<Replay, ReplayError> {
     let replay = record(registry, dir, push)?;
     let html = page(&replay)?;
-    std::fs::write(out, html).map_err(|source| ReplayError::Io {
+    // Atomically: a failed write leaves an existing file as it was.
+    crate::atomic_file::write_atomic(out, html.as_bytes()).map_err(|source| ReplayError::Io {
         path: out.to_path_buf(),
         source,
     })?;
