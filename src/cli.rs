@@ -27,7 +27,7 @@ use crate::experiments::sweep::{
     IDENTITY_FILE, RunOutcome, RunSpec, RunStatus, SUMMARY_FILE, Shard, SweepGrid, SweepOptions,
     check_identity, merge, run_sweep,
 };
-use crate::report::write_atomic;
+use crate::report::write_file;
 use crate::rules::PendulumCart;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -288,7 +288,9 @@ where
 /// experiments, with every experiment's whole protocol table.
 fn load_config(registry: &Registry, config: Option<PathBuf>) -> Result<ConfigFile, String> {
     let config = match config {
-        Some(path) => ConfigFile::load_for(&path, registry.experiments())?,
+        Some(path) => {
+            ConfigFile::load_for(&path, registry.experiments()).map_err(|e| e.to_string())?
+        }
         None => ConfigFile::default(),
     };
     registry.resolve_config(&config).map_err(|e| e.to_string())
@@ -438,7 +440,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             let summary = registry
                 .run_spec(&spec, staging.path(), &config.settings, &config.protocols)
                 .map_err(|e| e.to_string())?;
-            write_atomic(&staging.path().join(IDENTITY_FILE), identity.as_bytes())
+            write_file(&staging.path().join(IDENTITY_FILE), identity.as_bytes())
                 .map_err(|e| e.to_string())?;
             summary
                 .write(&staging.path().join(SUMMARY_FILE))
@@ -601,7 +603,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Config { check: Some(path) } => {
-            ConfigFile::load_for(&path, registry.experiments())?;
+            ConfigFile::load_for(&path, registry.experiments()).map_err(|e| e.to_string())?;
             println!("ok");
             Ok(())
         }
@@ -763,6 +765,7 @@ fn apply_push_options(
         .find_experiment(experiment)
         .map_err(|e| e.to_string())?
         .apply_push_options(protocols, &options)
+        .map_err(|e| e.to_string())
 }
 
 /// A fresh directory beside an output directory, where a run writes until it has finished;

@@ -4,9 +4,7 @@
 //! Learning of Foot Placement for Balanced Bipedal Walking".
 //!
 //! ```
-//! use steplearn::approx::{FunctionApproximator, Lwpr, LwprConfig};
-//! use steplearn::control::learner::{FootstepLearner, LearnerConfig, LearnerInput};
-//! use steplearn::rules::{PendulumCart, StepOutcome};
+//! use steplearn::prelude::*;
 //!
 //! // The paper's learner: LWPR over (theta_E, theta_E_dot, F_R), trained with eq. (5)-(6).
 //! let lwpr = Lwpr::new(LwprConfig::new(3, 1).norm_in(vec![0.5, 3.0, 0.15]))?;
@@ -24,6 +22,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! - [`prelude`]: the names most programs need, in one import.
 //! - [`approx`]: online function approximators behind [`approx::FunctionApproximator`].
 //! - [`rules`]: learning rules behind [`rules::LearningRule`].
 //! - [`robot`]: the robot interface (sensors, joint targets, legs, leg geometry).
@@ -54,6 +53,7 @@ pub mod control;
 pub mod experiments;
 pub mod names;
 pub use names::Named;
+pub mod prelude;
 #[cfg(feature = "experiments")]
 pub mod replay;
 #[cfg(feature = "experiments")]

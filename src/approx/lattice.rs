@@ -78,7 +78,7 @@ impl Lattice {
     /// Checks a loaded model's table against its lattice: `self` must be the lattice the
     /// model's config builds (`expected`) and `table` must hold one finite `entry` per node and
     /// output. Returns what is wrong, for the model's `Corrupt` error.
-    pub fn check_table(
+    pub(crate) fn check_table(
         &self,
         expected: Result<Lattice, ApproxError>,
         table: &[f64],

@@ -15,7 +15,7 @@ use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
 use crate::report::forest::{ForestPanel, ForestRow, forest_plot};
 use crate::report::html::HtmlPage;
-use crate::report::{ReportError, Shortest, write_atomic, write_rows};
+use crate::report::{ReportError, Shortest, write_file, write_rows};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -439,9 +439,9 @@ impl Leaderboard {
     pub fn write(&self, dir: &Path, command: &str, config: &str) -> Result<(), BenchError> {
         let json =
             serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))?;
-        write_atomic(&dir.join(LEADERBOARD_FILES[0]), json.as_bytes())?;
+        write_file(&dir.join(LEADERBOARD_FILES[0]), json.as_bytes())?;
         let md = self.to_markdown();
-        write_atomic(&dir.join(LEADERBOARD_FILES[1]), md.as_bytes())?;
+        write_file(&dir.join(LEADERBOARD_FILES[1]), md.as_bytes())?;
         write_rows(&dir.join(LEADERBOARD_FILES[2]), &self.csv_rows())?;
         let panels = self.forest_panels();
         let mut page = HtmlPage::new("steplearn bench: the leaderboard");

@@ -8,7 +8,7 @@ use crate::experiments::config_file::ConfigFile;
 use crate::experiments::sweep::{
     RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, check_distinct_sets, run_sweep,
 };
-use crate::report::write_atomic;
+use crate::report::write_file;
 use std::path::{Path, PathBuf};
 
 /// The file in a bench's output directory that records the configuration its runs used.
@@ -297,7 +297,7 @@ impl<'r> Bench<'r> {
             Ok(existing) => match merged_record(&existing, config_toml, selected) {
                 Some(merged) => {
                     if merged != existing {
-                        write_atomic(&path, merged.as_bytes())?;
+                        write_file(&path, merged.as_bytes())?;
                     }
                     Ok(())
                 }
@@ -312,7 +312,7 @@ impl<'r> Bench<'r> {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                 std::fs::create_dir_all(&self.out)
                     .map_err(|e| crate::report::ReportError::io(&self.out, e))?;
-                write_atomic(&path, config_toml.as_bytes())?;
+                write_file(&path, config_toml.as_bytes())?;
                 Ok(())
             }
             Err(e) => Err(crate::report::ReportError::io(&path, e).into()),

@@ -10,7 +10,9 @@
 //! implementation as the uncoupled [`FootstepLearner`](super::learner::FootstepLearner), so
 //! every safeguard of [`LearnerConfig`] holds for both offsets.
 //!
-//! The walker calls it through [`FootstepPolicy`], which hands over both planes at once.
+//! The walker calls it through [`FootstepPolicy`], which hands over both planes at once. Its
+//! checkpoints are the one learner's ([`OffsetLearner::checkpoint`], `save`, `load_with`): the
+//! second offset's reach, last value, exploration and rule state are saved beside the first's.
 
 use super::learner::{LearnerConfig, LearnerError, LearnerInput, OffsetLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports};

@@ -185,8 +185,8 @@ impl Default for MapSpec {
     }
 }
 
-/// What [`FootstepLearner::save`] writes (JSON): everything the learner holds but the rule, and
-/// the rule's state if it keeps one ([`LearningRule::state`]), so that a learner loaded mid-step
+/// What [`OffsetLearner::save`] writes (JSON): everything the learner holds but its rules, and
+/// each rule's state if it keeps one ([`LearningRule::state`]), so that a learner loaded mid-step
 /// continues exactly as the saved one would have. The rule itself is supplied by the caller on
 /// load.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -200,15 +200,39 @@ pub struct SavedLearner<A> {
     pub parameter: StepParameter,
     /// The trained approximator.
     pub approximator: A,
-    /// Per-axis mean and std of the inputs the learner was trained at (its trust region);
-    /// empty statistics in files from before it existed.
+    /// Per-input mean and std of the inputs the learner was trained at (its trust region),
+    /// one per input; empty in files from before it existed (nothing trained yet).
     #[serde(default)]
-    pub trained: [MeanStd; LEARNER_INPUTS],
-    /// The step in progress; an empty step in files from before checkpoints.
+    pub trained: Vec<MeanStd>,
+    /// The step in progress (with the first offset's reach, last value and exploration); an
+    /// empty step in files from before checkpoints.
     #[serde(default)]
     pub step: StepInProgress,
-    /// The rule's state ([`LearningRule::state`]); absent for a stateless rule and in files
-    /// from before rules could keep one.
+    /// The first offset's rule state ([`LearningRule::state`]); absent for a stateless rule
+    /// and in files from before rules could keep one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rule_state: Option<serde_json::Value>,
+    /// The offsets after the first, in output order, for a learner of several (the coupled
+    /// learner's dW); absent for a learner of one.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub more_offsets: Vec<SavedOffset>,
+}
+
+/// What a checkpoint holds of an offset after the first: its parameter, the reach of each
+/// input recorded in the step, its last value, its exploration and its rule's state.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SavedOffset {
+    /// The step parameter it learns.
+    pub parameter: StepParameter,
+    /// The reach `[lo, hi]` of each input recorded in the step (as [`StepInProgress::reach`]).
+    pub reach: Vec<[Option<f64>; 2]>,
+    /// The value the last query returned.
+    pub last_offset: f64,
+    /// Its rule's exploration perturbation of this step; absent when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub exploration: f64,
+    /// Its rule's state; absent for a stateless rule.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rule_state: Option<serde_json::Value>,
 }
@@ -218,8 +242,8 @@ pub struct SavedLearner<A> {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepInProgress {
-    /// Inputs recorded in this step, in query order.
-    pub recorded: Vec<[f64; LEARNER_INPUTS]>,
+    /// Inputs recorded in this step, in query order (each with one value per input).
+    pub recorded: Vec<Vec<f64>>,
     /// The reach `[lo, hi]` of each recorded input; `None` for an unbounded side.
     pub reach: Vec<[Option<f64>; 2]>,
     /// Whether the last query was recorded.
@@ -255,9 +279,23 @@ impl Default for StepInProgress {
     }
 }
 
+/// Checks that every reach in `reach` is an interval (`what` names the offset in the error).
+fn check_reaches(what: &str, reach: &[[Option<f64>; 2]]) -> Result<(), ApproxError> {
+    for [lo, hi] in reach {
+        let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
+        if !is_reach(lo, hi) {
+            return Err(ApproxError::Corrupt(format!(
+                "step in progress: {what} reach [{lo}, {hi}] is not an interval"
+            )));
+        }
+    }
+    Ok(())
+}
+
 impl StepInProgress {
-    /// Checks that the step could have come from a learner with `max_samples` per step.
-    fn check(&self, max_samples: usize) -> Result<(), ApproxError> {
+    /// Checks that the step could have come from a learner with `max_samples` per step and
+    /// `inputs` inputs.
+    fn check(&self, max_samples: usize, inputs: usize) -> Result<(), ApproxError> {
         let corrupt = |msg: String| Err(ApproxError::Corrupt(format!("step in progress: {msg}")));
         let n = self.recorded.len();
         if n > max_samples || self.reach.len() != n {
@@ -282,6 +320,12 @@ impl StepInProgress {
         if self.exploration != 0.0 && self.queries == 0 {
             return corrupt("an exploration perturbation before the step's first query".into());
         }
+        if let Some(x) = self.recorded.iter().find(|x| x.len() != inputs) {
+            return corrupt(format!(
+                "a recorded input has {} values, the approximator {inputs} inputs",
+                x.len()
+            ));
+        }
         if !self.recorded.iter().flatten().all(|v| v.is_finite())
             || !self.last_offset.is_finite()
             || !self.exploration.is_finite()
@@ -290,13 +334,33 @@ impl StepInProgress {
                 "a recorded input, the last offset or the exploration is not finite".into(),
             );
         }
-        for [lo, hi] in &self.reach {
-            let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
-            if !is_reach(lo, hi) {
-                return corrupt(format!("reach [{lo}, {hi}] is not an interval"));
-            }
+        check_reaches("the first offset's", &self.reach)
+    }
+}
+
+impl SavedOffset {
+    /// Checks that the offset could have come from a learner whose step recorded `recorded`
+    /// inputs.
+    fn check(&self, recorded: usize, queries: usize) -> Result<(), ApproxError> {
+        let corrupt = |msg: String| {
+            Err(ApproxError::Corrupt(format!(
+                "offset {}: {msg}",
+                self.parameter
+            )))
+        };
+        if self.reach.len() != recorded {
+            return corrupt(format!(
+                "{} reaches for {recorded} recorded inputs",
+                self.reach.len()
+            ));
         }
-        Ok(())
+        if !self.last_offset.is_finite() || !self.exploration.is_finite() {
+            return corrupt("the last offset or the exploration is not finite".into());
+        }
+        if self.exploration != 0.0 && queries == 0 {
+            return corrupt("an exploration perturbation before the step's first query".into());
+        }
+        check_reaches("its", &self.reach)
     }
 }
 
@@ -475,17 +539,32 @@ impl<A: Persist + FunctionApproximator> Persist for SavedLearner<A> {
             .validate()
             .map_err(|e| ApproxError::Corrupt(e.to_string()))?;
         self.approximator.check_invariants()?;
-        self.step.check(self.config.max_samples_per_step)?;
-        if !self.trained.iter().all(MeanStd::is_consistent) {
-            return Err(ApproxError::Corrupt(
-                "trained-input statistics are not consistent".into(),
-            ));
-        }
-        if self.approximator.input_dim() != LEARNER_INPUTS || self.approximator.output_dim() != 1 {
+        let (inputs, outputs) = (
+            self.approximator.input_dim(),
+            self.approximator.output_dim(),
+        );
+        if inputs == 0
+            || !inputs.is_multiple_of(LEARNER_INPUTS)
+            || inputs > MAX_OFFSET_INPUTS
+            || outputs != 1 + self.more_offsets.len()
+        {
             return Err(ApproxError::Corrupt(format!(
-                "saved approximator maps {} inputs to {} outputs, the learner needs 3 to 1",
-                self.approximator.input_dim(),
-                self.approximator.output_dim()
+                "saved approximator maps {inputs} inputs to {outputs} outputs, the learner needs \
+                 a multiple of {LEARNER_INPUTS} inputs (at most {MAX_OFFSET_INPUTS}) and one \
+                 output per saved offset ({})",
+                1 + self.more_offsets.len()
+            )));
+        }
+        self.step.check(self.config.max_samples_per_step, inputs)?;
+        for offset in &self.more_offsets {
+            offset.check(self.step.recorded.len(), self.step.queries)?;
+        }
+        if !(self.trained.is_empty() || self.trained.len() == inputs)
+            || !self.trained.iter().all(MeanStd::is_consistent)
+        {
+            return Err(ApproxError::Corrupt(format!(
+                "trained-input statistics: {} entries for {inputs} inputs, or not consistent",
+                self.trained.len()
             )));
         }
         Ok(())
@@ -1145,79 +1224,139 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> OffsetLearner<A, R, LEARN
     }
 }
 
-impl<A: FunctionApproximator + Persist + Clone, R: LearningRule>
-    OffsetLearner<A, R, LEARNER_INPUTS, 1>
+impl<A: FunctionApproximator + Persist + Clone, R: LearningRule, const I: usize, const O: usize>
+    OffsetLearner<A, R, I, O>
 {
-    /// Everything the learner holds but its rule, with the rule's state, as [`Self::save`]
+    /// Everything the learner holds but its rules, with the rules' states, as [`Self::save`]
     /// writes it.
     pub fn checkpoint(&self) -> SavedLearner<A> {
+        let reach = |k: usize| -> Vec<[Option<f64>; 2]> {
+            self.step
+                .reach
+                .iter()
+                .map(|r| [finite_or_none(r[k][0]), finite_or_none(r[k][1])])
+                .collect()
+        };
         SavedLearner {
             config: self.config,
             parameter: self.parameters[0],
             approximator: self.approx.clone(),
-            trained: self.trained,
+            trained: self.trained.to_vec(),
             step: StepInProgress {
-                recorded: self.step.inputs.clone(),
-                reach: self
-                    .step
-                    .reach
-                    .iter()
-                    .map(|[[lo, hi]]| [finite_or_none(*lo), finite_or_none(*hi)])
-                    .collect(),
+                recorded: self.step.inputs.iter().map(|x| x.to_vec()).collect(),
+                reach: reach(0),
                 last_recorded: self.step.last_recorded,
                 stride: self.step.stride,
                 queries: self.step.queries,
                 last_offset: self.last_offset[0],
                 exploration: self.exploration[0],
             },
-            rule_state: self.rule().state(),
+            rule_state: self.rules[0].state(),
+            more_offsets: (1..O)
+                .map(|k| SavedOffset {
+                    parameter: self.parameters[k],
+                    reach: reach(k),
+                    last_offset: self.last_offset[k],
+                    exploration: self.exploration[k],
+                    rule_state: self.rules[k].state(),
+                })
+                .collect(),
         }
     }
 
-    /// The learner of a checkpoint (checked) with `rule`: it continues bit for bit as the
-    /// learner that wrote it, mid-step included. A saved rule state is restored into `rule`
-    /// (an error if `rule` cannot take it); without one, `rule` is used as given.
-    pub fn from_checkpoint(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
+    /// The learner of a checkpoint (checked) with one rule per offset, in output order: it
+    /// continues bit for bit as the learner that wrote it, mid-step included. Saved rule states
+    /// are restored into `rules` (an error if a rule cannot take its state); without one, the
+    /// rule is used as given. A checkpoint of another shape (inputs, offsets) is an error.
+    pub fn from_checkpoint_with(
+        saved: SavedLearner<A>,
+        rules: [R; O],
+    ) -> Result<Self, LearnerError> {
         saved.check_invariants().map_err(LearnerError::approx)?;
-        Self::from_checked(saved, rule)
+        Self::from_checked(saved, rules)
     }
 
-    /// [`Self::from_checkpoint`] of a checkpoint whose invariants hold.
-    fn from_checked(saved: SavedLearner<A>, mut rule: R) -> Result<Self, LearnerError> {
-        if let Some(state) = &saved.rule_state {
-            rule.set_state(state)?;
+    /// Loads a learner saved by [`Self::save`] with one rule per offset; it continues exactly
+    /// where the saved one was, mid-step included. A corrupt file or a checkpoint of another
+    /// shape is an error.
+    pub fn load_with(path: impl AsRef<Path>, rules: [R; O]) -> Result<Self, LearnerError> {
+        // `Persist::load` has checked the invariants.
+        let saved = SavedLearner::<A>::load(path).map_err(LearnerError::approx)?;
+        Self::from_checked(saved, rules)
+    }
+
+    /// [`Self::from_checkpoint_with`] of a checkpoint whose invariants hold.
+    fn from_checked(saved: SavedLearner<A>, mut rules: [R; O]) -> Result<Self, LearnerError> {
+        if saved.more_offsets.len() + 1 != O {
+            return Err(LearnerError::WrongApproximatorShape {
+                expected: (I, O),
+                inputs: saved.approximator.input_dim(),
+                outputs: saved.more_offsets.len() + 1,
+            });
         }
-        let mut learner =
-            Self::assemble(saved.approximator, [rule], [saved.parameter], saved.config)?;
+        let states = std::iter::once(&saved.rule_state)
+            .chain(saved.more_offsets.iter().map(|o| &o.rule_state));
+        for (rule, state) in rules.iter_mut().zip(states) {
+            if let Some(state) = state {
+                rule.set_state(state)?;
+            }
+        }
+        let parameters: [StepParameter; O] = std::array::from_fn(|k| match k {
+            0 => saved.parameter,
+            _ => saved.more_offsets[k - 1].parameter,
+        });
+        let mut learner = Self::assemble(saved.approximator, rules, parameters, saved.config)?;
         let step = saved.step;
-        learner.trained = saved.trained;
-        learner.step.inputs.extend_from_slice(&step.recorded);
-        learner.step.reach.extend(
-            step.reach
-                .iter()
-                .map(|[lo, hi]| [[lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)]]),
-        );
+        if !saved.trained.is_empty() {
+            learner.trained = std::array::from_fn(|a| saved.trained[a]);
+        }
+        let unsaved = |v: &Option<f64>, infinite: f64| v.unwrap_or(infinite);
+        for (i, x) in step.recorded.iter().enumerate() {
+            learner.step.inputs.push(std::array::from_fn(|a| x[a]));
+            learner.step.reach.push(std::array::from_fn(|k| {
+                let [lo, hi] = match k {
+                    0 => step.reach[i],
+                    _ => saved.more_offsets[k - 1].reach[i],
+                };
+                [unsaved(&lo, f64::NEG_INFINITY), unsaved(&hi, f64::INFINITY)]
+            }));
+        }
         learner.step.last_recorded = step.last_recorded;
         learner.step.stride = step.stride;
         learner.step.queries = step.queries;
-        learner.last_offset = [step.last_offset];
-        learner.exploration = [step.exploration];
+        learner.last_offset = std::array::from_fn(|k| match k {
+            0 => step.last_offset,
+            _ => saved.more_offsets[k - 1].last_offset,
+        });
+        learner.exploration = std::array::from_fn(|k| match k {
+            0 => step.exploration,
+            _ => saved.more_offsets[k - 1].exploration,
+        });
         Ok(learner)
     }
 
     /// Saves the learner to `path` as JSON: config, approximator, trust-region statistics, the
-    /// step in progress and the rule's state, if any (atomically: temporary file and rename, so a failed save leaves an
-    /// existing file intact).
+    /// step in progress and each rule's state, if any (atomically: temporary file and rename,
+    /// so a failed save leaves an existing file intact).
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), LearnerError> {
         self.checkpoint().save(path).map_err(LearnerError::approx)
+    }
+}
+
+impl<A: FunctionApproximator + Persist + Clone, R: LearningRule>
+    OffsetLearner<A, R, LEARNER_INPUTS, 1>
+{
+    /// The learner of a checkpoint (checked) with `rule`: it continues bit for bit as the
+    /// learner that wrote it, mid-step included. A saved rule state is restored into `rule`
+    /// (an error if `rule` cannot take it); without one, `rule` is used as given.
+    pub fn from_checkpoint(saved: SavedLearner<A>, rule: R) -> Result<Self, LearnerError> {
+        Self::from_checkpoint_with(saved, [rule])
     }
 
     /// Loads a learner saved by [`Self::save`] with `rule`; it continues exactly where the
     /// saved one was, mid-step included. A corrupt file or a wrongly shaped approximator is an
     /// error.
     pub fn load(path: impl AsRef<Path>, rule: R) -> Result<Self, LearnerError> {
-        // `Persist::load` has checked the invariants.
-        let saved = SavedLearner::<A>::load(path).map_err(LearnerError::approx)?;
-        Self::from_checked(saved, rule)
+        Self::load_with(path, [rule])
     }
 }

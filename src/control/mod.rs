@@ -23,3 +23,12 @@ pub use crate::robot::kinematics;
 pub use crate::robot::{
     FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side,
 };
+
+// The learner and what it is built from, where users look for them.
+pub use learner::{FootstepLearner, OffsetLearner, SavedLearner, TouchDownReport};
+pub use learner_config::{LearnerConfig, LearnerInput, ParameterSettings, Prior};
+pub use learner_error::LearnerError;
+pub use policy::FootstepPolicy;
+pub use step_learner::StepLearner;
+pub use step_parameter::{LearnSet, StepParameter};
+pub use walker::{Walker, WalkerConfig, WalkerMode};

@@ -73,10 +73,10 @@ pub struct WalkerConfig {
     /// touch down then. Those steps realise only part of any command, so they are a reach
     /// limit the offset cannot act on (the reason for the learner's anti-windup); off, the
     /// model alone starts the walker, the learner learns once the gait has faded in and its
-    /// offset ramps in over the following fade-in time (switched on at once, the jolt cost 10-20%
-    /// of the learned I50 in C, where pushes delayed by a fall come 2 s after the reset).
-    /// Default off: with it on (every touch-down teaches, as in the paper) the restarts after
-    /// falls taught large offsets (their first steps miss F_R by up to 0.2 m). Ignored in
+    /// offset ramps in over the following fade-in time (switched on at once, its jolt costs
+    /// push recovery where a push follows a reset). Default off: with it on (every touch-down
+    /// teaches, as in the paper) the restarts after falls teach large offsets, since their
+    /// first steps miss F_R far (docs/learner.md). Ignored in
     /// learner-only mode, where the learned offset is the whole step.
     #[serde(default)]
     pub learner_during_fade_in: bool,

@@ -14,8 +14,39 @@ use super::settings::Settings;
 use super::suite;
 use crate::config::ConfigError;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use thiserror::Error;
+
+/// Why a config file cannot be loaded: each names the file.
+#[derive(Debug, Error)]
+pub enum ConfigFileError {
+    /// The file cannot be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The error.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML or JSON, or has an unknown section or key, or a value of
+    /// the wrong type.
+    #[error("{}: {}", path.display(), describe(source))]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// Where and why (the table or key's path).
+        source: ConfigError,
+    },
+    /// A value is out of range, or a protocol table is of no listed experiment.
+    #[error("{}: invalid value: {source}", path.display())]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// The field and why.
+        source: ConfigError,
+    },
+}
 
 /// A whole config file. Every field defaults, so an empty file is the paper's setup.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -62,24 +93,35 @@ impl ConfigFile {
     /// Reads, parses (JSON if the name ends in `.json`, TOML otherwise) and validates a file
     /// against the built-in experiments. The message names the file and the offending key or
     /// field.
-    pub fn load(path: &Path) -> Result<Self, String> {
+    pub fn load(path: &Path) -> Result<Self, ConfigFileError> {
         Self::load_for(path, &suite::builtin())
     }
 
     /// [`ConfigFile::load`] against `experiments` (a registry's): a protocol table is valid
     /// when its experiment accepts it, and a table of no listed experiment is an error.
-    pub fn load_for(path: &Path, experiments: &[Arc<dyn Experiment>]) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    pub fn load_for(
+        path: &Path,
+        experiments: &[Arc<dyn Experiment>],
+    ) -> Result<Self, ConfigFileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigFileError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
         let config = if path.extension().is_some_and(|e| e == "json") {
             Self::from_json(&text)
         } else {
             Self::from_toml(&text)
         };
-        let config = config.map_err(|e| format!("{}: {}", path.display(), describe(&e)))?;
+        let config = config.map_err(|source| ConfigFileError::Parse {
+            path: path.to_path_buf(),
+            source,
+        })?;
         config
             .validate_for(experiments)
-            .map_err(|e| format!("{}: invalid value: {e}", path.display()))?;
+            .map_err(|source| ConfigFileError::Invalid {
+                path: path.to_path_buf(),
+                source,
+            })?;
         Ok(config)
     }
 

@@ -7,7 +7,7 @@ use super::aligned::AlignedStats;
 use super::claim::{Claim, by_seed};
 use super::compare::{ModelAndLearned, run_model_and_learned};
 use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, RunContext};
+use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
 use super::paired::{Direction, Paired};
 use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::PushPlan;
@@ -505,10 +505,10 @@ impl Experiment for Disturbance {
         &self,
         protocols: &mut ProtocolTables,
         options: &PushOptions,
-    ) -> Result<(), String> {
-        let mut p: DisturbanceProtocol = protocols.get(self.name()).map_err(|e| e.to_string())?;
+    ) -> Result<(), PushOptionsError> {
+        let mut p: DisturbanceProtocol = protocols.get(self.name())?;
         options.apply_single(self.name(), &mut p.pushes, &mut p.impulse, &mut p.direction)?;
-        protocols.set(self.name(), &p).map_err(|e| e.to_string())
+        Ok(protocols.set(self.name(), &p)?)
     }
 
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {

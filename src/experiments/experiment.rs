@@ -20,6 +20,8 @@ use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::rules::{LearningRule, StepTime};
 use std::path::Path;
 
+pub use super::push_options::{PushOptions, PushOptionsError};
+
 /// The learner every experiment runs: the run's approximator and rule, chosen by name.
 pub type RunLearner = FootstepLearner<BoxedApproximator, Box<dyn LearningRule>>;
 
@@ -170,53 +172,6 @@ impl Headline {
     }
 }
 
-/// The command line's push options (`--pushes`, `--impulse-range`, `--push-direction`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PushOptions {
-    /// Number of pushes, if given.
-    pub pushes: Option<usize>,
-    /// Impulse range (Ns), if given.
-    pub impulse_range: Option<(f64, f64)>,
-    /// Unit push direction, if given (otherwise the protocol's, e.g. from a config file).
-    pub direction: Option<[f64; 3]>,
-}
-
-impl PushOptions {
-    /// The single impulse of an experiment that pushes with one impulse (`A,A`), if given.
-    pub fn single_impulse(&self, kind: &str) -> Result<Option<f64>, String> {
-        match self.impulse_range {
-            Some((a, b)) if a != b => Err(format!(
-                "{kind} pushes with one impulse: give --impulse-range A,A (got {a},{b})"
-            )),
-            Some((a, _)) => Ok(Some(a)),
-            None => Ok(None),
-        }
-    }
-
-    /// Sets the push count, the one impulse and the direction of an experiment of `kind` that
-    /// pushes with one impulse, where the options give them.
-    pub fn apply_single(
-        &self,
-        kind: &str,
-        pushes: &mut usize,
-        impulse: &mut f64,
-        direction: &mut [f64; 3],
-    ) -> Result<(), String> {
-        let single = self.single_impulse(kind)?;
-        *pushes = self.pushes.unwrap_or(*pushes);
-        *impulse = single.unwrap_or(*impulse);
-        *direction = self.direction.unwrap_or(*direction);
-        Ok(())
-    }
-}
-
-impl PushOptions {
-    /// Whether no option is given.
-    pub fn is_empty(&self) -> bool {
-        self.pushes.is_none() && self.impulse_range.is_none() && self.direction.is_none()
-    }
-}
-
 /// One experiment: the paper's or a user's.
 ///
 /// A user's experiment builds its walkers with the public harness
@@ -254,12 +209,14 @@ pub trait Experiment: Send + Sync {
         &self,
         protocols: &mut ProtocolTables,
         options: &PushOptions,
-    ) -> Result<(), String> {
+    ) -> Result<(), PushOptionsError> {
         let _ = protocols;
         if options.is_empty() {
             Ok(())
         } else {
-            Err(format!("{} takes no push options", self.name()))
+            Err(PushOptionsError::NotTaken {
+                experiment: self.name().to_string(),
+            })
         }
     }
 

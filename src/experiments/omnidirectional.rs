@@ -21,7 +21,7 @@
 //! a user's experiment would write it.
 
 use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, RunContext};
+use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
 use super::fall_causes::{count, run_classified};
 use super::paired::{Direction, Paired};
 use super::protocol::{Protocol, ProtocolTables, Table};
@@ -311,18 +311,18 @@ impl Experiment for Omnidirectional {
         &self,
         protocols: &mut ProtocolTables,
         options: &PushOptions,
-    ) -> Result<(), String> {
+    ) -> Result<(), PushOptionsError> {
         if options.direction.is_some() {
-            return Err(format!(
-                "{} pushes from every direction: --push-direction does not apply",
-                self.name()
-            ));
+            return Err(PushOptionsError::NotApplicable {
+                experiment: self.name().to_string(),
+                option: "--push-direction",
+                why: "pushes from every direction",
+            });
         }
-        let mut p: OmnidirectionalProtocol =
-            protocols.get(self.name()).map_err(|e| e.to_string())?;
+        let mut p: OmnidirectionalProtocol = protocols.get(self.name())?;
         p.pushes = options.pushes.unwrap_or(p.pushes);
         p.impulse = options.impulse_range.unwrap_or(p.impulse);
-        protocols.set(self.name(), &p).map_err(|e| e.to_string())
+        Ok(protocols.set(self.name(), &p)?)
     }
 
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {

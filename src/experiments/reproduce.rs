@@ -13,7 +13,7 @@ use super::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
 use super::{disturbance, robustness, stability, tracking};
 use crate::Named;
 use crate::experiments::summary::Summary;
-use crate::report::{ReportError, write_atomic};
+use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use strum::VariantArray;
@@ -148,13 +148,13 @@ impl Claims {
     /// under `dir`) into `dir`.
     pub fn write(&self, dir: &Path, approx: &str, rule: &str) -> Result<(), ExperimentError> {
         std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
-        write_atomic(
+        write_file(
             &dir.join("claims.md"),
             self.to_markdown(approx, rule).as_bytes(),
         )?;
         let json =
             serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))?;
-        write_atomic(&dir.join("claims.json"), json.as_bytes())?;
+        write_file(&dir.join("claims.json"), json.as_bytes())?;
         let runs = |kind: ExperimentKind, claim: &Claim| -> Vec<std::path::PathBuf> {
             claim
                 .seeds

@@ -5,7 +5,7 @@
 use super::catch_step::{CatchStepObserver, CatchStepReach};
 use super::claim::{Claim, by_seed};
 use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, RunContext};
+use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
 use super::fall_causes::{
     ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified_with,
 };
@@ -301,12 +301,12 @@ impl Experiment for Stability {
         &self,
         protocols: &mut ProtocolTables,
         options: &PushOptions,
-    ) -> Result<(), String> {
-        let mut p: StabilityProtocol = protocols.get(self.name()).map_err(|e| e.to_string())?;
+    ) -> Result<(), PushOptionsError> {
+        let mut p: StabilityProtocol = protocols.get(self.name())?;
         p.pushes = options.pushes.unwrap_or(p.pushes);
         p.impulse = options.impulse_range.unwrap_or(p.impulse);
         p.direction = options.direction.unwrap_or(p.direction);
-        protocols.set(self.name(), &p).map_err(|e| e.to_string())
+        Ok(protocols.set(self.name(), &p)?)
     }
 
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError> {

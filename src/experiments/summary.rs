@@ -11,7 +11,7 @@ use super::ExperimentKind;
 use super::fall_causes::FallCause;
 use crate::Named;
 use crate::control::step_parameter::LearnSet;
-use crate::report::{ReportError, write_atomic};
+use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -329,7 +329,7 @@ impl<'de> Deserialize<'de> for Summary {
 
 /// Checks a registered name (approximator, rule or experiment): non-empty lowercase ASCII
 /// letters, digits and `-`, so that it is safe in run ids and paths.
-pub fn check_name(what: &str, name: &str) -> Result<(), String> {
+pub(crate) fn check_name(what: &str, name: &str) -> Result<(), String> {
     let ok = !name.is_empty()
         && name
             .chars()
@@ -375,6 +375,172 @@ fn finite_non_negative(what: &str, v: f64) -> Result<(), ReportError> {
     }
 }
 
+/// A user's result: a valid name, not a built-in's, and no field every summary has already.
+fn validate_custom(c: &CustomResult) -> Result<(), ReportError> {
+    check_name("experiment", &c.experiment).map_err(ReportError::invalid)?;
+    if ExperimentKind::from_name(&c.experiment).is_some() {
+        return Err(ReportError::invalid(format!(
+            "{} is a built-in experiment; its result cannot be custom",
+            c.experiment
+        )));
+    }
+    if let Some(k) = COMMON_FIELDS.iter().find(|k| c.fields.contains_key(**k)) {
+        return Err(ReportError::invalid(format!(
+            "the result of {} has a field {k:?}, which every summary has already",
+            c.experiment
+        )));
+    }
+    Ok(())
+}
+
+/// A: a positive bin width, equal-length series, finite non-negative spreads.
+fn validate_tracking(
+    step_error_std_m: &ModelLearned<Vec<Option<f64>>>,
+    bin_s: &f64,
+) -> Result<(), ReportError> {
+    if !(bin_s.is_finite() && *bin_s > 0.0) {
+        return Err(ReportError::invalid(format!(
+            "bin_s must be finite and > 0, got {bin_s}"
+        )));
+    }
+    if step_error_std_m.model.len() != step_error_std_m.learned.len() {
+        return Err(ReportError::invalid(
+            "step_error_std_m: model and learned have different lengths",
+        ));
+    }
+    for v in step_error_std_m
+        .model
+        .iter()
+        .chain(&step_error_std_m.learned)
+        .flatten()
+    {
+        finite_non_negative("step_error_std_m", *v)?;
+    }
+    Ok(())
+}
+
+/// B: finite non-negative times, errors and angles; falls within pushes, causes adding up.
+fn validate_disturbance(
+    return_time_s: &ModelLearned<f64>,
+    settle_time_s: &Option<ModelLearned<f64>>,
+    step_error_after_push_m: &Option<ModelLearned<f64>>,
+    max_tda_rad: &ModelLearned<f64>,
+    falls: &Option<PushFalls>,
+) -> Result<(), ReportError> {
+    if let Some(t) = settle_time_s {
+        finite_non_negative("settle_time_s.model", t.model)?;
+        finite_non_negative("settle_time_s.learned", t.learned)?;
+    }
+    if let Some(e) = step_error_after_push_m {
+        finite_non_negative("step_error_after_push_m.model", e.model)?;
+        finite_non_negative("step_error_after_push_m.learned", e.learned)?;
+    }
+    if let Some(f) = falls {
+        if f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned {
+            return Err(ReportError::invalid(format!(
+                "falls: more falls than pushes ({f:?})"
+            )));
+        }
+        if let Some(causes) = &f.causes {
+            check_causes("model", &causes.model, f.falls.model)?;
+            check_causes("learned", &causes.learned, f.falls.learned)?;
+        }
+        if let Some(late) = &f.before_next_push {
+            let within = |late: u32, falls: u32, pushes: u32| (falls..=pushes).contains(&late);
+            if !within(late.model, f.falls.model, f.pushes.model)
+                || !within(late.learned, f.falls.learned, f.pushes.learned)
+            {
+                return Err(ReportError::invalid(format!(
+                    "falls: falls before the next push {late:?} outside [falls, pushes]"
+                )));
+            }
+        }
+    }
+    finite_non_negative("return_time_s.model", return_time_s.model)?;
+    finite_non_negative("return_time_s.learned", return_time_s.learned)?;
+    finite_non_negative("max_tda_rad.model", max_tda_rad.model)?;
+    finite_non_negative("max_tda_rad.learned", max_tda_rad.learned)?;
+    Ok(())
+}
+
+/// C: falls within pushes per controller, causes adding up, finite reaches.
+fn validate_stability(
+    controllers: &Controllers,
+    fall_causes: &FallCauseCounts,
+    catch_step_reach: &Option<CatchStepReaches>,
+) -> Result<(), ReportError> {
+    for (name, c, causes) in [
+        ("open_loop", &controllers.open_loop, &fall_causes.open_loop),
+        ("model", &controllers.model, &fall_causes.model),
+        ("learned", &controllers.learned, &fall_causes.learned),
+    ] {
+        c.validate(name)?;
+        check_causes(name, causes, c.falls)?;
+    }
+    if let Some(r) = catch_step_reach {
+        for (name, v) in [
+            ("catch_step_reach.model", r.model),
+            ("catch_step_reach.learned", r.learned),
+        ] {
+            if v.is_some_and(|v| !v.is_finite()) {
+                return Err(ReportError::invalid(format!("{name} must be finite")));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// D: the first absorbed push agrees with the per-push record; a missed push means a fall.
+fn validate_robustness(
+    pushes_until_first_absorbed: &Option<u32>,
+    falls: &u32,
+    impulse_ns: &Option<f64>,
+    absorbed_by_push: &[bool],
+    no_learning: &Option<NoLearning>,
+) -> Result<(), ReportError> {
+    if *pushes_until_first_absorbed == Some(0) {
+        return Err(ReportError::invalid(
+            "pushes_until_first_absorbed is 1-based, got 0",
+        ));
+    }
+    if let Some(i) = impulse_ns {
+        finite_non_negative("impulse_ns", *i)?;
+    }
+    let first = absorbed_by_push
+        .iter()
+        .position(|&a| a)
+        .map(|i| i as u32 + 1);
+    if !absorbed_by_push.is_empty() && first != *pushes_until_first_absorbed {
+        return Err(ReportError::invalid(format!(
+            "absorbed_by_push first absorbs push {first:?}, \
+                 pushes_until_first_absorbed says {pushes_until_first_absorbed:?}"
+        )));
+    }
+    // A push not absorbed means at least one fall in its episode.
+    let check_falls = |what: &str, absorbed: &[bool], falls: u32| {
+        let missed = absorbed.iter().filter(|&&a| !a).count();
+        if (falls as usize) < missed {
+            Err(ReportError::invalid(format!(
+                "{what}: {missed} pushes not absorbed but only {falls} falls"
+            )))
+        } else {
+            Ok(())
+        }
+    };
+    check_falls("learned", absorbed_by_push, *falls)?;
+    if let Some(n) = no_learning {
+        if n.absorbed_by_push.len() != absorbed_by_push.len() {
+            return Err(ReportError::invalid(format!(
+                "no_learning has {} pushes, the learned walker {}",
+                n.absorbed_by_push.len(),
+                absorbed_by_push.len()
+            )));
+        }
+        check_falls("no_learning", &n.absorbed_by_push, n.falls)?;
+    }
+    Ok(())
+}
+
 impl ControllerFalls {
     fn validate(&self, name: &str) -> Result<(), ReportError> {
         if self.falls > self.pushes {
@@ -403,160 +569,43 @@ impl Summary {
         check_name("approximator", &self.approx).map_err(ReportError::invalid)?;
         check_name("rule", &self.rule).map_err(ReportError::invalid)?;
         match &self.result {
-            ExperimentResult::Custom(c) => {
-                check_name("experiment", &c.experiment).map_err(ReportError::invalid)?;
-                if ExperimentKind::from_name(&c.experiment).is_some() {
-                    return Err(ReportError::invalid(format!(
-                        "{} is a built-in experiment; its result cannot be custom",
-                        c.experiment
-                    )));
-                }
-                if let Some(k) = COMMON_FIELDS.iter().find(|k| c.fields.contains_key(**k)) {
-                    return Err(ReportError::invalid(format!(
-                        "the result of {} has a field {k:?}, which every summary has already",
-                        c.experiment
-                    )));
-                }
-            }
+            ExperimentResult::Custom(c) => validate_custom(c),
             ExperimentResult::Tracking {
                 step_error_std_m,
                 bin_s,
-            } => {
-                if !(bin_s.is_finite() && *bin_s > 0.0) {
-                    return Err(ReportError::invalid(format!(
-                        "bin_s must be finite and > 0, got {bin_s}"
-                    )));
-                }
-                if step_error_std_m.model.len() != step_error_std_m.learned.len() {
-                    return Err(ReportError::invalid(
-                        "step_error_std_m: model and learned have different lengths",
-                    ));
-                }
-                for v in step_error_std_m
-                    .model
-                    .iter()
-                    .chain(&step_error_std_m.learned)
-                    .flatten()
-                {
-                    finite_non_negative("step_error_std_m", *v)?;
-                }
-            }
+            } => validate_tracking(step_error_std_m, bin_s),
             ExperimentResult::Disturbance {
                 return_time_s,
                 settle_time_s,
                 step_error_after_push_m,
                 max_tda_rad,
                 falls,
-            } => {
-                if let Some(t) = settle_time_s {
-                    finite_non_negative("settle_time_s.model", t.model)?;
-                    finite_non_negative("settle_time_s.learned", t.learned)?;
-                }
-                if let Some(e) = step_error_after_push_m {
-                    finite_non_negative("step_error_after_push_m.model", e.model)?;
-                    finite_non_negative("step_error_after_push_m.learned", e.learned)?;
-                }
-                if let Some(f) = falls {
-                    if f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned {
-                        return Err(ReportError::invalid(format!(
-                            "falls: more falls than pushes ({f:?})"
-                        )));
-                    }
-                    if let Some(causes) = &f.causes {
-                        check_causes("model", &causes.model, f.falls.model)?;
-                        check_causes("learned", &causes.learned, f.falls.learned)?;
-                    }
-                    if let Some(late) = &f.before_next_push {
-                        let within =
-                            |late: u32, falls: u32, pushes: u32| (falls..=pushes).contains(&late);
-                        if !within(late.model, f.falls.model, f.pushes.model)
-                            || !within(late.learned, f.falls.learned, f.pushes.learned)
-                        {
-                            return Err(ReportError::invalid(format!(
-                                "falls: falls before the next push {late:?} outside [falls, pushes]"
-                            )));
-                        }
-                    }
-                }
-                finite_non_negative("return_time_s.model", return_time_s.model)?;
-                finite_non_negative("return_time_s.learned", return_time_s.learned)?;
-                finite_non_negative("max_tda_rad.model", max_tda_rad.model)?;
-                finite_non_negative("max_tda_rad.learned", max_tda_rad.learned)?;
-            }
+            } => validate_disturbance(
+                return_time_s,
+                settle_time_s,
+                step_error_after_push_m,
+                max_tda_rad,
+                falls,
+            ),
             ExperimentResult::Stability {
                 controllers,
                 fall_causes,
                 catch_step_reach,
-            } => {
-                for (name, c, causes) in [
-                    ("open_loop", &controllers.open_loop, &fall_causes.open_loop),
-                    ("model", &controllers.model, &fall_causes.model),
-                    ("learned", &controllers.learned, &fall_causes.learned),
-                ] {
-                    c.validate(name)?;
-                    check_causes(name, causes, c.falls)?;
-                }
-                if let Some(r) = catch_step_reach {
-                    for (name, v) in [
-                        ("catch_step_reach.model", r.model),
-                        ("catch_step_reach.learned", r.learned),
-                    ] {
-                        if v.is_some_and(|v| !v.is_finite()) {
-                            return Err(ReportError::invalid(format!("{name} must be finite")));
-                        }
-                    }
-                }
-            }
+            } => validate_stability(controllers, fall_causes, catch_step_reach),
             ExperimentResult::Robustness {
                 pushes_until_first_absorbed,
                 falls,
                 impulse_ns,
                 absorbed_by_push,
                 no_learning,
-            } => {
-                if *pushes_until_first_absorbed == Some(0) {
-                    return Err(ReportError::invalid(
-                        "pushes_until_first_absorbed is 1-based, got 0",
-                    ));
-                }
-                if let Some(i) = impulse_ns {
-                    finite_non_negative("impulse_ns", *i)?;
-                }
-                let first = absorbed_by_push
-                    .iter()
-                    .position(|&a| a)
-                    .map(|i| i as u32 + 1);
-                if !absorbed_by_push.is_empty() && first != *pushes_until_first_absorbed {
-                    return Err(ReportError::invalid(format!(
-                        "absorbed_by_push first absorbs push {first:?}, \
-                         pushes_until_first_absorbed says {pushes_until_first_absorbed:?}"
-                    )));
-                }
-                // A push not absorbed means at least one fall in its episode.
-                let check_falls = |what: &str, absorbed: &[bool], falls: u32| {
-                    let missed = absorbed.iter().filter(|&&a| !a).count();
-                    if (falls as usize) < missed {
-                        Err(ReportError::invalid(format!(
-                            "{what}: {missed} pushes not absorbed but only {falls} falls"
-                        )))
-                    } else {
-                        Ok(())
-                    }
-                };
-                check_falls("learned", absorbed_by_push, *falls)?;
-                if let Some(n) = no_learning {
-                    if n.absorbed_by_push.len() != absorbed_by_push.len() {
-                        return Err(ReportError::invalid(format!(
-                            "no_learning has {} pushes, the learned walker {}",
-                            n.absorbed_by_push.len(),
-                            absorbed_by_push.len()
-                        )));
-                    }
-                    check_falls("no_learning", &n.absorbed_by_push, n.falls)?;
-                }
-            }
+            } => validate_robustness(
+                pushes_until_first_absorbed,
+                falls,
+                impulse_ns,
+                absorbed_by_push,
+                no_learning,
+            ),
         }
-        Ok(())
     }
 
     /// Pretty JSON of a validated summary.
@@ -577,7 +626,7 @@ impl Summary {
     /// write leaves any existing file untouched).
     pub fn write(&self, path: &Path) -> Result<(), ReportError> {
         let json = self.to_json()?;
-        write_atomic(path, json.as_bytes())
+        write_file(path, json.as_bytes())
     }
 
     /// Reads and validates `path`; a malformed file is a [`ReportError::Parse`] naming it.

@@ -2,7 +2,7 @@
 //! stable ids, run in parallel (rayon), sharded for clusters, resumable, and merged into a table.
 //!
 //! Layout of a sweep directory: one sub-directory per run, named by [`RunSpec::id`], holding
-//! whatever the runner writes (CSV, SVG) plus `run.json` ([`RunRecord`]: the spec and the wall
+//! whatever the runner writes (CSV, SVG) plus `run.json` ([`RunInfo`]: the spec and the wall
 //! time) and, written last and atomically, `summary.json`. A run whose `summary.json` exists
 //! and parses is finished: a later sweep over the same directory skips it, so an interrupted
 //! sweep resumes where it stopped, and shards of one grid can share a directory.
@@ -16,7 +16,7 @@
 use crate::config::limits::MAX_SEEDS;
 use crate::control::step_parameter::LearnSet;
 use crate::experiments::summary::{ExperimentResult, Summary, check_name};
-use crate::report::{ReportError, write_atomic};
+use crate::report::{ReportError, write_file};
 use crate::report::{Shortest, write_rows};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -125,7 +125,7 @@ impl RunSpec {
 }
 
 /// Checks that no set of learned step parameters is given twice; the error names the set.
-pub fn check_distinct_sets(sets: &[LearnSet]) -> Result<(), String> {
+pub(crate) fn check_distinct_sets(sets: &[LearnSet]) -> Result<(), String> {
     match sets
         .iter()
         .enumerate()
@@ -338,7 +338,7 @@ where
 /// fixed by the command-line contract).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RunRecord {
+pub struct RunInfo {
     /// [`RunSpec::id`].
     pub id: String,
     /// The spec.
@@ -398,7 +398,7 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
 
 /// Whether the finished run in `dir` is the run of `identity`: `Ok` to reuse it, otherwise
 /// why not (naming the first difference and how to proceed).
-pub fn check_identity(dir: &Path, identity: &str) -> Result<(), String> {
+pub(crate) fn check_identity(dir: &Path, identity: &str) -> Result<(), String> {
     let path = dir.join(IDENTITY_FILE);
     let how = format!(
         "choose another output directory, or delete {} to run it again",
@@ -528,7 +528,7 @@ fn compute(spec: &RunSpec, dir: &Path, runner: &dyn Runner, identity: Option<Str
             summary.seed
         ));
     }
-    let record = RunRecord {
+    let record = RunInfo {
         id: spec.id(),
         spec: spec.clone(),
         wall_time_s,
@@ -536,9 +536,9 @@ fn compute(spec: &RunSpec, dir: &Path, runner: &dyn Runner, identity: Option<Str
     };
     let written = serde_json::to_string_pretty(&record)
         .map_err(|e| ReportError::invalid(e.to_string()))
-        .and_then(|json| write_atomic(&dir.join(RECORD_FILE), json.as_bytes()))
+        .and_then(|json| write_file(&dir.join(RECORD_FILE), json.as_bytes()))
         .and_then(|()| match &identity {
-            Some(i) => write_atomic(&dir.join(IDENTITY_FILE), i.as_bytes()),
+            Some(i) => write_file(&dir.join(IDENTITY_FILE), i.as_bytes()),
             None => Ok(()),
         })
         .and_then(|()| summary.write(&summary_path));
@@ -826,7 +826,7 @@ impl Merged {
 
     /// Writes `ablation.md` and `ablation.csv` into `dir` (atomically).
     pub fn write(&self, dir: &Path) -> Result<(), SweepError> {
-        write_atomic(&dir.join(TABLE_FILES[0]), self.to_markdown().as_bytes())?;
+        write_file(&dir.join(TABLE_FILES[0]), self.to_markdown().as_bytes())?;
         write_rows(&dir.join(TABLE_FILES[1]), &self.csv_rows())?;
         Ok(())
     }
@@ -893,7 +893,7 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
         if record_path.exists() {
             let record = std::fs::read_to_string(&record_path)
                 .map_err(|e| e.to_string())
-                .and_then(|t| serde_json::from_str::<RunRecord>(&t).map_err(|e| e.to_string()));
+                .and_then(|t| serde_json::from_str::<RunInfo>(&t).map_err(|e| e.to_string()));
             match record {
                 Ok(r) if r.wall_time_s.is_finite() && r.wall_time_s >= 0.0 => {
                     group.run_time_s.push(r.wall_time_s)

@@ -7,7 +7,7 @@ use super::aligned::AlignedStats;
 use super::claim::{Claim, by_seed};
 use super::compare::{ModelAndLearned, run_model_and_learned};
 use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, RunContext};
+use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
 use super::paired::{Direction, Paired};
 use super::protocol::{Protocol, ProtocolTables, Table};
 use super::schedule::ReferenceSchedule;
@@ -295,9 +295,11 @@ impl Experiment for Tracking {
         &self,
         _protocols: &mut ProtocolTables,
         options: &PushOptions,
-    ) -> Result<(), String> {
+    ) -> Result<(), PushOptionsError> {
         if !options.is_empty() {
-            return Err("the tracking experiment has no pushes".into());
+            return Err(PushOptionsError::NoPushes {
+                experiment: self.name().to_string(),
+            });
         }
         Ok(())
     }

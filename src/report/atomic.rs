@@ -1,11 +1,12 @@
-//! [`crate::atomic_file::write_atomic`] with the report's error type.
+//! Writing a report file: atomically ([`crate::atomic_file::write_atomic`]), with the report's
+//! error type.
 
 use super::ReportError;
 use std::path::Path;
 
 /// Writes `contents` to `path` atomically ([`crate::atomic_file::write_atomic`]); the error
 /// names the path.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), ReportError> {
+pub fn write_file(path: &Path, contents: &[u8]) -> Result<(), ReportError> {
     crate::atomic_file::write_atomic(path, contents).map_err(|e| ReportError::io(path, e))
 }
 
@@ -17,7 +18,7 @@ mod tests {
     fn errors_name_the_path() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("missing/a.txt");
-        let err = write_atomic(&path, b"x").unwrap_err();
+        let err = write_file(&path, b"x").unwrap_err();
         assert!(matches!(err, ReportError::Io { .. }));
         assert!(err.to_string().contains("missing/a.txt"), "{err}");
     }

@@ -2,7 +2,7 @@
 //! the row type's field names, the cells its fields. [`Fixed`] and [`Shortest`] pin how a
 //! number is printed, so a table's bytes do not depend on the csv crate's float formatting.
 
-use super::{ReportError, write_atomic};
+use super::{ReportError, write_file};
 use serde::{Serialize, Serializer};
 use std::fmt;
 use std::path::Path;
@@ -43,7 +43,7 @@ impl fmt::Display for Shortest {
 /// file at `path` is left as it was.
 pub fn write_rows<R: Serialize + Default>(path: &Path, rows: &[R]) -> Result<(), ReportError> {
     let bytes = to_bytes(rows).map_err(|e| ReportError::invalid(format!("csv: {e}")))?;
-    write_atomic(path, &bytes)
+    write_file(path, &bytes)
 }
 
 fn to_bytes<R: Serialize + Default>(rows: &[R]) -> Result<Vec<u8>, csv::Error> {

@@ -16,6 +16,6 @@ pub fn read_rows<R: DeserializeOwned>(path: &Path) -> Result<Vec<R>, ReportError
 }
 
 /// A number cell that may be empty or `NaN` (then NaN).
-pub fn number(cell: &str) -> f64 {
+pub(crate) fn number(cell: &str) -> f64 {
     cell.trim().parse().unwrap_or(f64::NAN)
 }

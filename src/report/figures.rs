@@ -11,7 +11,7 @@
 //! - [`heat_map_grid`]: small multiples of 2-D maps with data-point crosses (Fig. 8).
 //! - [`polar_plot`]: values by push direction, seen from above.
 
-use super::{ReportError, write_atomic};
+use super::{ReportError, write_file};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
@@ -246,7 +246,7 @@ pub(crate) fn render(
         draw(&root)?;
         root.present().map_err(plot_err)?;
     }
-    write_atomic(path, svg.as_bytes())
+    write_file(path, svg.as_bytes())
 }
 
 type Chart<'a, 'b> = ChartContext<
@@ -547,7 +547,7 @@ impl HeatPanel<'_> {
 }
 
 /// Tick label: integers without a decimal point, others with at most 3 decimals, never "-0".
-pub fn tick(v: &f64) -> String {
+pub(crate) fn tick(v: &f64) -> String {
     let s = format!("{:.3}", v + 0.0);
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" { "0".into() } else { s }

@@ -1,7 +1,7 @@
 //! One self-contained HTML page: headings, text, tables (from the Markdown the reports
 //! already write) and SVG figures inlined, with no script, font or network reference.
 
-use super::{ReportError, write_atomic};
+use super::{ReportError, write_file};
 use std::path::Path;
 
 /// A page being built; [`HtmlPage::write`] writes it.
@@ -12,7 +12,7 @@ pub struct HtmlPage {
 }
 
 /// `s` with `&`, `<`, `>` and `"` escaped.
-pub fn escape(s: &str) -> String {
+pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -186,7 +186,7 @@ impl HtmlPage {
 
     /// Writes the page to `path` atomically.
     pub fn write(&self, path: &Path) -> Result<(), ReportError> {
-        write_atomic(path, self.to_html().as_bytes())
+        write_file(path, self.to_html().as_bytes())
     }
 }
 

@@ -5,13 +5,13 @@
 mod atomic;
 pub mod band;
 mod csv_file;
-pub mod csv_read;
+pub(crate) mod csv_read;
 mod error;
 pub mod fall_rate;
 pub mod figures;
 pub mod forest;
 pub mod html;
 
-pub use atomic::write_atomic;
+pub use atomic::write_file;
 pub use csv_file::{Fixed, Shortest, write_rows};
 pub use error::ReportError;

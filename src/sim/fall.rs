@@ -17,9 +17,11 @@ pub enum BodyPart {
     Foot(Side),
 }
 
-/// Why the robot is considered fallen.
+/// What made the simulator declare a fall: the trunk's tilt or a body other than a foot on
+/// the ground. (Why it fell, relative to a push and the catch step, is the experiments'
+/// `FallCause`.)
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum FallCause {
+pub enum FallTrigger {
     /// The trunk tilted beyond the threshold.
     Tilt {
         /// Trunk tilt from vertical (rad).
@@ -37,6 +39,6 @@ pub enum FallCause {
 pub struct Fall {
     /// Simulation time of detection (s).
     pub time: f64,
-    /// Why.
-    pub cause: FallCause,
+    /// What triggered it.
+    pub trigger: FallTrigger,
 }

@@ -14,7 +14,7 @@ use rapier3d_f64::prelude::*;
 use super::body::{BodyConfig, head_neck_length};
 use super::config::SimConfig;
 use super::error::SimError;
-use super::fall::{BodyPart, Fall, FallCause};
+use super::fall::{BodyPart, Fall, FallTrigger};
 use super::sensors::{foot_contact, imu_of};
 use super::truth::{GroundTruth, Skeleton, pose_of};
 use crate::robot::{JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
@@ -556,7 +556,7 @@ impl Humanoid {
         if tilt > self.config.fall_tilt {
             return Some(Fall {
                 time: self.time,
-                cause: FallCause::Tilt { angle: tilt },
+                trigger: FallTrigger::Tilt { angle: tilt },
             });
         }
         for pair in self.world.narrow_phase.contact_pairs_with(self.ground) {
@@ -573,7 +573,7 @@ impl Humanoid {
             {
                 return Some(Fall {
                     time: self.time,
-                    cause: FallCause::Contact { part: *part },
+                    trigger: FallTrigger::Contact { part: *part },
                 });
             }
         }

@@ -14,6 +14,6 @@ mod truth;
 pub use body::{BodyConfig, Foot, JointSpec, Segment, Torso};
 pub use config::{SimConfig, standing_pose};
 pub use error::SimError;
-pub use fall::{BodyPart, Fall, FallCause};
+pub use fall::{BodyPart, Fall, FallTrigger};
 pub use humanoid::Humanoid;
 pub use truth::{GroundTruth, Skeleton, WorldPose};

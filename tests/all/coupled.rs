@@ -379,3 +379,113 @@ fn each_offset_takes_its_own_parameters_dead_zone() {
         "dF {df_before} -> {df}"
     );
 }
+
+/// Drives `learner` through `steps` steps of queries with reaches, touching down after each,
+/// calling `between(learner, query)` before every query; returns every offset it answered.
+fn drive(
+    learner: &mut CoupledLearner<Stacked<AnyApproximator>, PendulumCart>,
+    steps: usize,
+    mut between: impl FnMut(&mut CoupledLearner<Stacked<AnyApproximator>, PendulumCart>, usize),
+) -> Vec<[f64; 2]> {
+    let mut answers = Vec::new();
+    let mut query = 0;
+    for step in 0..steps {
+        let lean = 0.01 * (step as f64 - 3.0);
+        for tick in 0..23 {
+            between(learner, query);
+            query += 1;
+            let s = LearnerInput::new(lean + 0.002 * tick as f64, 0.1 - 0.01 * tick as f64, 0.05);
+            let l = LearnerInput::new(-0.5 * lean, 0.02 * tick as f64, -0.02);
+            answers.push(learner.query(s, l).unwrap());
+            learner
+                .set_reach(0, -0.05 - 0.001 * tick as f64, f64::INFINITY)
+                .unwrap();
+            learner.set_reach(1, f64::NEG_INFINITY, 0.04).unwrap();
+        }
+        let sagittal = outcome(lean + 0.04, 0.01 * (step % 3) as f64 - 0.01);
+        let lateral = outcome(-0.5 * lean, -0.005 * (step % 2) as f64);
+        learner.touch_down([&sagittal, &lateral]).unwrap();
+    }
+    answers
+}
+
+#[test]
+fn a_coupled_learner_saved_and_loaded_mid_step_continues_bit_for_bit() {
+    let config = LearnerConfig {
+        max_samples_per_step: 8,
+        ..LearnerConfig::default()
+    };
+    let mut plain = coupled(config);
+    let answers = drive(&mut plain, 9, |_, _| {});
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("coupled.json");
+    let mut reloaded = coupled(config);
+    let mut mid_step = 0;
+    let answers_reloaded = drive(&mut reloaded, 9, |learner, query| {
+        // Every 17 queries: at varying phases of the 23-query steps, after thinning too.
+        if query % 17 == 16 {
+            learner.save(&path).unwrap();
+            let loaded = CoupledLearner::load_with(&path, [PendulumCart::default(); 2]).unwrap();
+            assert_eq!(
+                serde_json::to_string(&loaded.checkpoint()).unwrap(),
+                serde_json::to_string(&learner.checkpoint()).unwrap()
+            );
+            mid_step += usize::from(!learner.checkpoint().step.recorded.is_empty());
+            *learner = loaded;
+        }
+    });
+    assert!(mid_step >= 10, "{mid_step} reloads mid-step");
+    assert!(
+        answers.iter().flatten().any(|v| *v != 0.0),
+        "nothing learned"
+    );
+    assert_eq!(answers, answers_reloaded);
+    let saved = plain.checkpoint();
+    assert_eq!(saved.more_offsets.len(), 1);
+    assert_eq!(saved.more_offsets[0].parameter, StepParameter::StepY);
+    assert_eq!(
+        serde_json::to_string(&saved).unwrap(),
+        serde_json::to_string(&reloaded.checkpoint()).unwrap()
+    );
+}
+
+#[test]
+fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
+    let mut learner = coupled(LearnerConfig::default());
+    drive(&mut learner, 2, |_, _| {});
+    learner.query(SAGITTAL, LATERAL).unwrap();
+    let good = learner.checkpoint();
+    assert!(
+        CoupledLearner::from_checkpoint_with(good.clone(), [PendulumCart::default(); 2]).is_ok()
+    );
+    // Without the second offset's record the two-output approximator has one offset too few.
+    let mut one = good.clone();
+    one.more_offsets.clear();
+    let err = CoupledLearner::from_checkpoint_with(one, [PendulumCart::default(); 2]).unwrap_err();
+    assert!(err.to_string().contains("output"), "{err}");
+    let broken: [(&str, fn(&mut steplearn::control::learner::SavedOffset)); 3] = [
+        ("reach count", |o| {
+            o.reach.pop();
+        }),
+        ("empty reach", |o| o.reach[0] = [Some(1.0), Some(0.0)]),
+        ("non-finite offset", |o| o.last_offset = f64::NAN),
+    ];
+    for (what, corrupt) in broken {
+        let mut saved = good.clone();
+        corrupt(&mut saved.more_offsets[0]);
+        let err = CoupledLearner::from_checkpoint_with(saved, [PendulumCart::default(); 2])
+            .err()
+            .unwrap_or_else(|| panic!("{what}: accepted"));
+        assert!(err.to_string().contains("step-y"), "{what}: {err}");
+    }
+    // A one-offset learner cannot take a coupled checkpoint.
+    let err = steplearn::control::learner::FootstepLearner::<Stacked<AnyApproximator>, _>::from_checkpoint(
+        good,
+        PendulumCart::default(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(err, LearnerError::WrongApproximatorShape { .. }),
+        "{err}"
+    );
+}

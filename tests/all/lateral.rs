@@ -262,9 +262,10 @@ fn a_sustained_width_offset_moves_the_width_and_barely_the_lean() {
     let pc = PendulumCart::default();
     let k = pc.p_theta * pc.p_f * width_slope - lean_slope;
     eprintln!("d W_E / dW = {width_slope:.3}, d lean / dW = {lean_slope:.3} rad/m, k = {k:.2} /m");
-    // The bounds are docs/lateral.md's measurement (0.459, -0.094 rad/m, k = 2.16 /m; measured
-    // again on 2026-11-27: 0.470, -0.080 rad/m, k = 2.19 /m) with a margin for a change of
-    // the physics or the controller that the doc would have to follow:
+    // The bounds were set around the first measurement (0.459, -0.094 rad/m, k = 2.16 /m);
+    // docs/lateral.md gives the current one (0.470, -0.080 rad/m, k = 2.19 /m, stored in
+    // results-archive/lateral-k/), with a margin for a change of the physics or the controller
+    // that the doc would have to follow:
     // - the width moves by about half the offset (the controller's next step takes back about
     //   half of it, docs/lateral.md); 0.40-0.52 leaves 0.06 either side of 0.459;
     // - the lean barely moves: |d lean / dW| below 0.2 rad/m, about twice the measured value,

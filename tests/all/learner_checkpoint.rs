@@ -191,7 +191,9 @@ fn a_checkpoint_whose_step_does_not_fit_its_learner_is_refused() {
     assert_eq!(good.step.stride, 2);
     assert!(Learner::from_checkpoint(good.clone(), PendulumCart::default()).is_ok());
     let broken: [(&str, Corruption); 9] = [
-        ("too many records", |s| s.recorded.extend([[0.0; 3]; 4])),
+        ("too many records", |s| {
+            s.recorded.extend(vec![vec![0.0; 3]; 4])
+        }),
         ("reach count", |s| {
             s.reach.pop();
         }),

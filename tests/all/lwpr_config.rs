@@ -122,7 +122,7 @@ fn out_of_range_values_are_refused_naming_the_key() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.toml");
     std::fs::write(&path, "[settings.lwpr]\nmax_rfs = 0\n").unwrap();
-    let err = ConfigFile::load(&path).unwrap_err();
+    let err = ConfigFile::load(&path).unwrap_err().to_string();
     assert!(err.contains("settings.lwpr.max_rfs"), "{err}");
 }
 

@@ -3,7 +3,7 @@
 
 use steplearn::control::motion::{MotionConfig, MotionGenerator};
 use steplearn::control::{JointTargets, Sensors};
-use steplearn::sim::{FallCause, Humanoid, SimConfig, SimError};
+use steplearn::sim::{FallTrigger, Humanoid, SimConfig, SimError};
 
 fn stand(sim: &mut Humanoid, seconds: f64) -> Option<steplearn::sim::Fall> {
     let generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
@@ -95,9 +95,9 @@ fn a_hard_push_is_a_fall_and_reset_stands_again() {
     sim.push([25.0, 0.0, 0.0]).unwrap();
     let fall = stand(&mut sim, 4.0).expect("a 25 Ns push must topple it");
     assert!(fall.time > 0.3 && fall.time < 4.0);
-    match fall.cause {
-        FallCause::Tilt { angle } => assert!(angle > sim.config().fall_tilt),
-        FallCause::Contact { .. } => {}
+    match fall.trigger {
+        FallTrigger::Tilt { angle } => assert!(angle > sim.config().fall_tilt),
+        FallTrigger::Contact { .. } => {}
     }
     sim.reset();
     assert_eq!(sim.time(), 0.0);

@@ -97,7 +97,7 @@ impl Observer for Printer {
         }
     }
     fn on_fall(&mut self, f: &FallRecord) {
-        println!("FALL at {:.2} s: {:?}", f.time, f.fall.cause);
+        println!("FALL at {:.2} s: {:?}", f.time, f.fall.trigger);
     }
 }
 

@@ -8,16 +8,13 @@ use crate::dynamics::{
 };
 use crate::math::{
     ANG_DIM, AngDim, AngVector, DIM, DVector, Dim, Jacobian, MAX_MANIFOLD_POINTS, Pose, Real,
-    SPATIAL_DIM,
-    SimdAngVector, Vector,
+    SPATIAL_DIM, SimdAngVector, Vector,
 };
 use crate::prelude::MultibodyJoint;
 #[cfg(feature = "dim3")]
 use crate::utils::mat_to_na;
 use crate::utils::{AngularInertiaOps, CrossProduct, CrossProductMatrix, IndexMut2, vect_to_na};
-use na::{
-    self, DMatrix, DVectorView, DVectorViewMut, Dyn, OMatrix, SMatrix, SVector, StorageMut,
-};
+use na::{self, DMatrix, DVectorView, DVectorViewMut, Dyn, OMatrix, SMatrix, SVector, StorageMut};
 
 #[cfg(doc)]
 use crate::prelude::{GenericJoint, RigidBody};
@@ -2343,9 +2340,7 @@ impl Multibody {
         let mut out_j = jacobians.rows_mut(*j_id, self.ndofs);
         self.body_jacobians[link.internal_id].tr_mul_to(force.as_vector(), &mut out_j);
 
-        let (src, dst) = jacobians
-            .as_mut_slice()
-            .split_at_mut(wj_id);
+        let (src, dst) = jacobians.as_mut_slice().split_at_mut(wj_id);
         dst[..self.ndofs].copy_from_slice(&src[start..start + self.ndofs]);
         *j_id += self.ndofs * 2;
         Some(start)
@@ -2371,10 +2366,12 @@ impl Multibody {
         } else {
             for &j in j_ids {
                 let mut out_invm_j = jacobians.rows_mut(j + self.ndofs, self.ndofs);
-                self.augmented_mass_indices
-                    .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
+                self.augmented_mass_indices.with_rearranged_rows_mut(
+                    &mut out_invm_j,
+                    |out_invm_j| {
                         self.inv_augmented_mass.solve_mut(out_invm_j);
-                    });
+                    },
+                );
             }
         }
     }
