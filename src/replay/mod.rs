@@ -206,6 +206,9 @@ pub struct Replay {
     pub walks: Vec<Walk>,
 }
 
+/// One walker of a replay: its name, its trial, whether it has the run's learner.
+type Walker<'a> = (&'a str, TrialSetup, bool);
+
 /// What to replay of a run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Moment {
@@ -300,7 +303,7 @@ pub fn record_moment(
     let settings = &config.settings;
     let name = config.experiment.as_str();
     // The walkers' trials, as the experiment builds them, and the push's impulse and direction.
-    let (trials, direction, after): (Vec<(&str, TrialSetup, bool)>, [f64; 3], f64) = match kind {
+    let (trials, direction, after): (Vec<Walker<'_>>, [f64; 3], f64) = match kind {
         ExperimentKind::Robustness => {
             let protocol: RobustnessProtocol = protocols.get(name).map_err(corrupt)?;
             let Moment::Push(push) = moment else {
