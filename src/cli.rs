@@ -18,7 +18,9 @@ use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
 use crate::control::step_parameter::LearnSet;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::PushOptions;
-use crate::experiments::index_page::{INDEX_FILE, command_line, write_index};
+use crate::experiments::index_page::{
+    INDEX_FILE, command_line, write_index, write_index_with_replays,
+};
 use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::reproduce::{self, Claims};
 use crate::experiments::settings::Settings;
@@ -189,14 +191,18 @@ enum Command {
         /// The sweep's output directory.
         dir: PathBuf,
     },
-    /// Re-simulates push K of a finished run (from its run-config.toml) and writes one
-    /// self-contained HTML page that draws it in 3D (robustness runs so far).
+    /// Re-simulates push K (disturbance, stability, robustness) or a span of time (tracking,
+    /// disturbance, stability) of a finished run (from its run-config.toml) and writes one
+    /// self-contained HTML page that draws it in 3D.
     Replay {
         /// The run's directory (what `steplearn experiment --out` wrote).
         run_dir: PathBuf,
         /// The push to replay (1-based).
-        #[arg(long)]
-        push: usize,
+        #[arg(long, conflicts_with = "time", required_unless_present = "time")]
+        push: Option<usize>,
+        /// The span of trial time to replay, A..B seconds (e.g. 10..16).
+        #[arg(long, value_parser = parse_span)]
+        time: Option<(f64, f64)>,
         /// The page to write.
         #[arg(long)]
         out: PathBuf,
@@ -236,6 +242,21 @@ fn parse_range(s: &str) -> Result<(f64, f64), String> {
     if !(a.is_finite() && b.is_finite() && 0.0 <= a && a <= b) {
         return Err(format!("need 0 <= A <= B, got {a},{b}"));
     }
+    Ok((a, b))
+}
+
+/// `A..B` seconds, checked as the replay checks it ([`crate::replay::check_span`]).
+fn parse_span(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once("..")
+        .ok_or_else(|| format!("expected A..B (seconds), got '{s}'"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("'{v}' is not a number: {e}"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    crate::replay::check_span(a, b).map_err(|e| e.to_string())?;
     Ok((a, b))
 }
 
@@ -350,12 +371,22 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
                 .write(&out, &approx, &rule)
                 .map_err(|e| e.to_string())?;
             let config_toml = config.to_toml().map_err(|e| e.to_string())?;
-            write_index(
+            // One replay per experiment (its first seed's run), beside index.html.
+            let mut first_runs: Vec<(String, PathBuf)> = Vec::new();
+            for spec in &runs {
+                if !first_runs.iter().any(|(e, _)| *e == spec.experiment) {
+                    first_runs.push((spec.experiment.clone(), out.join(spec.id())));
+                }
+            }
+            let replays =
+                crate::replay::moments::write_results_replays(registry, &out, &first_runs);
+            write_index_with_replays(
                 &out,
                 &format!("steplearn reproduce: the paper's claims ({approx} + {rule})"),
                 &["claims.md"],
                 &command_line(),
                 Some(&config_toml),
+                &replays,
             )
             .map_err(|e| e.to_string())?;
             // One line per claim with both verdicts, then every paired quantity.
@@ -607,8 +638,18 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             println!("ok");
             Ok(())
         }
-        Command::Replay { run_dir, push, out } => {
-            let replay = crate::replay::replay_to_file(registry, &run_dir, push, &out)
+        Command::Replay {
+            run_dir,
+            push,
+            time,
+            out,
+        } => {
+            let moment = match (push, time) {
+                (Some(push), _) => crate::replay::Moment::Push(push),
+                (None, Some((from, to))) => crate::replay::Moment::Span(from, to),
+                (None, None) => return Err("give --push K or --time A..B".into()),
+            };
+            let replay = crate::replay::moment_to_file(registry, &run_dir, moment, &out)
                 .map_err(|e| e.to_string())?;
             println!("{}", crate::replay::summary_line(&replay, &out));
             Ok(())

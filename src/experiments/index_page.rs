@@ -113,6 +113,18 @@ fn figures(dir: &Path) -> Result<(Vec<PathBuf>, Vec<(String, Vec<PathBuf>)>), Re
     Ok((top, runs))
 }
 
+/// A replay page beside `index.html` (written by the command line's layer, which calls
+/// `crate::replay`), linked from its experiment's part of the page.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReplayLink {
+    /// The experiment's name (`tracking`, `disturbance`, ...).
+    pub experiment: String,
+    /// The page, relative to the directory of `index.html`.
+    pub file: String,
+    /// What it shows, one line.
+    pub caption: String,
+}
+
 /// Writes `dir/index.html`: `title`, the files `tables` of `dir` that exist (Markdown such as
 /// `claims.md` and `ablation.md` rendered, others such as `summary.json` shown as text), the
 /// figures in `dir` (across seeds), then each run directory's figures, experiments in the
@@ -125,6 +137,19 @@ pub fn write_index(
     tables: &[&str],
     command: &str,
     config: Option<&str>,
+) -> Result<(), ReportError> {
+    write_index_with_replays(dir, title, tables, command, config, &[])
+}
+
+/// [`write_index`], with a link to each of `replays` after its experiment's figures across
+/// seeds (experiments in the paper's order A-D). The replays are linked, never inlined.
+pub fn write_index_with_replays(
+    dir: &Path,
+    title: &str,
+    tables: &[&str],
+    command: &str,
+    config: Option<&str>,
+    replays: &[ReplayLink],
 ) -> Result<(), ReportError> {
     let mut page = HtmlPage::new(title);
     for name in tables {
@@ -141,14 +166,28 @@ pub fn write_index(
     }
     let (top, runs) = figures(dir)?;
     let mut inlined = 0usize;
-    if !top.is_empty() {
+    if !top.is_empty() || !replays.is_empty() {
         page.heading(2, "Figures across seeds");
     }
+    let mut replays: Vec<&ReplayLink> = replays.iter().collect();
+    replays.sort_by_key(|r| experiment_rank(&r.experiment));
+    let mut next_replay = 0;
     for f in &top {
+        let file = file_name(f);
+        // The replays of the experiments before this figure's.
+        while let Some(r) = replays
+            .get(next_replay)
+            .filter(|r| experiment_rank(&r.experiment) < experiment_rank(&file))
+        {
+            page.link(&r.file, &format!("Replay in 3D: {}", r.caption));
+            next_replay += 1;
+        }
         let svg = std::fs::read_to_string(f).map_err(|e| ReportError::io(f, e))?;
         inlined += svg.len();
-        let file = file_name(f);
         page.figure(&svg, &format!("{} ({file})", caption(&file)));
+    }
+    for r in &replays[next_replay..] {
+        page.link(&r.file, &format!("Replay in 3D: {}", r.caption));
     }
     if !runs.is_empty() {
         page.heading(2, "Figures per run");

@@ -159,6 +159,25 @@ pub fn run(
     })
 }
 
+/// C's trial of one controller for `seed`, as [`run`] builds it: walking in place, the
+/// protocol's pushes (the same sequence for every controller), for `mode`
+/// ([`WalkerMode::OpenLoop`] or [`WalkerMode::CaptureStep`], the model and, with the run's
+/// learner, the learned walker). For replays and probes that run it with their own observers.
+pub fn trial_setup(
+    settings: &Settings,
+    protocol: &StabilityProtocol,
+    seed: u64,
+    mode: WalkerMode,
+) -> TrialSetup {
+    let plan = PushPlan {
+        count: settings.scaled(protocol.pushes, 1),
+        impulse: protocol.impulse,
+        settle: 3.0,
+        gap: protocol.gap_s,
+    };
+    settings.push_trial(mode, 0.0, &plan, seed, protocol.direction)
+}
+
 /// Runs one controller's trial and classifies its falls.
 fn observed(
     setup: TrialSetup,

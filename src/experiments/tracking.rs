@@ -129,6 +129,25 @@ pub fn run(
     })
 }
 
+/// A's trial for `seed`, as [`run`] builds it (the same for the model and, with the run's
+/// learner, the learned walker): walking after the protocol's random reference, no pushes.
+/// For replays and probes that run it with their own observers.
+pub fn trial_setup(
+    settings: &Settings,
+    protocol: &TrackingProtocol,
+    seed: u64,
+) -> Result<super::trial::TrialSetup, ExperimentError> {
+    let duration = (protocol.duration_s * settings.scale).max(4.0 * protocol.hold_s.1);
+    let reference = ReferenceSchedule::random(seed, duration, protocol.reference, protocol.hold_s)?;
+    Ok(settings.trial(
+        WalkerMode::CaptureStep,
+        reference,
+        Vec::new(),
+        [1.0, 0.0, 0.0],
+        duration,
+    ))
+}
+
 impl TrackingResult {
     /// The standard deviation of F_E per bin for (model, learned); `None` where fewer than two
     /// of that controller's steps fell into the bin.

@@ -1,29 +1,39 @@
-//! `steplearn replay RUN_DIR --push K --out FILE.html`: push K of a finished run, re-simulated
-//! and drawn in 3D in one self-contained page.
+//! `steplearn replay RUN_DIR (--push K | --time A..B) --out FILE.html`: push K or a span of a
+//! finished run, re-simulated and drawn in 3D in one self-contained page.
 //!
-//! A run is bit-reproducible from its `run-config.toml`: [`record()`] reads it, checks that this
-//! registry would write the same identity (same experiment, approximator, rule, settings,
-//! protocol and results format), rebuilds the experiment's trials for the run's seed with the
-//! experiment's own functions, and runs them with [`run_trial`], the trial code every
+//! A run is bit-reproducible from its `run-config.toml`: [`record_moment()`] reads it, checks
+//! that this registry would write the same identity (same experiment, approximator, rule,
+//! settings, protocol and results format), rebuilds the experiment's trials for the run's seed
+//! with the experiment's own functions, and runs them with [`run_trial`], the trial code every
 //! experiment uses, with a [`Recorder`] attached. [`page()`] writes the recording as one HTML
 //! page with three.js inlined ([`page::THREE_VERSION`]).
 //!
-//! Supported so far: experiment D (`robustness`): push K's episode of the learned walker
-//! (after learning from the episodes before it, as in the run) and of the walker without
-//! learning. Other experiments are a [`ReplayError::Unsupported`].
+//! Replayed: pushes of B (`disturbance`: learned and model), C (`stability`: learned, model,
+//! open-loop) and D (`robustness`: the learned walker after learning from the episodes before
+//! push K, and the walker without learning); spans of A (`tracking`), B and C. The learned
+//! walkers of A-C learn throughout one long trial, so their replay walks the trial from its
+//! start to the end of the moment replayed. Other experiments are a
+//! [`ReplayError::Unsupported`]. [`moments`] picks a telling moment of a run for the results
+//! page of `reproduce`.
 
+pub mod moments;
 pub mod page;
 pub mod record;
 
 use crate::bench::{BenchError, Registry};
+use crate::config::ConfigError;
 use crate::control::learner::LearnerError;
-use crate::experiments::ExperimentKind;
+use crate::control::walker::WalkerMode;
+use crate::experiments::disturbance::{self, DisturbanceProtocol};
 use crate::experiments::experiment::RunContext;
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::robustness::{self, RobustnessProtocol};
 use crate::experiments::settings::Settings;
+use crate::experiments::stability::{self, StabilityProtocol};
 use crate::experiments::sweep::{IDENTITY_FILE, RunSpec};
-use crate::experiments::trial::{TrialError, run_trial};
+use crate::experiments::tracking::{self, TrackingProtocol};
+use crate::experiments::trial::{TrialError, TrialSetup, run_trial};
+use crate::experiments::{ExperimentError, ExperimentKind};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -59,8 +69,37 @@ pub enum ReplayError {
     )]
     NotReproducible(PathBuf),
     /// The run's experiment has no replay yet.
-    #[error("experiment `{0}` has no replay yet (supported: robustness)")]
+    #[error(
+        "experiment `{0}` has no replay yet (supported: tracking, disturbance, stability, robustness)"
+    )]
     Unsupported(String),
+    /// A span that is not `0 <= from < to`, both finite.
+    #[error("bad time span {from}..{to}: {reason}")]
+    BadSpan {
+        /// Its start (s).
+        from: f64,
+        /// Its end (s).
+        to: f64,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A span that ends after the run's trial.
+    #[error("time span ends at {to} s, after the run's trial ({length} s)")]
+    SpanOutOfRange {
+        /// The span's end (s).
+        to: f64,
+        /// The trial's length (s).
+        length: f64,
+    },
+    /// `--push` for a run without pushes.
+    #[error("experiment `{0}` has no pushes: give --time A..B")]
+    NoPushes(String),
+    /// `--time` for a run of one episode per push.
+    #[error("experiment `{0}` is one short episode per push: give --push K")]
+    NoSpan(String),
+    /// The experiment cannot build its trial.
+    #[error("experiment: {0}")]
+    Experiment(#[from] ExperimentError),
     /// The push number is not one of the run's pushes.
     #[error("push {push} is out of range: the run has pushes 1..={pushes}")]
     PushOutOfRange {
@@ -130,7 +169,7 @@ impl RunConfig {
     }
 
     /// The protocol tables with this run's table.
-    fn protocols(&self) -> ProtocolTables {
+    pub(crate) fn protocols(&self) -> ProtocolTables {
         let mut tables = ProtocolTables::default();
         tables.set_table(&self.experiment, self.protocol.clone());
         tables
@@ -148,7 +187,7 @@ pub struct Replay {
     pub rule: String,
     /// The run's seed.
     pub seed: u64,
-    /// The push (1-based).
+    /// The push (1-based); 0 for a span.
     pub push: usize,
     /// Its impulse (Ns).
     pub impulse: f64,
@@ -156,12 +195,72 @@ pub struct Replay {
     pub direction: [f64; 3],
     /// The push window (s): a fall within it after the push counts.
     pub window_s: f64,
+    /// The replayed span `[from, to]` of trial time (s) for `--time`; `None` for a push.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub span: Option<[f64; 2]>,
+    /// The reference step size F_R over a span: `[time, F_R]` at its start and at every change
+    /// within it (empty for a push).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub changes: Vec<[f64; 2]>,
     /// One recording per walker.
     pub walks: Vec<Walk>,
 }
 
+/// One walker of a replay: its name, its trial, whether it has the run's learner.
+type Walker<'a> = (&'a str, TrialSetup, bool);
+
+/// What to replay of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Moment {
+    /// Push K (1-based) of a run with pushes.
+    Push(usize),
+    /// The span `[from, to]` of trial time (s) of a run made of one trial per walker.
+    Span(f64, f64),
+}
+
 /// Re-simulates push `push` (1-based) of the run in `dir` with `registry`.
 pub fn record(registry: &Registry, dir: &Path, push: usize) -> Result<Replay, ReplayError> {
+    record_moment(registry, dir, Moment::Push(push))
+}
+
+/// Re-simulates the span `[from, to]` (trial time, s) of the run in `dir` with `registry`
+/// (`steplearn replay --time A..B`).
+pub fn record_span(
+    registry: &Registry,
+    dir: &Path,
+    from: f64,
+    to: f64,
+) -> Result<Replay, ReplayError> {
+    record_moment(registry, dir, Moment::Span(from, to))
+}
+
+/// Checks a span's numbers: finite, `0 <= from < to`.
+pub fn check_span(from: f64, to: f64) -> Result<(), ReplayError> {
+    let reason = if !(from.is_finite() && to.is_finite()) {
+        "both ends must be finite numbers"
+    } else if from < 0.0 {
+        "the start must be >= 0"
+    } else if from >= to {
+        "the start must be before the end"
+    } else {
+        return Ok(());
+    };
+    Err(ReplayError::BadSpan {
+        from,
+        to,
+        reason: reason.into(),
+    })
+}
+
+/// Re-simulates `moment` of the run in `dir` with `registry`.
+pub fn record_moment(
+    registry: &Registry,
+    dir: &Path,
+    moment: Moment,
+) -> Result<Replay, ReplayError> {
+    if let Moment::Span(from, to) = moment {
+        check_span(from, to)?;
+    }
     let (config, text) = RunConfig::read(dir)?;
     let protocols = config.protocols();
     let spec = RunSpec {
@@ -171,49 +270,184 @@ pub fn record(registry: &Registry, dir: &Path, push: usize) -> Result<Replay, Re
         seed: config.seed,
         learn: None,
     };
-    let robustness: &str = ExperimentKind::Robustness.into();
-    if config.experiment != robustness {
-        return Err(ReplayError::Unsupported(config.experiment));
+    let kind = REPLAYED
+        .into_iter()
+        .find(|&k| <&str>::from(k) == config.experiment)
+        .ok_or_else(|| ReplayError::Unsupported(config.experiment.clone()))?;
+    match (kind, moment) {
+        (ExperimentKind::Tracking, Moment::Push(_)) => {
+            return Err(ReplayError::NoPushes(config.experiment));
+        }
+        (ExperimentKind::Robustness, Moment::Span(..)) => {
+            return Err(ReplayError::NoSpan(config.experiment));
+        }
+        _ => {}
     }
     let identity = registry.run_identity(&spec, &config.settings, &protocols)?;
     if identity != text {
         return Err(ReplayError::NotReproducible(dir.join(IDENTITY_FILE)));
     }
-    let protocol: RobustnessProtocol =
-        protocols
-            .get(&config.experiment)
-            .map_err(|e| ReplayError::Corrupt {
-                path: dir.join(IDENTITY_FILE),
-                reason: e.to_string(),
-            })?;
-    replay_robustness(registry, &config, &protocol, push)
-}
-
-fn replay_robustness(
-    registry: &Registry,
-    config: &RunConfig,
-    protocol: &RobustnessProtocol,
-    push: usize,
-) -> Result<Replay, ReplayError> {
-    let settings = &config.settings;
-    let times = robustness::push_times(settings, protocol, config.seed);
-    if push == 0 || push > times.len() {
-        return Err(ReplayError::PushOutOfRange {
-            push,
-            pushes: times.len(),
-        });
-    }
-    // The run's learner, built as the run built it (`RunContext`, reseeded with its seed).
-    let components = registry.components(&config.approx, &config.rule, &settings.lwpr)?;
-    let protocols = config.protocols();
+    let corrupt = |e: ConfigError| ReplayError::Corrupt {
+        path: dir.join(IDENTITY_FILE),
+        reason: e.to_string(),
+    };
+    let components = registry.components(&config.approx, &config.rule, &config.settings.lwpr)?;
     let ctx = RunContext {
-        settings,
+        settings: &config.settings,
         protocols: &protocols,
         seed: config.seed,
         approx: &config.approx,
         rule: &config.rule,
         components: &components,
     };
+    let settings = &config.settings;
+    let name = config.experiment.as_str();
+    // The walkers' trials, as the experiment builds them, and the push's impulse and direction.
+    let (trials, direction, after): (Vec<Walker<'_>>, [f64; 3], f64) = match kind {
+        ExperimentKind::Robustness => {
+            let protocol: RobustnessProtocol = protocols.get(name).map_err(corrupt)?;
+            let Moment::Push(push) = moment else {
+                unreachable!("checked above")
+            };
+            return replay_robustness(&ctx, &config, &protocol, push);
+        }
+        ExperimentKind::Stability => {
+            let p: StabilityProtocol = protocols.get(name).map_err(corrupt)?;
+            let setup = |mode| stability::trial_setup(settings, &p, config.seed, mode);
+            let capture = setup(WalkerMode::CaptureStep);
+            (
+                vec![
+                    ("learned", capture.clone(), true),
+                    ("model", capture, false),
+                    ("open-loop", setup(WalkerMode::OpenLoop), false),
+                ],
+                p.direction,
+                settings.push_window_s,
+            )
+        }
+        ExperimentKind::Disturbance => {
+            let p: DisturbanceProtocol = protocols.get(name).map_err(corrupt)?;
+            let setup = disturbance::trial_setup(settings, &p, config.seed);
+            (
+                vec![("learned", setup.clone(), true), ("model", setup, false)],
+                p.direction,
+                // The whole recovery the experiment measures.
+                p.horizon_s.max(settings.push_window_s),
+            )
+        }
+        ExperimentKind::Tracking => {
+            let p: TrackingProtocol = protocols.get(name).map_err(corrupt)?;
+            let setup = tracking::trial_setup(settings, &p, config.seed)?;
+            (
+                vec![("learned", setup.clone(), true), ("model", setup, false)],
+                [1.0, 0.0, 0.0],
+                0.0,
+            )
+        }
+    };
+    let reference = trials[0].1.reference.clone();
+    let (mut push_no, mut impulse, mut span, mut changes) = (0, 0.0, None, Vec::new());
+    let trials: Vec<(&str, TrialSetup, Recorder, bool)> = match moment {
+        Moment::Push(push) => {
+            check_push(push, trials[0].1.pushes.len())?;
+            (push_no, impulse) = (push, trials[0].1.pushes[push - 1].impulse);
+            trials
+                .into_iter()
+                .map(|(n, mut setup, learns)| {
+                    // The pushes after K cannot change what comes before them.
+                    setup.pushes.truncate(push);
+                    let r = Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S);
+                    (n, setup, r, learns)
+                })
+                .collect()
+        }
+        Moment::Span(from, to) => {
+            let length = trials[0].1.duration_s;
+            if to > length {
+                return Err(ReplayError::SpanOutOfRange { to, length });
+            }
+            span = Some([from, to]);
+            changes = std::iter::once(from)
+                .chain(
+                    reference
+                        .change_times()
+                        .into_iter()
+                        .filter(|&t| t > from && t <= to),
+                )
+                .map(|t| [record::round(t), record::round(reference.at(t))])
+                .collect();
+            trials
+                .into_iter()
+                .map(|(n, mut setup, learns)| {
+                    // Nothing after `to` can change what comes before it.
+                    setup.duration_s = to;
+                    (n, setup, Recorder::new(from, to, FRAME_S), learns)
+                })
+                .collect()
+        }
+    };
+    let walks = walk_all(&ctx, trials)?;
+    Ok(Replay {
+        experiment: config.experiment.clone(),
+        approx: config.approx.clone(),
+        rule: config.rule.clone(),
+        seed: config.seed,
+        push: push_no,
+        impulse,
+        direction,
+        window_s: settings.push_window_s,
+        span,
+        changes,
+        walks,
+    })
+}
+
+/// Runs every walker's trial from its start as the run did (the learned one with the run's
+/// learner), on the rayon pool, and returns their recordings in order.
+fn walk_all(
+    ctx: &RunContext<'_>,
+    trials: Vec<(&str, TrialSetup, Recorder, bool)>,
+) -> Result<Vec<Walk>, ReplayError> {
+    use rayon::prelude::*;
+    trials
+        .into_par_iter()
+        .map(|(name, setup, mut recorder, learns)| {
+            if learns {
+                let mut learner = ctx.make_step_learner()?;
+                run_trial(&setup, Some(&mut learner), &mut [&mut recorder])?;
+            } else {
+                run_trial(&setup, None, &mut [&mut recorder])?;
+            }
+            Ok(recorder.finish(name))
+        })
+        .collect()
+}
+
+/// The experiments [`record_moment()`] replays: pushes of B, C and D, spans of A, B and C.
+pub const REPLAYED: [ExperimentKind; 4] = [
+    ExperimentKind::Tracking,
+    ExperimentKind::Disturbance,
+    ExperimentKind::Stability,
+    ExperimentKind::Robustness,
+];
+
+fn check_push(push: usize, pushes: usize) -> Result<(), ReplayError> {
+    if push == 0 || push > pushes {
+        return Err(ReplayError::PushOutOfRange { push, pushes });
+    }
+    Ok(())
+}
+
+fn replay_robustness(
+    ctx: &RunContext<'_>,
+    config: &RunConfig,
+    protocol: &RobustnessProtocol,
+    push: usize,
+) -> Result<Replay, ReplayError> {
+    let settings = ctx.settings;
+    let times = robustness::push_times(settings, protocol, config.seed);
+    check_push(push, times.len())?;
+    // The run's learner, built as the run built it (`RunContext`, reseeded with its seed).
     let mut learner = ctx.make_learner_with(robustness::learner_config(settings, protocol))?;
     // The episodes before push K, as the run walked them: the learner learns from them.
     for &t in &times[..push - 1] {
@@ -240,6 +474,8 @@ fn replay_robustness(
         impulse: protocol.impulse,
         direction: protocol.direction,
         window_s: settings.push_window_s,
+        span: None,
+        changes: Vec::new(),
         walks: vec![
             learned.finish("learned"),
             without.finish("no learning (dF = 0)"),
@@ -254,7 +490,17 @@ pub fn replay_to_file(
     push: usize,
     out: &Path,
 ) -> Result<Replay, ReplayError> {
-    let replay = record(registry, dir, push)?;
+    moment_to_file(registry, dir, Moment::Push(push), out)
+}
+
+/// [`record_moment()`], then writes the page to `out`.
+pub fn moment_to_file(
+    registry: &Registry,
+    dir: &Path,
+    moment: Moment,
+    out: &Path,
+) -> Result<Replay, ReplayError> {
+    let replay = record_moment(registry, dir, moment)?;
     let html = page(&replay)?;
     // Atomically: a failed write leaves an existing file as it was.
     crate::atomic_file::write_atomic(out, html.as_bytes()).map_err(|source| ReplayError::Io {
@@ -273,17 +519,30 @@ pub fn summary_line(replay: &Replay, out: &Path) -> String {
             format!(
                 "{}: {} ({} frames)",
                 w.name,
-                if w.fell { "fell" } else { "absorbed" },
+                match (replay.span, w.fell) {
+                    (Some(_), _) if w.fall_time.is_some() => "fell",
+                    (Some(_), _) => "walked",
+                    (None, true) => "fell",
+                    (None, false) => "absorbed",
+                },
                 w.frames.len()
             )
         })
         .collect();
     format!(
-        "{}: push {} of {} seed {}; {}",
+        "{}: {} of {} seed {}; {}",
         out.display(),
-        replay.push,
+        moment_name(replay),
         replay.experiment,
         replay.seed,
         walks.join("; ")
     )
+}
+
+/// `push K` or `A..B s`.
+pub fn moment_name(replay: &Replay) -> String {
+    match replay.span {
+        Some([from, to]) => format!("{from}..{to} s"),
+        None => format!("push {}", replay.push),
+    }
 }

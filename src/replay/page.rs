@@ -47,9 +47,13 @@ pub fn page(replay: &Replay) -> Result<String, ReplayError> {
     let data = serde_json::to_string(replay)
         .map_err(|e| ReplayError::Page(e.to_string()))?
         .replace("</", "<\\/");
+    let moment = match replay.span {
+        Some(_) => super::moment_name(replay),
+        None => format!("push {} ({} Ns)", replay.push, replay.impulse),
+    };
     let title = format!(
-        "steplearn replay: {} seed {}, push {} ({} Ns)",
-        replay.experiment, replay.seed, replay.push, replay.impulse
+        "steplearn replay: {} seed {}, {moment}",
+        replay.experiment, replay.seed
     );
     let three = three_script()?;
     let licence = THREE_LICENSE.replace("*/", "* /");

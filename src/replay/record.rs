@@ -88,11 +88,18 @@ pub struct Walk {
 /// Records frames between `from` and `to` (trial time), one every `every` seconds, and the
 /// touch-downs, push and fall in that span. The walker is not recorded after its first fall in
 /// the span (the trial resets the robot there).
+///
+/// [`Recorder::around_push`] records instead around the K-th push of a trial with many pushes,
+/// whose delivery time is known only once it happened (falls delay pushes).
 #[derive(Debug)]
 pub struct Recorder {
     from: f64,
     to: f64,
     every: f64,
+    /// Around-push mode: (the push to record, 1-based; seconds before it; seconds after it).
+    target: Option<(usize, f64, f64)>,
+    /// Pushes whose outcome came so far.
+    pushes_seen: usize,
     next: f64,
     frames: Vec<Frame>,
     steps: Vec<Touchdown>,
@@ -142,6 +149,8 @@ impl Recorder {
             from,
             to,
             every,
+            target: None,
+            pushes_seen: 0,
             next: from,
             frames: Vec::new(),
             steps: Vec::new(),
@@ -155,8 +164,41 @@ impl Recorder {
         }
     }
 
+    /// A recorder of the `push`-th push (1-based) of a trial: from `before` seconds before its
+    /// delivery to `after` seconds after it (or to the walker's fall), one frame every `every`
+    /// seconds. Until that push's outcome arrives it keeps only the last `before + after`
+    /// seconds; falls before it are not recorded.
+    pub fn around_push(push: usize, before: f64, after: f64, every: f64) -> Self {
+        Recorder {
+            target: Some((push, before, after)),
+            ..Recorder::new(0.0, f64::INFINITY, every)
+        }
+    }
+
+    /// Whether the recorded push is still to come (around-push mode).
+    fn searching(&self) -> bool {
+        self.target.is_some() && self.push.is_none()
+    }
+
     fn recording(&self, t: f64) -> bool {
         t >= self.from && t <= self.to && self.fall_time.is_none()
+    }
+
+    /// Around-push mode, before the push: forget a fall of another push, and what is older
+    /// than the span the push can need.
+    fn forget_old(&mut self, t: f64) {
+        let Some((_, before, after)) = self.target.filter(|_| self.push.is_none()) else {
+            return;
+        };
+        if self.fall_time.take().is_some() {
+            self.frames.clear();
+            self.steps.clear();
+        }
+        let keep = t - before - after - self.every;
+        if self.frames.first().is_some_and(|f| f.t < keep) {
+            self.frames.retain(|f| f.t >= keep);
+            self.steps.retain(|s| s.t >= keep);
+        }
     }
 
     /// The recording, named `name`.
@@ -198,7 +240,19 @@ impl Observer for Recorder {
     }
 
     fn on_push(&mut self, push: &PushRecord) {
-        self.push = Some(*push);
+        self.pushes_seen += 1;
+        match self.target {
+            None => self.push = Some(*push),
+            Some((k, before, after)) if k == self.pushes_seen => {
+                self.push = Some(*push);
+                self.from = push.time - before;
+                self.to = push.time + after;
+                let from = round(self.from);
+                self.frames.retain(|f| f.t >= from);
+                self.steps.retain(|s| s.t >= from);
+            }
+            Some(_) => {}
+        }
     }
 
     fn on_fall(&mut self, fall: &FallRecord) {
@@ -219,6 +273,9 @@ impl Observer for Recorder {
         let Some((t, p)) = self.pending.take().filter(|(t, _)| *t == time) else {
             return;
         };
+        if self.searching() {
+            self.forget_old(t);
+        }
         let support = &truth.soles[side_index(p.support)];
         let (s, c) = yaw(support.orientation).sin_cos();
         let cmd = p.stepping.then(|| {

@@ -125,7 +125,9 @@ function main() {
     .filter(([k]) => k === 'lean' || k === 'd_f' || has(k));
   document.getElementById('legend').innerHTML =
     actors.map((a) => `<span class="key" style="background:${css(a.color)}"></span>${a.w.name}` +
-      (a.w.fell ? ' (fell' + (a.w.fall_time != null ? ' at ' + a.w.fall_time.toFixed(2) + ' s' : '') + ')' : ' (absorbed)')).join('') +
+      (R.span ? (a.w.fall_time != null ? ' (fell at ' + a.w.fall_time.toFixed(2) + ' s)' : '')
+        : a.w.fell ? ' (fell' + (a.w.fall_time != null ? ' at ' + a.w.fall_time.toFixed(2) + ' s' : '') + ')' : ' (absorbed)')).join('') +
+    ((R.changes || []).length ? ' &middot; reference F_R: ' + R.changes.map(([ct, v]) => `${v.toFixed(3)} m from ${ct.toFixed(2)} s`).join(', ') + ' (grey lines: changes)' : '') +
     ' &middot; lines: ' + series.map(([, label, dash]) => `${label} ${dash.length ? '(dashed ' + dash.join('-') + ')' : '(solid)'}`).join(', ');
   const drawTimeline = (t) => {
     const W = tl.clientWidth || 800, H = tl.clientHeight || 180;
@@ -142,6 +144,8 @@ function main() {
     ctx.fillStyle = '#444'; ctx.font = '11px sans-serif';
     ctx.fillText(hi.toFixed(3), 2, 12); ctx.fillText(lo.toFixed(3), 2, H - 15);
     ctx.fillText(t0.toFixed(2) + ' s', 40, H - 2); ctx.fillText(t1.toFixed(2) + ' s', W - 60, H - 2);
+    ctx.strokeStyle = '#999';
+    for (const [ct] of (R.changes || []).slice(1)) { ctx.beginPath(); ctx.moveTo(x(ct), 5); ctx.lineTo(x(ct), H - 15); ctx.stroke(); }
     for (const a of actors) {
       if (a.w.push_time != null) { ctx.strokeStyle = '#e377c2'; ctx.beginPath(); ctx.moveTo(x(a.w.push_time), 5); ctx.lineTo(x(a.w.push_time), H - 15); ctx.stroke(); }
       for (const [k, , dash] of series) {

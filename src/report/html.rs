@@ -156,6 +156,16 @@ impl HtmlPage {
         self
     }
 
+    /// A paragraph that links the relative path `href`, with `text` (`**bold**` allowed).
+    pub fn link(&mut self, href: &str, text: &str) -> &mut Self {
+        self.body.push_str(&format!(
+            "<p class=\"link\"><a href=\"{}\">{}</a></p>\n",
+            escape(href),
+            inline(text)
+        ));
+        self
+    }
+
     /// A bulleted list, one item per entry (`**bold**` allowed).
     pub fn list(&mut self, items: &[&str]) -> &mut Self {
         self.body.push_str("<ul>\n");

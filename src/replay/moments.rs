@@ -1,0 +1,222 @@
+//! A telling moment of a finished run, read from the tables the run wrote, and the replays of
+//! the results page of `steplearn reproduce` (written beside its `index.html`).
+//!
+//! - B, C: the push (C: of smallest impulse) where one walker fell and the other recovered;
+//!   else the first push (C: of smallest impulse) where one fell; else push 1.
+//! - D: the first push the learned walker absorbed and the walker without learning did not;
+//!   else the first where they differ; else push 1.
+//! - A: the largest reference change in the run's first two minutes, from 1 s before it to the
+//!   protocol's horizon after it.
+
+use super::{Moment, REPLAYED, ReplayError, RunConfig, moment_to_file, summary_line};
+use crate::bench::Registry;
+use crate::experiments::ExperimentKind;
+use crate::experiments::index_page::ReplayLink;
+use crate::experiments::sweep::IDENTITY_FILE;
+use crate::experiments::tracking::{self, TrackingProtocol};
+use std::path::Path;
+
+/// The file name of experiment `experiment`'s replay beside `index.html`.
+pub fn replay_file_name(experiment: &str) -> String {
+    format!("replay-{experiment}.html")
+}
+
+/// The rows of the CSV table `path` as maps from column name to cell.
+fn rows(path: &Path) -> Result<Vec<Vec<(String, String)>>, ReplayError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ReplayError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    Ok(lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(str::to_string))
+                .collect()
+        })
+        .collect())
+}
+
+fn cell<'a>(row: &'a [(String, String)], name: &str) -> Option<&'a str> {
+    row.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_str())
+}
+
+fn corrupt(path: &Path, reason: &str) -> ReplayError {
+    ReplayError::Corrupt {
+        path: path.to_path_buf(),
+        reason: reason.to_string(),
+    }
+}
+
+/// (impulse, fell) per push of `controller` in a pushes table (controller, time_s,
+/// impulse_ns, fell, ...).
+fn pushes_of(path: &Path, controller: &str) -> Result<Vec<(f64, bool)>, ReplayError> {
+    rows(path)?
+        .iter()
+        .filter(|r| cell(r, "controller") == Some(controller))
+        .map(|r| {
+            let impulse = cell(r, "impulse_ns").and_then(|v| v.parse().ok());
+            let fell = cell(r, "fell").and_then(|v| v.parse().ok());
+            impulse
+                .zip(fell)
+                .ok_or_else(|| corrupt(path, "a push row without impulse_ns or fell"))
+        })
+        .collect()
+}
+
+/// The push (1-based) where `a` and `b` differ, of smallest impulse (ties: the first); else
+/// the first where either fell, of smallest impulse; else push 1.
+fn differing_push(a: &[(f64, bool)], b: &[(f64, bool)]) -> usize {
+    let pick = |pred: &dyn Fn(bool, bool) -> bool| {
+        a.iter()
+            .zip(b)
+            .enumerate()
+            .filter(|(_, (x, y))| pred(x.1, y.1))
+            .min_by(|(i, (x, _)), (j, (y, _))| x.0.total_cmp(&y.0).then(i.cmp(j)))
+            .map(|(i, _)| i + 1)
+    };
+    pick(&|x, y| x != y)
+        .or_else(|| pick(&|x, y| x || y))
+        .unwrap_or(1)
+}
+
+/// A telling moment of the run in `dir` (see the module's documentation), with a one-line
+/// description.
+pub fn telling_moment(dir: &Path) -> Result<(Moment, String), ReplayError> {
+    let (config, _) = RunConfig::read(dir)?;
+    let kind = REPLAYED
+        .into_iter()
+        .find(|&k| <&str>::from(k) == config.experiment)
+        .ok_or_else(|| ReplayError::Unsupported(config.experiment.clone()))?;
+    let differ = |a: &[(f64, bool)], b: &[(f64, bool)], an: &str, bn: &str| {
+        let k = differing_push(a, b);
+        let verdict = |x: Option<&(f64, bool)>| match x {
+            Some((_, true)) => "fell",
+            _ => "absorbed it",
+        };
+        let impulse = a.get(k - 1).map_or(0.0, |p| p.0);
+        (
+            Moment::Push(k),
+            format!(
+                "push {k} ({impulse:.1} Ns): {an} {}, {bn} {}",
+                verdict(a.get(k - 1)),
+                verdict(b.get(k - 1))
+            ),
+        )
+    };
+    Ok(match kind {
+        ExperimentKind::Stability => {
+            let path = dir.join("pushes.csv");
+            let (l, m) = (pushes_of(&path, "learned")?, pushes_of(&path, "model")?);
+            differ(&l, &m, "learned", "model")
+        }
+        ExperimentKind::Disturbance => {
+            let path = dir.join("disturbance_pushes.csv");
+            let (l, m) = (pushes_of(&path, "learned")?, pushes_of(&path, "model")?);
+            // B's pushes all have one impulse: the first that differs.
+            differ(&l, &m, "learned", "model")
+        }
+        ExperimentKind::Robustness => {
+            let path = dir.join("robustness_pushes.csv");
+            let mut learned = Vec::new();
+            let mut without = Vec::new();
+            for r in rows(&path)? {
+                let flag = |name: &str| {
+                    cell(&r, name)
+                        .and_then(|v| v.parse::<bool>().ok())
+                        .ok_or_else(|| corrupt(&path, &format!("a row without {name}")))
+                };
+                // Equal impulses: the first push that differs.
+                learned.push((0.0, flag("fell")?));
+                // Empty where the run had no walker without learning.
+                without.push((0.0, flag("no_learning_fell").unwrap_or(false)));
+            }
+            let k = learned
+                .iter()
+                .zip(&without)
+                .position(|(l, w)| !l.1 && w.1)
+                .map_or_else(|| differing_push(&learned, &without), |i| i + 1);
+            let said = |fell: bool| if fell { "fell" } else { "absorbed it" };
+            let (l, w) = (
+                learned.get(k - 1).is_some_and(|p| p.1),
+                without.get(k - 1).is_some_and(|p| p.1),
+            );
+            (
+                Moment::Push(k),
+                format!(
+                    "push {k}: learned {}, without learning {}",
+                    said(l),
+                    said(w)
+                ),
+            )
+        }
+        ExperimentKind::Tracking => {
+            let protocol: TrackingProtocol = config
+                .protocols()
+                .get(&config.experiment)
+                .map_err(|e| corrupt(&dir.join(IDENTITY_FILE), &e.to_string()))?;
+            let setup = tracking::trial_setup(&config.settings, &protocol, config.seed)?;
+            let reference = &setup.reference;
+            let last = (setup.duration_s - protocol.horizon_s).min(120.0);
+            let jump = |t: f64| (reference.at(t) - reference.at(t - 1e-6)).abs();
+            let change = reference
+                .change_times()
+                .into_iter()
+                .filter(|&t| t >= 1.0 && t <= last)
+                .max_by(|&a, &b| jump(a).total_cmp(&jump(b)))
+                .ok_or_else(|| corrupt(&dir.join(IDENTITY_FILE), "no reference change"))?;
+            let (from, to) = (change - 1.0, change + protocol.horizon_s);
+            let (from, to) = (super::record::round(from), super::record::round(to));
+            (
+                Moment::Span(from, to),
+                format!(
+                    "the reference change at {change:.2} s (F_R {:.3} to {:.3} m), {from}..{to} s",
+                    reference.at(change - 1e-6),
+                    reference.at(change)
+                ),
+            )
+        }
+    })
+}
+
+/// Writes the replay of a telling moment of each run in `runs` (one per experiment) into
+/// `out` as [`replay_file_name`], and returns the links for the results page. A run that
+/// cannot be replayed is left out with a warning on stderr: the page is written regardless.
+pub fn write_results_replays(
+    registry: &Registry,
+    out: &Path,
+    runs: &[(String, std::path::PathBuf)],
+) -> Vec<ReplayLink> {
+    let mut links = Vec::new();
+    for (experiment, dir) in runs {
+        let file = replay_file_name(experiment);
+        let page = out.join(&file);
+        let written = telling_moment(dir).and_then(|(moment, why)| {
+            moment_to_file(registry, dir, moment, &page).map(|r| (r, why))
+        });
+        match written {
+            Ok((replay, why)) => {
+                eprintln!("{}", summary_line(&replay, &page));
+                let run = dir
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                links.push(ReplayLink {
+                    experiment: experiment.clone(),
+                    file,
+                    caption: format!("{run}, {why} ({} walkers side by side)", replay.walks.len()),
+                });
+            }
+            Err(e) => eprintln!("no replay of {}: {e}", dir.display()),
+        }
+    }
+    links
+}
