@@ -360,7 +360,7 @@ impl SavedOffset {
         if self.exploration != 0.0 && queries == 0 {
             return corrupt("an exploration perturbation before the step's first query".into());
         }
-        check_reaches("its", &self.reach)
+        check_reaches(&format!("offset {}'s", self.parameter), &self.reach)
     }
 }
 
