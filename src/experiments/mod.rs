@@ -1,31 +1,20 @@
-//! The paper's experiments (section V), generic over approximator and learning rule, and the
-//! harness that runs and sweeps them.
+//! The experiments, generic over approximator and learning rule, in three parts: the
+//! [`harness`] every experiment shares, the [`records`] and reports of runs, and the
+//! experiments themselves, one file each in [`suite`]; [`experiment`] is the contract between
+//! them (the [`Experiment`] trait and the [`RunContext`] that builds a run's learners).
 
-pub mod aligned;
-pub mod catch_step;
-pub mod claim;
-pub mod compare;
-pub mod config_file;
-pub mod disturbance;
-mod error;
 pub mod experiment;
-pub mod fall_causes;
-pub mod index_page;
-mod kind;
-pub mod omnidirectional;
-pub mod paired;
-pub mod protocol;
-mod push_options;
-pub mod reproduce;
-pub mod robustness;
-pub mod schedule;
-pub mod settings;
-pub mod stability;
+pub mod harness;
+pub mod records;
 pub mod suite;
-pub mod summary;
-pub mod sweep;
-pub mod tracking;
-pub mod trial;
+
+// Every module at its path of old, so that `steplearn::experiments::trial` and the like stay.
+pub use harness::{aligned, catch_step, compare, fall_causes, protocol, schedule, settings, trial};
+pub use records::{claim, config_file, index_page, paired, reproduce, summary, sweep};
+pub use suite::{disturbance, omnidirectional, robustness, stability, tracking};
+
+pub(crate) use harness::push_options;
+pub(crate) use records::{error, kind};
 
 pub use config_file::{ConfigFile, ConfigFileError};
 pub use error::ExperimentError;

@@ -1,12 +1,19 @@
-//! The paper's four experiments, A-D in the paper's order, and those beyond the paper: the
-//! suite only collects; each experiment lives in its own file.
+//! The experiments, one file each: the paper's four, A-D in the paper's order, and those
+//! beyond the paper. The suite only collects them; adding one is a file here, its `mod` line
+//! and one line in [`paper`] or [`beyond`].
 
-use super::disturbance::Disturbance;
-use super::experiment::Experiment;
-use super::omnidirectional::Omnidirectional;
-use super::robustness::Robustness;
-use super::stability::Stability;
-use super::tracking::Tracking;
+pub mod disturbance;
+pub mod omnidirectional;
+pub mod robustness;
+pub mod stability;
+pub mod tracking;
+
+use disturbance::Disturbance;
+use crate::experiments::experiment::Experiment;
+use omnidirectional::Omnidirectional;
+use robustness::Robustness;
+use stability::Stability;
+use tracking::Tracking;
 use std::sync::Arc;
 
 /// The paper's experiments `tracking`, `disturbance`, `stability`, `robustness`.

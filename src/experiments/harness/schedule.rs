@@ -5,7 +5,7 @@
 //! of one experiment see exactly the same sequence (the paper: "the same random step size
 //! sequence was presented to both controllers").
 
-use super::ExperimentError;
+use crate::experiments::ExperimentError;
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use serde::{Deserialize, Serialize};

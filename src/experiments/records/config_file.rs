@@ -8,10 +8,10 @@
 //! the reason ([`ConfigError`]), never silently adjusted. [`ConfigFile::default_toml`] is the
 //! complete default file (what `steplearn config` prints).
 
-use super::experiment::Experiment;
-use super::protocol::ProtocolTables;
-use super::settings::Settings;
-use super::suite;
+use crate::experiments::experiment::Experiment;
+use crate::experiments::protocol::ProtocolTables;
+use crate::experiments::settings::Settings;
+use crate::experiments::suite;
 use crate::config::ConfigError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

@@ -8,7 +8,7 @@
 //! [`MIN_CATCH_BEYOND_REFERENCE`] beyond the reference step (a real catch step, not a step in
 //! the gait). [`CatchStepObserver::reach`] is the mean over the counted pushes.
 
-use super::trial::{FallRecord, Observer, PushRecord};
+use crate::experiments::trial::{FallRecord, Observer, PushRecord};
 use crate::control::walker::Tick;
 use serde::{Deserialize, Serialize};
 

@@ -1,7 +1,7 @@
 //! Settings shared by every experiment: the robot, the walker, the learner, and how long to run.
 
-use super::schedule::{Push, PushPlan, ReferenceSchedule};
-use super::trial::TrialSetup;
+use crate::experiments::schedule::{Push, PushPlan, ReferenceSchedule};
+use crate::experiments::trial::TrialSetup;
 use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Kernel, Lwpr, LwprConfig};
 use crate::config::{self, ConfigError};
 use crate::control::learner::{InputGrid, LearnerConfig, LearnerError};

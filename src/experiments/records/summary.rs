@@ -7,8 +7,8 @@
 //!                  "model": {...}, "learned": {...}}}
 //! ```
 
-use super::ExperimentKind;
-use super::fall_causes::FallCause;
+use crate::experiments::ExperimentKind;
+use crate::experiments::fall_causes::FallCause;
 use crate::Named;
 use crate::control::step_parameter::LearnSet;
 use crate::report::{ReportError, write_file};

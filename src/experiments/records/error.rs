@@ -1,6 +1,6 @@
 //! The error type of the experiments.
 
-use super::trial::TrialError;
+use crate::experiments::trial::TrialError;
 use crate::config::ConfigError;
 use crate::control::learner::LearnerError;
 use crate::report::ReportError;

@@ -2,19 +2,19 @@
 //! walker, the Capture Step *model* and the *learned* walker, walking in place with forward
 //! pushes of random impulse at random gait phases.
 
-use super::catch_step::{CatchStepObserver, CatchStepReach};
-use super::claim::{Claim, by_seed};
-use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use super::fall_causes::{
+use crate::experiments::catch_step::{CatchStepObserver, CatchStepReach};
+use crate::experiments::claim::{Claim, by_seed};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::fall_causes::{
     ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified_with,
 };
-use super::paired::{Direction, Paired};
-use super::protocol::{Protocol, ProtocolTables, Table};
-use super::schedule::PushPlan;
-use super::settings::{LearnerFactory, Settings};
-use super::summary::FallCauseCounts;
-use super::trial::{PushRecord, TrialLog, TrialSetup};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::PushPlan;
+use crate::experiments::settings::{LearnerFactory, Settings};
+use crate::experiments::summary::FallCauseCounts;
+use crate::experiments::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::experiments::summary::{
@@ -74,7 +74,7 @@ pub struct ControllerPushes {
     /// Every fall of the trial (within a push window or not) with its cause, in time order.
     #[serde(default)]
     pub classified_falls: Vec<ClassifiedFall>,
-    /// The catch step's reach over the pushes (see [`super::catch_step`]).
+    /// The catch step's reach over the pushes (see [`crate::experiments::catch_step`]).
     pub catch_step: CatchStepReach,
 }
 
@@ -282,7 +282,7 @@ pub struct Stability;
 
 impl Experiment for Stability {
     fn name(&self) -> &str {
-        super::ExperimentKind::Stability.into()
+        crate::experiments::ExperimentKind::Stability.into()
     }
 
     fn description(&self) -> &str {

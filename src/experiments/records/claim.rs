@@ -1,8 +1,8 @@
 //! A claim of the paper checked on a set of runs: a verdict per seed (strict) and the claim's
 //! figures paired over seeds (learned against model, with 95% intervals).
 
-use super::paired::Paired;
-use super::summary::Summary;
+use crate::experiments::paired::Paired;
+use crate::experiments::summary::Summary;
 use serde::{Deserialize, Serialize};
 
 /// One claim's verdict per seed and overall.

@@ -1,11 +1,11 @@
 //! The comparison every experiment but D makes: the same trial for the Capture Step *model*
 //! alone and for the *learned* walker (model plus a fresh learner), run in parallel.
 
-use super::error::ExperimentError;
-use super::fall_causes::{ClassifiedFall, count, push_rows, run_classified};
-use super::settings::LearnerFactory;
-use super::summary::ModelLearned;
-use super::trial::{ControllerCell, StepCells, TrialLog, TrialSetup};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::fall_causes::{ClassifiedFall, count, push_rows, run_classified};
+use crate::experiments::settings::LearnerFactory;
+use crate::experiments::summary::ModelLearned;
+use crate::experiments::trial::{ControllerCell, StepCells, TrialLog, TrialSetup};
 use crate::report::ReportError;
 use crate::report::write_rows;
 use serde::{Deserialize, Serialize};

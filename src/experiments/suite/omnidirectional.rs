@@ -20,14 +20,14 @@
 //! the mean of its norm. Registered as `omnidirectional`; its result is a [`CustomResult`], as
 //! a user's experiment would write it.
 
-use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use super::fall_causes::{count, run_classified};
-use super::paired::{Direction, Paired};
-use super::protocol::{Protocol, ProtocolTables, Table};
-use super::schedule::{PushPlan, ReferenceSchedule};
-use super::summary::{CustomResult, ExperimentResult, Summary};
-use super::trial::{Observer, TrialLog, run_trial};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::fall_causes::{count, run_classified};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::{PushPlan, ReferenceSchedule};
+use crate::experiments::summary::{CustomResult, ExperimentResult, Summary};
+use crate::experiments::trial::{Observer, TrialLog, run_trial};
 use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
 use crate::config::{self, ConfigError};
 use crate::control::step_parameter::{LearnSet, StepParameter};

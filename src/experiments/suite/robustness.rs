@@ -11,14 +11,14 @@
 //! same [`WalkerMode::LearnerOnly`] walker with no policy, so dF = 0 and it steps in place
 //! whatever happens. What learning adds is the difference in pushes absorbed.
 
-use super::claim::{Claim, by_seed};
-use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use super::paired::{Direction, Paired};
-use super::protocol::{Protocol, ProtocolTables, Table};
-use super::schedule::{Push, ReferenceSchedule};
-use super::settings::Settings;
-use super::trial::{StepCells, StepRecord, TrialSetup, run_trial};
+use crate::experiments::claim::{Claim, by_seed};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::{Push, ReferenceSchedule};
+use crate::experiments::settings::Settings;
+use crate::experiments::trial::{StepCells, StepRecord, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::config::limits::{MAX_GAP_S, MAX_GRID_POINTS, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
@@ -225,7 +225,7 @@ where
     let setup = |push_time: f64| episode_setup(settings, protocol, push_time);
     // A fall before the push resets the robot and delays the push; without a delivered push
     // the episode counts as a fall.
-    let fell = |log: &super::trial::TrialLog| log.pushes.first().is_none_or(|p| p.fell);
+    let fell = |log: &crate::experiments::trial::TrialLog| log.pushes.first().is_none_or(|p| p.fell);
     let learned = || -> Result<(f64, Vec<Episode>), ExperimentError> {
         let mut learner = learner(learner_config(settings, protocol))?;
         let initial_metric = learner.learning_metric(&protocol.metric_grid)?;
@@ -428,7 +428,7 @@ pub struct Robustness;
 
 impl Experiment for Robustness {
     fn name(&self) -> &str {
-        super::ExperimentKind::Robustness.into()
+        crate::experiments::ExperimentKind::Robustness.into()
     }
 
     fn description(&self) -> &str {

@@ -2,15 +2,15 @@
 //! and the pendulum-cart rule) over several seeds, and a report of whether each of the paper's
 //! four claims holds, seed by seed and paired over seeds.
 //!
-//! The runs go through the sweep machinery ([`super::sweep::run_sweep`]): one directory per
+//! The runs go through the sweep machinery ([`crate::experiments::sweep::run_sweep`]): one directory per
 //! run with its CSV, SVG and `summary.json`, finished runs reused. [`Claims::from_summaries`]
 //! then reads only the summaries, so the verdicts can be recomputed from the files alone.
 
-use super::ExperimentKind;
-use super::error::ExperimentError;
-use super::paired::Verdict;
-use super::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
-use super::{disturbance, robustness, stability, tracking};
+use crate::experiments::ExperimentKind;
+use crate::experiments::error::ExperimentError;
+use crate::experiments::paired::Verdict;
+use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
+use crate::experiments::{disturbance, robustness, stability, tracking};
 use crate::Named;
 use crate::experiments::summary::Summary;
 use crate::report::{ReportError, write_file};
@@ -25,7 +25,7 @@ pub fn grid(approx: &str, rule: &str, seeds: u64) -> SweepGrid {
     SweepGrid::new(&experiments, &[approx], &[rule], seeds)
 }
 
-pub use super::claim::Claim;
+pub use crate::experiments::claim::Claim;
 
 /// The paper's four claims, checked on a set of summaries.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

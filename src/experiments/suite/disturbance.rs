@@ -3,16 +3,16 @@
 //! trunk deviation angle (TDA, theta_E) of every step are binned by the time since the push;
 //! the model and the learned walker see the same pushes.
 
-use super::aligned::AlignedStats;
-use super::claim::{Claim, by_seed};
-use super::compare::{ModelAndLearned, run_model_and_learned};
-use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use super::paired::{Direction, Paired};
-use super::protocol::{Protocol, ProtocolTables, Table};
-use super::schedule::PushPlan;
-use super::settings::{LearnerFactory, Settings};
-use super::trial::{StepRecord, TrialLog, TrialSetup};
+use crate::experiments::aligned::AlignedStats;
+use crate::experiments::claim::{Claim, by_seed};
+use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::PushPlan;
+use crate::experiments::settings::{LearnerFactory, Settings};
+use crate::experiments::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::config::limits::{
     MAX_BINS, MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MIN_BIN_S,
 };
@@ -459,7 +459,7 @@ pub struct Disturbance;
 
 impl Experiment for Disturbance {
     fn name(&self) -> &str {
-        super::ExperimentKind::Disturbance.into()
+        crate::experiments::ExperimentKind::Disturbance.into()
     }
 
     fn description(&self) -> &str {

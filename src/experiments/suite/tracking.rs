@@ -3,16 +3,16 @@
 //! sequence. The step size error F_E of every step is binned by the time since the last
 //! change: its mean and standard deviation per bin are the figure.
 
-use super::aligned::AlignedStats;
-use super::claim::{Claim, by_seed};
-use super::compare::{ModelAndLearned, run_model_and_learned};
-use super::error::ExperimentError;
-use super::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use super::paired::{Direction, Paired};
-use super::protocol::{Protocol, ProtocolTables, Table};
-use super::schedule::ReferenceSchedule;
-use super::settings::{LearnerFactory, Settings};
-use super::trial::TrialLog;
+use crate::experiments::aligned::AlignedStats;
+use crate::experiments::claim::{Claim, by_seed};
+use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::ReferenceSchedule;
+use crate::experiments::settings::{LearnerFactory, Settings};
+use crate::experiments::trial::TrialLog;
 use crate::config::limits::{MAX_BINS, MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S, MIN_BIN_S};
 use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
@@ -136,7 +136,7 @@ pub fn trial_setup(
     settings: &Settings,
     protocol: &TrackingProtocol,
     seed: u64,
-) -> Result<super::trial::TrialSetup, ExperimentError> {
+) -> Result<crate::experiments::trial::TrialSetup, ExperimentError> {
     let duration = (protocol.duration_s * settings.scale).max(4.0 * protocol.hold_s.1);
     let reference = ReferenceSchedule::random(seed, duration, protocol.reference, protocol.hold_s)?;
     Ok(settings.trial(
@@ -277,7 +277,7 @@ pub struct Tracking;
 
 impl Experiment for Tracking {
     fn name(&self) -> &str {
-        super::ExperimentKind::Tracking.into()
+        crate::experiments::ExperimentKind::Tracking.into()
     }
 
     fn description(&self) -> &str {

@@ -7,7 +7,7 @@
 //! learner, generator) -> `Humanoid::step`. After a fall the robot and the walker are reset and
 //! the learner keeps what it learned (its unfinished step is discarded).
 
-use super::schedule::{Push, ReferenceSchedule};
+use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::control::step_parameter::StepParameter;
 use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
 use crate::report::Fixed;
@@ -97,7 +97,7 @@ impl TrialSetup {
                 self.recovery_s
             )));
         }
-        if !super::schedule::is_unit_direction(&self.push_direction) {
+        if !crate::experiments::schedule::is_unit_direction(&self.push_direction) {
             return Err(TrialError::Invalid(format!(
                 "push_direction must be a unit vector, got {:?}",
                 self.push_direction
