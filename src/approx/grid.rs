@@ -6,11 +6,11 @@ use serde::{Deserialize, Serialize};
 
 /// Settings of a [`Grid`].
 ///
-/// Recommended settings (measured by `probes/src/bin/compare_approximators.rs`, 100,000 samples):
-/// - cross 2D on [-1, 1]^2, noise 0.1: `resolution = [31, 31]`, `learning_rate = 0.1`
-///   (nMSE 0.005);
+/// Recommended settings (as compared by `probes/src/bin/compare_approximators.rs`; its figures are in
+/// docs/approximators.md):
+/// - cross 2D on [-1, 1]^2, noise 0.1: `resolution = [31, 31]`, `learning_rate = 0.1`;
 /// - the 3-input step-offset map (theta, theta_dot, F_R), noise 0.01: `resolution = [11, 5, 5]`,
-///   `learning_rate = 0.05` (nMSE 1e-4).
+///   `learning_rate = 0.05`.
 ///
 /// Choose the spacing so that the target is close to linear between neighbouring nodes; more
 /// nodes resolve more detail but see fewer samples each (more noise). The node count is the

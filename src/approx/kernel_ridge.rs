@@ -9,15 +9,14 @@ const JITTER: f64 = 1e-8;
 
 /// Settings of a [`KernelRidge`] model.
 ///
-/// Recommended settings (measured by `probes/src/bin/compare_approximators.rs`, 100,000 samples):
+/// Recommended settings (as compared by `probes/src/bin/compare_approximators.rs`; its figures are in
+/// docs/approximators.md):
 /// - cross 2D on [-1, 1]^2, noise 0.1: `length_scales = [0.25, 0.25]`, `regularisation =
-///   0.01` (the noise variance), defaults otherwise (budget 100, novelty threshold 0.02):
-///   nMSE 0.015;
+///   0.01` (the noise variance), defaults otherwise (budget 100, novelty threshold 0.02);
 /// - the 3-input step-offset map, noise 0.01: `length_scales` = half the input ranges
-///   (`[0.5, 3.0, 0.15]`), `regularisation = 1e-4`, defaults otherwise: nMSE 2e-4.
+///   (`[0.5, 3.0, 0.15]`), `regularisation = 1e-4`, defaults otherwise.
 ///
-/// At the default budget an update on cross 2D takes 15-27 us (criterion,
-/// `benches/approx_others.rs`, on a shared 2-core machine).
+/// Its update time is measured by `benches/approx_others.rs`.
 ///
 /// Length scales of about the distance over which the target changes noticeably, and a
 /// `regularisation` of the observation noise variance, are good starting points. The budget

@@ -34,13 +34,13 @@ pub enum RbfUpdate {
 
 /// Settings of an [`Rbf`] network.
 ///
-/// Recommended settings (measured by `probes/src/bin/compare_approximators.rs`, 100,000 samples):
+/// Recommended settings (as compared by `probes/src/bin/compare_approximators.rs`; its figures are in
+/// docs/approximators.md):
 /// - cross 2D on [-1, 1]^2, noise 0.1: `centres = [21, 21]`, `widths = [0.07, 0.07]`
-///   (0.7 x the spacing), `update = RbfUpdate::Nlms { learning_rate: 0.1 }` (nMSE 0.004), or
-///   `RbfUpdate::Rls { forgetting: 1.0, prior_variance: 100.0 }` (nMSE 0.0006 at about 200x
-///   the update cost);
+///   (0.7 x the spacing), `update = RbfUpdate::Nlms { learning_rate: 0.1 }`, or
+///   `RbfUpdate::Rls { forgetting: 1.0, prior_variance: 100.0 }`;
 /// - the 3-input step-offset map, noise 0.01: `centres = [9, 5, 5]`, widths 0.7 x the
-///   spacing (`[0.0875, 1.05, 0.0525]`), the same NLMS (nMSE 3e-4) or RLS (nMSE 1e-4).
+///   spacing (`[0.0875, 1.05, 0.0525]`), the same NLMS or RLS.
 ///
 /// Widths of 0.5-1 times the centre spacing work well: narrower gives bumpy predictions,
 /// wider blurs detail and slows least mean squares.

@@ -76,9 +76,8 @@
 //! drives the support leg's sweep with the *reference* step, not with the controller's step
 //! (see [`StepCommand::gait_x`](crate::control::motion::StepCommand)); the controller's
 //! footstep only places the swing foot. The sagittal ZMP range is then a model parameter, not
-//! a realised bound: on the simulated humanoid, stepping in place with `F_R = 0` for 20 s
-//! gave a mean measured step of -1.1 cm with `[-0.06, 0.09]` and +0.4 cm with `+-0.08`
-//! (`tests/all/walker_humanoid.rs` checks the chosen default).
+//! a realised bound, chosen so that the humanoid stepping in place with `F_R = 0` takes no
+//! mean step (`tests/all/walker_humanoid.rs` checks the chosen default).
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;

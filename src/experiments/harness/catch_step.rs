@@ -8,8 +8,8 @@
 //! [`MIN_CATCH_BEYOND_REFERENCE`] beyond the reference step (a real catch step, not a step in
 //! the gait). [`CatchStepObserver::reach`] is the mean over the counted pushes.
 
-use crate::experiments::trial::{FallRecord, Observer, PushRecord};
 use crate::control::walker::Tick;
+use crate::experiments::trial::{FallRecord, Observer, PushRecord};
 use serde::{Deserialize, Serialize};
 
 /// How far beyond the reference step a catch step must be commanded to count (m).

@@ -26,10 +26,10 @@
 //! Slips are not told apart: the observer sees the state estimate and the controller's
 //! decisions, not the contact forces.
 
+use crate::control::walker::{FootstepPolicy, Tick, WalkerConfig};
 use crate::experiments::trial::{
     FallRecord, Observer, PushRecord, StepRecord, TrialError, TrialLog, TrialSetup, run_trial,
 };
-use crate::control::walker::{FootstepPolicy, Tick, WalkerConfig};
 use crate::report::Fixed;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

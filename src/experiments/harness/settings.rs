@@ -1,11 +1,11 @@
 //! Settings shared by every experiment: the robot, the walker, the learner, and how long to run.
 
-use crate::experiments::schedule::{Push, PushPlan, ReferenceSchedule};
-use crate::experiments::trial::TrialSetup;
 use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Kernel, Lwpr, LwprConfig};
 use crate::config::{self, ConfigError};
 use crate::control::learner::{InputGrid, LearnerConfig, LearnerError};
 use crate::control::walker::{FootstepPolicy, WalkerConfig, WalkerMode};
+use crate::experiments::schedule::{Push, PushPlan, ReferenceSchedule};
+use crate::experiments::trial::TrialSetup;
 use crate::sim::SimConfig;
 use serde::{Deserialize, Serialize};
 

@@ -7,9 +7,9 @@
 //! learner, generator) -> `Humanoid::step`. After a fall the robot and the walker are reset and
 //! the learner keeps what it learned (its unfinished step is discarded).
 
-use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::control::step_parameter::StepParameter;
 use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
+use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::report::Fixed;
 use crate::sim::{Fall, GroundTruth, Humanoid, SimConfig, SimError};
 use serde::{Deserialize, Serialize};

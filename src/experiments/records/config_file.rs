@@ -8,11 +8,11 @@
 //! the reason ([`ConfigError`]), never silently adjusted. [`ConfigFile::default_toml`] is the
 //! complete default file (what `steplearn config` prints).
 
+use crate::config::ConfigError;
 use crate::experiments::experiment::Experiment;
 use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::settings::Settings;
 use crate::experiments::suite;
-use crate::config::ConfigError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

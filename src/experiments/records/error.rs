@@ -1,8 +1,8 @@
 //! The error type of the experiments.
 
-use crate::experiments::trial::TrialError;
 use crate::config::ConfigError;
 use crate::control::learner::LearnerError;
+use crate::experiments::trial::TrialError;
 use crate::report::ReportError;
 use thiserror::Error;
 

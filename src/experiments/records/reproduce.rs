@@ -6,13 +6,13 @@
 //! run with its CSV, SVG and `summary.json`, finished runs reused. [`Claims::from_summaries`]
 //! then reads only the summaries, so the verdicts can be recomputed from the files alone.
 
+use crate::Named;
 use crate::experiments::ExperimentKind;
 use crate::experiments::error::ExperimentError;
 use crate::experiments::paired::Verdict;
+use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
 use crate::experiments::{disturbance, robustness, stability, tracking};
-use crate::Named;
-use crate::experiments::summary::Summary;
 use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -7,10 +7,10 @@
 //!                  "model": {...}, "learned": {...}}}
 //! ```
 
-use crate::experiments::ExperimentKind;
-use crate::experiments::fall_causes::FallCause;
 use crate::Named;
 use crate::control::step_parameter::LearnSet;
+use crate::experiments::ExperimentKind;
+use crate::experiments::fall_causes::FallCause;
 use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;

@@ -3,22 +3,24 @@
 //! trunk deviation angle (TDA, theta_E) of every step are binned by the time since the push;
 //! the model and the learned walker see the same pushes.
 
-use crate::experiments::aligned::AlignedStats;
-use crate::experiments::claim::{Claim, by_seed};
-use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
-use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use crate::experiments::paired::{Direction, Paired};
-use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
-use crate::experiments::schedule::PushPlan;
-use crate::experiments::settings::{LearnerFactory, Settings};
-use crate::experiments::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::config::limits::{
     MAX_BINS, MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MIN_BIN_S,
 };
 use crate::config::{self, ConfigError};
 use crate::control::walker::WalkerMode;
+use crate::experiments::aligned::AlignedStats;
+use crate::experiments::claim::{Claim, by_seed};
+use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{
+    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::PushPlan;
+use crate::experiments::settings::{LearnerFactory, Settings};
 use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls, Summary};
+use crate::experiments::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::{number, read_rows};

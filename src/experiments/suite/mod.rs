@@ -8,13 +8,13 @@ pub mod robustness;
 pub mod stability;
 pub mod tracking;
 
-use disturbance::Disturbance;
 use crate::experiments::experiment::Experiment;
+use disturbance::Disturbance;
 use omnidirectional::Omnidirectional;
 use robustness::Robustness;
 use stability::Stability;
-use tracking::Tracking;
 use std::sync::Arc;
+use tracking::Tracking;
 
 /// The paper's experiments `tracking`, `disturbance`, `stability`, `robustness`.
 pub fn paper() -> Vec<Arc<dyn Experiment>> {

@@ -20,18 +20,20 @@
 //! the mean of its norm. Registered as `omnidirectional`; its result is a [`CustomResult`], as
 //! a user's experiment would write it.
 
+use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
+use crate::config::{self, ConfigError};
+use crate::control::step_parameter::{LearnSet, StepParameter};
+use crate::control::walker::{FootstepPolicy, Tick, WalkerMode};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::experiment::{
+    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+};
 use crate::experiments::fall_causes::{count, run_classified};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::{PushPlan, ReferenceSchedule};
 use crate::experiments::summary::{CustomResult, ExperimentResult, Summary};
 use crate::experiments::trial::{Observer, TrialLog, run_trial};
-use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
-use crate::config::{self, ConfigError};
-use crate::control::step_parameter::{LearnSet, StepParameter};
-use crate::control::walker::{FootstepPolicy, Tick, WalkerMode};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
 use rayon::prelude::*;

@@ -11,14 +11,6 @@
 //! same [`WalkerMode::LearnerOnly`] walker with no policy, so dF = 0 and it steps in place
 //! whatever happens. What learning adds is the difference in pushes absorbed.
 
-use crate::experiments::claim::{Claim, by_seed};
-use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
-use crate::experiments::paired::{Direction, Paired};
-use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
-use crate::experiments::schedule::{Push, ReferenceSchedule};
-use crate::experiments::settings::Settings;
-use crate::experiments::trial::{StepCells, StepRecord, TrialSetup, run_trial};
 use crate::approx::FunctionApproximator;
 use crate::config::limits::{MAX_GAP_S, MAX_GRID_POINTS, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
@@ -26,7 +18,17 @@ use crate::control::learner::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, MapSpec, OffsetMap, Prior,
 };
 use crate::control::walker::WalkerMode;
+use crate::experiments::claim::{Claim, by_seed};
+use crate::experiments::error::ExperimentError;
+use crate::experiments::experiment::{
+    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+};
+use crate::experiments::paired::{Direction, Paired};
+use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::schedule::{Push, ReferenceSchedule};
+use crate::experiments::settings::Settings;
 use crate::experiments::summary::{ExperimentResult, NoLearning, Summary};
+use crate::experiments::trial::{StepCells, StepRecord, TrialSetup, run_trial};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{HeatMapGrid, HeatPanel, LinePlot, Series, heat_map_grid, line_plot};
@@ -63,9 +65,7 @@ pub struct RobustnessProtocol {
     /// Whether the learner holds its dF = 0 prior ([`crate::control::learner::Prior`]) from
     /// the start. Default false: D's learner is not initialised, so it neither has the analytic
     /// footstep nor believes dF = 0 is right; [`run`] builds it with
-    /// `Prior::none()` unless this is set. Measured (seeds 0-4, 15 pushes of 6 Ns): without the
-    /// prior the first push was absorbed on every seed and 73 of 75 pushes in all; with it the
-    /// first absorbed push was the 2nd-4th and 65 of 75 were absorbed.
+    /// `Prior::none()` unless this is set.
     pub learner_prior: bool,
 }
 
@@ -225,7 +225,8 @@ where
     let setup = |push_time: f64| episode_setup(settings, protocol, push_time);
     // A fall before the push resets the robot and delays the push; without a delivered push
     // the episode counts as a fall.
-    let fell = |log: &crate::experiments::trial::TrialLog| log.pushes.first().is_none_or(|p| p.fell);
+    let fell =
+        |log: &crate::experiments::trial::TrialLog| log.pushes.first().is_none_or(|p| p.fell);
     let learned = || -> Result<(f64, Vec<Episode>), ExperimentError> {
         let mut learner = learner(learner_config(settings, protocol))?;
         let initial_metric = learner.learning_metric(&protocol.metric_grid)?;

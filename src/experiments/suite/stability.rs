@@ -2,10 +2,14 @@
 //! walker, the Capture Step *model* and the *learned* walker, walking in place with forward
 //! pushes of random impulse at random gait phases.
 
+use crate::config::{self, ConfigError};
+use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::experiments::catch_step::{CatchStepObserver, CatchStepReach};
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::experiment::{
+    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+};
 use crate::experiments::fall_causes::{
     ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified_with,
 };
@@ -14,12 +18,10 @@ use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::PushPlan;
 use crate::experiments::settings::{LearnerFactory, Settings};
 use crate::experiments::summary::FallCauseCounts;
-use crate::experiments::trial::{PushRecord, TrialLog, TrialSetup};
-use crate::config::{self, ConfigError};
-use crate::control::walker::{FootstepPolicy, WalkerMode};
 use crate::experiments::summary::{
     CatchStepReaches, ControllerFalls, Controllers, ExperimentResult, Summary,
 };
+use crate::experiments::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::{number, read_rows};

@@ -3,20 +3,22 @@
 //! sequence. The step size error F_E of every step is binned by the time since the last
 //! change: its mean and standard deviation per bin are the figure.
 
+use crate::config::limits::{MAX_BINS, MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S, MIN_BIN_S};
+use crate::config::{self, ConfigError};
+use crate::control::walker::WalkerMode;
 use crate::experiments::aligned::AlignedStats;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
+use crate::experiments::experiment::{
+    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::ReferenceSchedule;
 use crate::experiments::settings::{LearnerFactory, Settings};
-use crate::experiments::trial::TrialLog;
-use crate::config::limits::{MAX_BINS, MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S, MIN_BIN_S};
-use crate::config::{self, ConfigError};
-use crate::control::walker::WalkerMode;
 use crate::experiments::summary::{ExperimentResult, ModelLearned, Summary};
+use crate::experiments::trial::TrialLog;
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};
