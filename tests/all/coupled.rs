@@ -463,7 +463,8 @@ fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
     one.more_offsets.clear();
     let err = CoupledLearner::from_checkpoint_with(one, [PendulumCart::default(); 2]).unwrap_err();
     assert!(err.to_string().contains("output"), "{err}");
-    let broken: [(&str, fn(&mut steplearn::control::learner::SavedOffset)); 3] = [
+    type Corruption = fn(&mut steplearn::control::learner::SavedOffset);
+    let broken: [(&str, Corruption); 3] = [
         ("reach count", |o| {
             o.reach.pop();
         }),
