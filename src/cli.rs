@@ -587,7 +587,8 @@ fn bench_of<'r>(registry: &'r Registry, args: &BenchArgs) -> Result<Bench<'r>, S
     Ok(bench)
 }
 
-/// `steplearn bench`: the selection's runs, then the leaderboard.
+/// `steplearn bench`: the selection's runs, then the leaderboard, its page linking the replays
+/// of its best and its worst row.
 fn bench(registry: &Registry, args: BenchArgs) -> Result<(), String> {
     let bench = bench_of(registry, &args)?;
     let out = &args.out;
@@ -599,6 +600,9 @@ fn bench(registry: &Registry, args: BenchArgs) -> Result<(), String> {
     let result = bench
         .on_run(|o: &RunOutcome| {
             progress(&bar, o);
+        })
+        .replays(|leaderboard, dir| {
+            crate::replay::moments::write_bench_replays(registry, dir, leaderboard)
         })
         .run();
     bar.finish_and_clear();
