@@ -31,7 +31,7 @@ use crate::experiments::sweep::{
 };
 use crate::report::write_file;
 use crate::rules::PendulumCart;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -52,132 +52,18 @@ enum Command {
     /// pendulum-cart) over several seeds; writes one directory per run (CSV, SVG, summary.json)
     /// and DIR/claims.{md,json}, whether each of the paper's claims holds. Finished runs in DIR
     /// are reused.
-    Reproduce {
-        /// The approximator (any registered name).
-        #[arg(long, default_value = "lwpr")]
-        approx: String,
-        /// The learning rule (any registered name).
-        #[arg(long, default_value = "pendulum-cart")]
-        rule: String,
-        /// Output directory [default: results/paper, or results/quick with --quick].
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Seeds 0..N [default: 10, or 2 with --quick].
-        #[arg(long)]
-        seeds: Option<u64>,
-        /// A fast look: every experiment at a tenth of its length.
-        #[arg(long)]
-        quick: bool,
-        /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
-        /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
-        #[arg(long)]
-        learn: Option<LearnSet>,
-        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
-        #[arg(long)]
-        config: Option<PathBuf>,
-    },
+    Reproduce(ReproduceArgs),
     /// Runs one experiment; writes CSV, SVG and DIR/summary.json.
-    Experiment {
-        /// Which experiment (any registered name).
-        experiment: String,
-        /// The approximator (any registered name).
-        #[arg(long, default_value = "lwpr")]
-        approx: String,
-        /// The learning rule (any registered name).
-        #[arg(long, default_value = "pendulum-cart")]
-        rule: String,
-        /// Seed of every random choice.
-        #[arg(long, default_value_t = 0)]
-        seed: u64,
-        /// Number of pushes (default: the protocol's; not for tracking).
-        #[arg(long)]
-        pushes: Option<usize>,
-        /// Push impulse range in Ns, "A,B" (disturbance and robustness use one impulse: A,A).
-        #[arg(long, value_parser = parse_range)]
-        impulse_range: Option<(f64, f64)>,
-        /// Direction of the pushes (default: the protocol's, forward unless a config file
-        /// sets `direction`).
-        #[arg(long, value_enum)]
-        push_direction: Option<Direction>,
-        /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
-        /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
-        #[arg(long)]
-        learn: Option<LearnSet>,
-        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
-        #[arg(long)]
-        config: Option<PathBuf>,
-        /// Output directory: new or empty, or holding this same run (then reused); anything
-        /// else is refused unless --overwrite is given.
-        #[arg(long)]
-        out: PathBuf,
-        /// Replace what DIR holds, once the new run has finished (a failed run leaves it as
-        /// it was).
-        #[arg(long)]
-        overwrite: bool,
-    },
+    Experiment(ExperimentArgs),
     /// Benchmarks approximators x rules x experiments x seeds: one directory per run (finished
     /// runs reused, shardable), then DIR/leaderboard.{json,md,csv}, forest.svg and index.html
     /// with paired verdicts against the model and the baseline.
-    Bench {
-        /// Approximators, comma-separated [default: every registered one].
-        #[arg(long, value_delimiter = ',')]
-        approx: Vec<String>,
-        /// Rules, comma-separated [default: every registered one].
-        #[arg(long, value_delimiter = ',')]
-        rule: Vec<String>,
-        /// Experiments, comma-separated [default: every registered one].
-        #[arg(long, value_delimiter = ',')]
-        experiments: Vec<String>,
-        /// A set of step parameters the learners learn, comma-separated: step-x (the paper's
-        /// dF), step-y (the lateral dW), step-time (dT). Give it several times to bench several
-        /// sets side by side (`--learn step-x --learn step-x,step-time`) [default: the
-        /// config's, step-x].
-        #[arg(long)]
-        learn: Vec<LearnSet>,
-        /// Number of seeds: FIRST..FIRST+N.
-        #[arg(long, default_value_t = 5)]
-        seeds: u64,
-        /// The first seed (seeds other than 0-4 judge parameters chosen on 0-4).
-        #[arg(long, default_value_t = 0)]
-        first_seed: u64,
-        /// Protocol length as a fraction of the paper's, in (0, 1] [default: the config's, 1].
-        #[arg(long)]
-        scale: Option<f64>,
-        /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
-        #[arg(long)]
-        config: Option<PathBuf>,
-        /// The combination every other is compared with, APPROX+RULE [default:
-        /// lwpr+pendulum-cart when selected].
-        #[arg(long, value_parser = parse_baseline)]
-        baseline: Option<(String, String)>,
-        /// Run only shard I of N (0-based), e.g. 3/50.
-        #[arg(long)]
-        shard: Option<Shard>,
-        /// Worker threads [default: one per core]; results do not depend on it.
-        #[arg(long)]
-        threads: Option<usize>,
-        /// Output directory (one sub-directory per run).
-        #[arg(long, default_value = "results/bench")]
-        out: PathBuf,
-    },
+    Bench(BenchArgs),
     /// Lists the registered approximators, rules and experiments.
     List,
     /// Runs the ablation grid (every registered approximator x rule x seed on experiments C
     /// and D), skipping runs whose summary.json exists.
-    Sweep {
-        /// Run only shard I of N (0-based), e.g. 3/50.
-        #[arg(long)]
-        shard: Option<Shard>,
-        /// Seeds per configuration.
-        #[arg(long, default_value_t = 5)]
-        seeds: u64,
-        /// Pushes per controller in experiment C (default: the protocol's 400).
-        #[arg(long)]
-        pushes: Option<usize>,
-        /// Output directory (one sub-directory per run).
-        #[arg(long)]
-        out: PathBuf,
-    },
+    Sweep(SweepArgs),
     /// Prints the complete default configuration (every section and key) as TOML, a
     /// starting point for `--config`; with --check, validates a config file instead.
     Config {
@@ -194,37 +80,172 @@ enum Command {
     /// Re-simulates push K (disturbance, stability, robustness) or a span of time (tracking,
     /// disturbance, stability) of a finished run (from its run-config.toml) and writes one
     /// self-contained HTML page that draws it in 3D.
-    Replay {
-        /// The run's directory (what `steplearn experiment --out` wrote).
-        run_dir: PathBuf,
-        /// The push to replay (1-based).
-        #[arg(long, conflicts_with = "time", required_unless_present = "time")]
-        push: Option<usize>,
-        /// The span of trial time to replay, A..B seconds (e.g. 10..16).
-        #[arg(long, value_parser = parse_span)]
-        time: Option<(f64, f64)>,
-        /// The page to write.
-        #[arg(long)]
-        out: PathBuf,
-    },
+    Replay(ReplayArgs),
 }
 
-/// A push direction on the command line.
+// The arguments of `steplearn reproduce` (no doc comment: the variant's is the command's help).
+#[derive(Args)]
+struct ReproduceArgs {
+    /// The approximator (any registered name).
+    #[arg(long, default_value = "lwpr")]
+    approx: String,
+    /// The learning rule (any registered name).
+    #[arg(long, default_value = "pendulum-cart")]
+    rule: String,
+    /// Output directory [default: results/paper, or results/quick with --quick].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Seeds 0..N [default: 10, or 2 with --quick].
+    #[arg(long)]
+    seeds: Option<u64>,
+    /// A fast look: every experiment at a tenth of its length.
+    #[arg(long)]
+    quick: bool,
+    /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
+    /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
+    #[arg(long)]
+    learn: Option<LearnSet>,
+    /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+    #[arg(long)]
+    config: Option<PathBuf>,
+}
+
+// The arguments of `steplearn experiment`.
+#[derive(Args)]
+struct ExperimentArgs {
+    /// Which experiment (any registered name).
+    experiment: String,
+    /// The approximator (any registered name).
+    #[arg(long, default_value = "lwpr")]
+    approx: String,
+    /// The learning rule (any registered name).
+    #[arg(long, default_value = "pendulum-cart")]
+    rule: String,
+    /// Seed of every random choice.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Number of pushes (default: the protocol's; not for tracking).
+    #[arg(long)]
+    pushes: Option<usize>,
+    /// Push impulse range in Ns, "A,B" (disturbance and robustness use one impulse: A,A).
+    #[arg(long, value_parser = parse_range)]
+    impulse_range: Option<(f64, f64)>,
+    /// Direction of the pushes (default: the protocol's, forward unless a config file
+    /// sets `direction`).
+    #[arg(long, value_enum)]
+    push_direction: Option<PushDirection>,
+    /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
+    /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
+    #[arg(long)]
+    learn: Option<LearnSet>,
+    /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Output directory: new or empty, or holding this same run (then reused); anything
+    /// else is refused unless --overwrite is given.
+    #[arg(long)]
+    out: PathBuf,
+    /// Replace what DIR holds, once the new run has finished (a failed run leaves it as
+    /// it was).
+    #[arg(long)]
+    overwrite: bool,
+}
+
+// The arguments of `steplearn bench`.
+#[derive(Args)]
+struct BenchArgs {
+    /// Approximators, comma-separated [default: every registered one].
+    #[arg(long, value_delimiter = ',')]
+    approx: Vec<String>,
+    /// Rules, comma-separated [default: every registered one].
+    #[arg(long, value_delimiter = ',')]
+    rule: Vec<String>,
+    /// Experiments, comma-separated [default: every registered one].
+    #[arg(long, value_delimiter = ',')]
+    experiments: Vec<String>,
+    /// A set of step parameters the learners learn, comma-separated: step-x (the paper's
+    /// dF), step-y (the lateral dW), step-time (dT). Give it several times to bench several
+    /// sets side by side (`--learn step-x --learn step-x,step-time`) [default: the
+    /// config's, step-x].
+    #[arg(long)]
+    learn: Vec<LearnSet>,
+    /// Number of seeds: FIRST..FIRST+N.
+    #[arg(long, default_value_t = 5)]
+    seeds: u64,
+    /// The first seed (seeds other than 0-4 judge parameters chosen on 0-4).
+    #[arg(long, default_value_t = 0)]
+    first_seed: u64,
+    /// Protocol length as a fraction of the paper's, in (0, 1] [default: the config's, 1].
+    #[arg(long)]
+    scale: Option<f64>,
+    /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// The combination every other is compared with, APPROX+RULE [default:
+    /// lwpr+pendulum-cart when selected].
+    #[arg(long, value_parser = parse_baseline)]
+    baseline: Option<(String, String)>,
+    /// Run only shard I of N (0-based), e.g. 3/50.
+    #[arg(long)]
+    shard: Option<Shard>,
+    /// Worker threads [default: one per core]; results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Output directory (one sub-directory per run).
+    #[arg(long, default_value = "results/bench")]
+    out: PathBuf,
+}
+
+// The arguments of `steplearn sweep`.
+#[derive(Args)]
+struct SweepArgs {
+    /// Run only shard I of N (0-based), e.g. 3/50.
+    #[arg(long)]
+    shard: Option<Shard>,
+    /// Seeds per configuration.
+    #[arg(long, default_value_t = 5)]
+    seeds: u64,
+    /// Pushes per controller in experiment C (default: the protocol's 400).
+    #[arg(long)]
+    pushes: Option<usize>,
+    /// Output directory (one sub-directory per run).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+// The arguments of `steplearn replay`.
+#[derive(Args)]
+struct ReplayArgs {
+    /// The run's directory (what `steplearn experiment --out` wrote).
+    run_dir: PathBuf,
+    /// The push to replay (1-based).
+    #[arg(long, conflicts_with = "time", required_unless_present = "time")]
+    push: Option<usize>,
+    /// The span of trial time to replay, A..B seconds (e.g. 10..16).
+    #[arg(long, value_parser = parse_span)]
+    time: Option<(f64, f64)>,
+    /// The page to write.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Which way the pushes go, on the command line (`--push-direction`); not
+/// [`crate::experiments::paired::Direction`], which way is better.
 #[derive(Clone, Copy, ValueEnum)]
-enum Direction {
+enum PushDirection {
     Forward,
     Backward,
     Left,
     Right,
 }
 
-impl Direction {
+impl PushDirection {
     fn unit(self) -> [f64; 3] {
         match self {
-            Direction::Forward => [1.0, 0.0, 0.0],
-            Direction::Backward => [-1.0, 0.0, 0.0],
-            Direction::Left => [0.0, 1.0, 0.0],
-            Direction::Right => [0.0, -1.0, 0.0],
+            PushDirection::Forward => [1.0, 0.0, 0.0],
+            PushDirection::Backward => [-1.0, 0.0, 0.0],
+            PushDirection::Left => [0.0, 1.0, 0.0],
+            PushDirection::Right => [0.0, -1.0, 0.0],
         }
     }
 }
@@ -317,374 +338,418 @@ fn load_config(registry: &Registry, config: Option<PathBuf>) -> Result<ConfigFil
     registry.resolve_config(&config).map_err(|e| e.to_string())
 }
 
+/// Runs the parsed command: one function per subcommand.
 fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Reproduce {
-            approx,
-            rule,
-            out,
-            seeds,
-            quick,
-            learn,
-            config,
-        } => {
-            let mut config = load_config(registry, config)?;
-            if quick {
-                config.settings.scale = 0.1;
-            }
-            if let Some(set) = learn {
-                config.settings.learner.learn = set;
-            }
-            let seeds = seeds.unwrap_or(if quick { 2 } else { 10 });
-            if seeds == 0 || seeds > MAX_SEEDS {
-                return Err(format!("--seeds must be in [1, {MAX_SEEDS}], got {seeds}"));
-            }
-            let out = out.unwrap_or_else(|| {
-                PathBuf::from(if quick {
-                    "results/quick"
-                } else {
-                    "results/paper"
-                })
-            });
-            let grid = reproduce::grid(&approx, &rule, seeds);
-            for e in &grid.experiments {
-                registry.find_experiment(e).map_err(|e| e.to_string())?;
-            }
-            registry
-                .check_combination(&approx, &rule)
-                .map_err(|e| e.to_string())?;
-            let runs = grid.runs().map_err(|e| e.to_string())?;
-            let started = std::time::Instant::now();
-            let failed =
-                sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
-            if failed > 0 {
-                return Err(format!(
-                    "{failed} of {} runs failed (see above); the claims report was not written",
-                    runs.len()
-                ));
-            }
-            let runner = registry.runner(&config.settings, &config.protocols);
-            let (summaries, missing) =
-                reproduce::read_summaries(&grid, &out, &runner).map_err(|e| e.to_string())?;
-            let claims = Claims::from_summaries(&summaries, PendulumCart::default().p_theta);
-            claims
-                .write(&out, &approx, &rule)
-                .map_err(|e| e.to_string())?;
-            let config_toml = config.to_toml().map_err(|e| e.to_string())?;
-            // One replay per experiment (its first seed's run), beside index.html.
-            let mut first_runs: Vec<(String, PathBuf)> = Vec::new();
-            for spec in &runs {
-                if !first_runs.iter().any(|(e, _)| *e == spec.experiment) {
-                    first_runs.push((spec.experiment.clone(), out.join(spec.id())));
-                }
-            }
-            let replays =
-                crate::replay::moments::write_results_replays(registry, &out, &first_runs);
-            write_index_with_replays(
-                &out,
-                &format!("steplearn reproduce: the paper's claims ({approx} + {rule})"),
-                &["claims.md"],
-                &command_line(),
-                Some(&config_toml),
-                &replays,
-            )
-            .map_err(|e| e.to_string())?;
-            // One line per claim with both verdicts, then every paired quantity.
-            for (line, c) in claims.lead_lines().iter().zip(claims.all()) {
-                println!("{line}");
-                for p in &c.over_seeds {
-                    println!("    over seeds: {}", p.describe(3));
-                }
-            }
-            println!(
-                "{} runs in {} ({:.0} s); open {} (or claims.md beside it)",
-                runs.len(),
-                out.display(),
-                started.elapsed().as_secs_f64(),
-                out.join(INDEX_FILE).display()
-            );
-            if !missing.is_empty() {
-                return Err(format!("missing results: {}", missing.join(", ")));
-            }
-            Ok(())
-        }
-        Command::Experiment {
-            experiment,
-            approx,
-            rule,
-            seed,
-            pushes,
-            impulse_range,
-            push_direction,
-            learn,
-            config,
-            out,
-            overwrite,
-        } => {
-            let mut config = load_config(registry, config)?;
-            if let Some(set) = learn {
-                config.settings.learner.learn = set;
-            }
-            registry
-                .check_combination(&approx, &rule)
-                .map_err(|e| e.to_string())?;
-            apply_push_options(
-                registry,
-                &mut config.protocols,
-                &experiment,
-                pushes,
-                impulse_range,
-                push_direction.map(Direction::unit),
-            )?;
-            let spec = RunSpec {
-                experiment: experiment.clone(),
-                approx: approx.clone(),
-                rule: rule.clone(),
-                seed,
-                learn: None,
-            };
-            let identity = registry
-                .run_identity(&spec, &config.settings, &config.protocols)
-                .map_err(|e| e.to_string())?;
-            let summary_path = out.join(SUMMARY_FILE);
-            let finished = summary_path
-                .exists()
-                .then(|| check_identity(&out, &identity));
-            if !overwrite && finished == Some(Ok(())) {
-                let summary = Summary::read(&summary_path).map_err(|e| e.to_string())?;
-                eprintln!("{} holds this run, finished earlier: reused", out.display());
-                println!("{}", summary.to_json().map_err(|e| e.to_string())?);
-                return Ok(());
-            }
-            let holds = std::fs::read_dir(&out).is_ok_and(|mut d| d.next().is_some());
-            if holds && !overwrite {
-                let why = match finished {
-                    Some(Err(why)) => why,
-                    _ => format!("{} is not empty", out.display()),
-                };
-                return Err(format!(
-                    "{why}; nothing was changed. Choose another --out, or pass --overwrite to \
-                     replace its contents once the new run has finished"
-                ));
-            }
-            let staging = Staging::new(&out)?;
-            let summary = registry
-                .run_spec(&spec, staging.path(), &config.settings, &config.protocols)
-                .map_err(|e| e.to_string())?;
-            write_file(&staging.path().join(IDENTITY_FILE), identity.as_bytes())
-                .map_err(|e| e.to_string())?;
-            summary
-                .write(&staging.path().join(SUMMARY_FILE))
-                .map_err(|e| e.to_string())?;
-            let config_toml = config.to_toml().map_err(|e| e.to_string())?;
-            write_index(
-                staging.path(),
-                &format!("steplearn experiment {experiment} ({approx}, {rule}, seed {seed})"),
-                &["summary.json"],
-                &command_line(),
-                Some(&config_toml),
-            )
-            .map_err(|e| e.to_string())?;
-            staging.replace(&out)?;
-            println!("{}", summary.to_json().map_err(|e| e.to_string())?);
-            Ok(())
-        }
-        Command::Bench {
-            approx,
-            rule,
-            experiments,
-            learn,
-            seeds,
-            first_seed,
-            scale,
-            config,
-            baseline,
-            shard,
-            threads,
-            out,
-        } => {
-            let config = load_config(registry, config)?;
-            let mut bench = Bench::new(registry)
-                .seeds(seeds)
-                .first_seed(first_seed)
-                .config(config)
-                .out(&out)
-                .command(&command_line());
-            if !approx.is_empty() {
-                bench = bench.approximators(&approx);
-            }
-            if !rule.is_empty() {
-                bench = bench.rules(&rule);
-            }
-            if !experiments.is_empty() {
-                bench = bench.experiments(&experiments);
-            }
-            if !learn.is_empty() {
-                bench = bench.learn_sets(learn);
-            }
-            if let Some(s) = scale {
-                bench = bench.scale(s);
-            }
-            if let Some((a, r)) = &baseline {
-                bench = bench.baseline(a, r);
-            }
-            if let Some(s) = shard {
-                bench = bench.shard(s);
-            }
-            if let Some(n) = threads {
-                if n == 0 {
-                    return Err("--threads must be at least 1".into());
-                }
-                bench = bench.threads(n);
-            }
-            let grid = bench.grid().map_err(|e| e.to_string())?;
-            let runs = grid.runs().map_err(|e| e.to_string())?;
-            let total = shard.map_or(runs.len(), |s| s.select(&runs).len());
-            let bar = progress_bar(total)?;
-            let started = std::time::Instant::now();
-            let result = bench
-                .on_run(|o: &RunOutcome| {
-                    progress(&bar, o);
-                })
-                .run();
-            bar.finish_and_clear();
-            let report = match result {
-                Ok(r) => r,
-                Err(BenchError::RunsFailed(failed)) => {
-                    for (id, m) in &failed {
-                        eprintln!("failed: {id}: {m}");
-                    }
-                    return Err(format!(
-                        "{} runs failed; the leaderboard in {} covers the others",
-                        failed.len(),
-                        out.display()
-                    ));
-                }
-                Err(e) => return Err(e.to_string()),
-            };
-            print!("{}", report.leaderboard.to_markdown());
-            println!(
-                "{} runs ({} finished earlier) in {:.0} s; leaderboard: {}",
-                report.outcomes.len(),
-                report
-                    .outcomes
-                    .iter()
-                    .filter(|o| o.status == RunStatus::Skipped)
-                    .count(),
-                started.elapsed().as_secs_f64(),
-                out.join("index.html").display()
-            );
-            Ok(())
-        }
+        Command::Reproduce(args) => reproduce(registry, args),
+        Command::Experiment(args) => experiment(registry, args),
+        Command::Bench(args) => bench(registry, args),
         Command::List => {
-            println!(
-                "approximators: {}",
-                registry.approximator_names().join(", ")
-            );
-            println!("rules: {}", registry.rule_names().join(", "));
-            println!("experiments: {}", registry.experiment_names().join(", "));
+            list(registry);
             Ok(())
         }
-        Command::Sweep {
-            shard,
-            seeds,
-            pushes,
-            out,
-        } => {
-            if seeds == 0 || seeds > MAX_SEEDS {
-                return Err(format!("--seeds must be in [1, {MAX_SEEDS}], got {seeds}"));
-            }
-            let grid = SweepGrid::new(
-                &["stability", "robustness"],
-                &registry.approximator_names(),
-                &registry.rule_names(),
-                seeds,
-            );
-            let runs = grid.runs().map_err(|e| e.to_string())?;
-            let runs = match shard {
-                Some(s) => s.select(&runs),
-                None => runs,
-            };
-            let mut config = ConfigFile::default();
-            apply_push_options(
-                registry,
-                &mut config.protocols,
-                "stability",
-                pushes,
-                None,
-                None,
-            )
-            .map_err(|e| format!("--pushes: {e}"))?;
-            let config = registry
-                .resolve_config(&config)
-                .map_err(|e| format!("--pushes: {e}"))?;
-            let failed =
-                sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
-            println!("{} runs in {}", runs.len(), out.display());
-            if failed > 0 {
-                return Err(format!("{failed} runs failed"));
-            }
-            Ok(())
-        }
-        Command::Config { check: None } => {
-            print!(
-                "{}",
-                ConfigFile::default_toml_for(registry.experiments()).map_err(|e| e.to_string())?
-            );
-            Ok(())
-        }
-        Command::Config { check: Some(path) } => {
-            ConfigFile::load_for(&path, registry.experiments()).map_err(|e| e.to_string())?;
-            println!("ok");
-            Ok(())
-        }
-        Command::Replay {
-            run_dir,
-            push,
-            time,
-            out,
-        } => {
-            let moment = match (push, time) {
-                (Some(push), _) => crate::replay::Moment::Push(push),
-                (None, Some((from, to))) => crate::replay::Moment::Span(from, to),
-                (None, None) => return Err("give --push K or --time A..B".into()),
-            };
-            let replay = crate::replay::moment_to_file(registry, &run_dir, moment, &out)
-                .map_err(|e| e.to_string())?;
-            println!("{}", crate::replay::summary_line(&replay, &out));
-            Ok(())
-        }
-        Command::Merge { dir } => {
-            let merged = merge(&dir).map_err(|e| e.to_string())?;
-            for p in &merged.problems {
-                eprintln!("skipped {p}");
-            }
-            if merged.runs_read == 0 {
-                // Nothing to tabulate: an empty table would overwrite a real one.
-                return Err(format!(
-                    "no finished runs to merge in {} (a run is a directory with {SUMMARY_FILE}; {} unfinished, {} unreadable)",
-                    dir.display(),
-                    merged.unfinished.len(),
-                    merged.problems.len()
-                ));
-            }
-            merged.write(&dir).map_err(|e| e.to_string())?;
-            write_index(
-                &dir,
-                "steplearn merge: the ablation table",
-                &["ablation.md"],
-                &command_line(),
-                None,
-            )
-            .map_err(|e| e.to_string())?;
-            println!(
-                "{} runs merged into {}",
-                merged.runs_read,
-                dir.join("ablation.md").display()
-            );
-            Ok(())
+        Command::Sweep(args) => sweep(registry, args),
+        Command::Config { check } => config(registry, check),
+        Command::Replay(args) => replay(registry, args),
+        Command::Merge { dir } => merge_dir(&dir),
+    }
+}
+
+/// Checks `--seeds` against [`MAX_SEEDS`].
+fn check_seeds(seeds: u64) -> Result<(), String> {
+    if seeds == 0 || seeds > MAX_SEEDS {
+        return Err(format!("--seeds must be in [1, {MAX_SEEDS}], got {seeds}"));
+    }
+    Ok(())
+}
+
+/// [`load_config`] with `--learn`, if given, as the learned step parameters.
+fn load_config_learning(
+    registry: &Registry,
+    config: Option<PathBuf>,
+    learn: Option<LearnSet>,
+) -> Result<ConfigFile, String> {
+    let mut config = load_config(registry, config)?;
+    if let Some(set) = learn {
+        config.settings.learner.learn = set;
+    }
+    Ok(config)
+}
+
+/// `steplearn reproduce`: the paper's four experiments over seeds, the claims report and the
+/// results page with a replay per experiment.
+fn reproduce(registry: &Registry, args: ReproduceArgs) -> Result<(), String> {
+    let ReproduceArgs {
+        approx,
+        rule,
+        out,
+        seeds,
+        quick,
+        learn,
+        config,
+    } = args;
+    let mut config = load_config_learning(registry, config, learn)?;
+    if quick {
+        config.settings.scale = 0.1;
+    }
+    let seeds = seeds.unwrap_or(if quick { 2 } else { 10 });
+    check_seeds(seeds)?;
+    let out = out.unwrap_or_else(|| {
+        PathBuf::from(if quick {
+            "results/quick"
+        } else {
+            "results/paper"
+        })
+    });
+    let grid = reproduce::grid(&approx, &rule, seeds);
+    for e in &grid.experiments {
+        registry.find_experiment(e).map_err(|e| e.to_string())?;
+    }
+    registry
+        .check_combination(&approx, &rule)
+        .map_err(|e| e.to_string())?;
+    let runs = grid.runs().map_err(|e| e.to_string())?;
+    let started = std::time::Instant::now();
+    let failed = sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
+    if failed > 0 {
+        return Err(format!(
+            "{failed} of {} runs failed (see above); the claims report was not written",
+            runs.len()
+        ));
+    }
+    let runner = registry.runner(&config.settings, &config.protocols);
+    let (summaries, missing) =
+        reproduce::read_summaries(&grid, &out, &runner).map_err(|e| e.to_string())?;
+    let claims = Claims::from_summaries(&summaries, PendulumCart::default().p_theta);
+    claims
+        .write(&out, &approx, &rule)
+        .map_err(|e| e.to_string())?;
+    let config_toml = config.to_toml().map_err(|e| e.to_string())?;
+    // One replay per experiment (its first seed's run), beside index.html.
+    let mut first_runs: Vec<(String, PathBuf)> = Vec::new();
+    for spec in &runs {
+        if !first_runs.iter().any(|(e, _)| *e == spec.experiment) {
+            first_runs.push((spec.experiment.clone(), out.join(spec.id())));
         }
     }
+    let replays = crate::replay::moments::write_results_replays(registry, &out, &first_runs);
+    write_index_with_replays(
+        &out,
+        &format!("steplearn reproduce: the paper's claims ({approx} + {rule})"),
+        &["claims.md"],
+        &command_line(),
+        Some(&config_toml),
+        &replays,
+    )
+    .map_err(|e| e.to_string())?;
+    // One line per claim with both verdicts, then every paired quantity.
+    for (line, c) in claims.lead_lines().iter().zip(claims.all()) {
+        println!("{line}");
+        for p in &c.over_seeds {
+            println!("    over seeds: {}", p.describe(3));
+        }
+    }
+    println!(
+        "{} runs in {} ({:.0} s); open {} (or claims.md beside it)",
+        runs.len(),
+        out.display(),
+        started.elapsed().as_secs_f64(),
+        out.join(INDEX_FILE).display()
+    );
+    if !missing.is_empty() {
+        return Err(format!("missing results: {}", missing.join(", ")));
+    }
+    Ok(())
+}
+
+/// Prints `summary` as JSON on stdout.
+fn print_summary(summary: &Summary) -> Result<(), String> {
+    println!("{}", summary.to_json().map_err(|e| e.to_string())?);
+    Ok(())
+}
+
+/// `steplearn experiment`: one run into `--out`, reusing a finished run of the same identity
+/// there, refusing anything else in it unless `--overwrite`.
+fn experiment(registry: &Registry, args: ExperimentArgs) -> Result<(), String> {
+    let ExperimentArgs {
+        experiment,
+        approx,
+        rule,
+        seed,
+        pushes,
+        impulse_range,
+        push_direction,
+        learn,
+        config,
+        out,
+        overwrite,
+    } = args;
+    let mut config = load_config_learning(registry, config, learn)?;
+    registry
+        .check_combination(&approx, &rule)
+        .map_err(|e| e.to_string())?;
+    apply_push_options(
+        registry,
+        &mut config.protocols,
+        &experiment,
+        pushes,
+        impulse_range,
+        push_direction.map(PushDirection::unit),
+    )?;
+    let spec = RunSpec {
+        experiment: experiment.clone(),
+        approx: approx.clone(),
+        rule: rule.clone(),
+        seed,
+        learn: None,
+    };
+    let identity = registry
+        .run_identity(&spec, &config.settings, &config.protocols)
+        .map_err(|e| e.to_string())?;
+    let summary_path = out.join(SUMMARY_FILE);
+    let finished = summary_path
+        .exists()
+        .then(|| check_identity(&out, &identity));
+    if !overwrite && finished == Some(Ok(())) {
+        let summary = Summary::read(&summary_path).map_err(|e| e.to_string())?;
+        eprintln!("{} holds this run, finished earlier: reused", out.display());
+        return print_summary(&summary);
+    }
+    let holds = std::fs::read_dir(&out).is_ok_and(|mut d| d.next().is_some());
+    if holds && !overwrite {
+        let why = match finished {
+            Some(Err(why)) => why,
+            _ => format!("{} is not empty", out.display()),
+        };
+        return Err(format!(
+            "{why}; nothing was changed. Choose another --out, or pass --overwrite to \
+             replace its contents once the new run has finished"
+        ));
+    }
+    let staging = Staging::new(&out)?;
+    let summary = registry
+        .run_spec(&spec, staging.path(), &config.settings, &config.protocols)
+        .map_err(|e| e.to_string())?;
+    write_file(&staging.path().join(IDENTITY_FILE), identity.as_bytes())
+        .map_err(|e| e.to_string())?;
+    summary
+        .write(&staging.path().join(SUMMARY_FILE))
+        .map_err(|e| e.to_string())?;
+    let config_toml = config.to_toml().map_err(|e| e.to_string())?;
+    write_index(
+        staging.path(),
+        &format!("steplearn experiment {experiment} ({approx}, {rule}, seed {seed})"),
+        &["summary.json"],
+        &command_line(),
+        Some(&config_toml),
+    )
+    .map_err(|e| e.to_string())?;
+    staging.replace(&out)?;
+    print_summary(&summary)
+}
+
+/// The [`Bench`] the command line's bench arguments select.
+fn bench_of<'r>(registry: &'r Registry, args: &BenchArgs) -> Result<Bench<'r>, String> {
+    let config = load_config(registry, args.config.clone())?;
+    let mut bench = Bench::new(registry)
+        .seeds(args.seeds)
+        .first_seed(args.first_seed)
+        .config(config)
+        .out(&args.out)
+        .command(&command_line());
+    if !args.approx.is_empty() {
+        bench = bench.approximators(&args.approx);
+    }
+    if !args.rule.is_empty() {
+        bench = bench.rules(&args.rule);
+    }
+    if !args.experiments.is_empty() {
+        bench = bench.experiments(&args.experiments);
+    }
+    if !args.learn.is_empty() {
+        bench = bench.learn_sets(args.learn.iter().copied());
+    }
+    if let Some(s) = args.scale {
+        bench = bench.scale(s);
+    }
+    if let Some((a, r)) = &args.baseline {
+        bench = bench.baseline(a, r);
+    }
+    if let Some(s) = args.shard {
+        bench = bench.shard(s);
+    }
+    if let Some(n) = args.threads {
+        if n == 0 {
+            return Err("--threads must be at least 1".into());
+        }
+        bench = bench.threads(n);
+    }
+    Ok(bench)
+}
+
+/// `steplearn bench`: the selection's runs, then the leaderboard, its page linking the replays
+/// of its best and its worst row.
+fn bench(registry: &Registry, args: BenchArgs) -> Result<(), String> {
+    let bench = bench_of(registry, &args)?;
+    let out = &args.out;
+    let grid = bench.grid().map_err(|e| e.to_string())?;
+    let runs = grid.runs().map_err(|e| e.to_string())?;
+    let total = args.shard.map_or(runs.len(), |s| s.select(&runs).len());
+    let bar = progress_bar(total)?;
+    let started = std::time::Instant::now();
+    let result = bench
+        .on_run(|o: &RunOutcome| {
+            progress(&bar, o);
+        })
+        .replays(|leaderboard, dir| {
+            crate::replay::moments::write_bench_replays(registry, dir, leaderboard)
+        })
+        .run();
+    bar.finish_and_clear();
+    let report = match result {
+        Ok(r) => r,
+        Err(BenchError::RunsFailed(failed)) => {
+            for (id, m) in &failed {
+                eprintln!("failed: {id}: {m}");
+            }
+            return Err(format!(
+                "{} runs failed; the leaderboard in {} covers the others",
+                failed.len(),
+                out.display()
+            ));
+        }
+        Err(e) => return Err(e.to_string()),
+    };
+    print!("{}", report.leaderboard.to_markdown());
+    println!(
+        "{} runs ({} finished earlier) in {:.0} s; leaderboard: {}",
+        report.outcomes.len(),
+        report
+            .outcomes
+            .iter()
+            .filter(|o| o.status == RunStatus::Skipped)
+            .count(),
+        started.elapsed().as_secs_f64(),
+        out.join("index.html").display()
+    );
+    Ok(())
+}
+
+/// `steplearn list`: the registered names.
+fn list(registry: &Registry) {
+    println!(
+        "approximators: {}",
+        registry.approximator_names().join(", ")
+    );
+    println!("rules: {}", registry.rule_names().join(", "));
+    println!("experiments: {}", registry.experiment_names().join(", "));
+}
+
+/// `steplearn sweep`: the ablation grid on experiments C and D.
+fn sweep(registry: &Registry, args: SweepArgs) -> Result<(), String> {
+    let SweepArgs {
+        shard,
+        seeds,
+        pushes,
+        out,
+    } = args;
+    check_seeds(seeds)?;
+    let grid = SweepGrid::new(
+        &["stability", "robustness"],
+        &registry.approximator_names(),
+        &registry.rule_names(),
+        seeds,
+    );
+    let runs = grid.runs().map_err(|e| e.to_string())?;
+    let runs = match shard {
+        Some(s) => s.select(&runs),
+        None => runs,
+    };
+    let mut config = ConfigFile::default();
+    apply_push_options(
+        registry,
+        &mut config.protocols,
+        "stability",
+        pushes,
+        None,
+        None,
+    )
+    .map_err(|e| format!("--pushes: {e}"))?;
+    let config = registry
+        .resolve_config(&config)
+        .map_err(|e| format!("--pushes: {e}"))?;
+    let failed = sweep_with_progress(registry, &runs, &out, &config.settings, &config.protocols)?;
+    println!("{} runs in {}", runs.len(), out.display());
+    if failed > 0 {
+        return Err(format!("{failed} runs failed"));
+    }
+    Ok(())
+}
+
+/// `steplearn config`: the default configuration, or `ok` for a valid `--check FILE`.
+fn config(registry: &Registry, check: Option<PathBuf>) -> Result<(), String> {
+    match check {
+        None => print!(
+            "{}",
+            ConfigFile::default_toml_for(registry.experiments()).map_err(|e| e.to_string())?
+        ),
+        Some(path) => {
+            ConfigFile::load_for(&path, registry.experiments()).map_err(|e| e.to_string())?;
+            println!("ok");
+        }
+    }
+    Ok(())
+}
+
+/// `steplearn replay`: one page of a push or a span of a finished run.
+fn replay(registry: &Registry, args: ReplayArgs) -> Result<(), String> {
+    let ReplayArgs {
+        run_dir,
+        push,
+        time,
+        out,
+    } = args;
+    let moment = match (push, time) {
+        (Some(push), _) => crate::replay::Moment::Push(push),
+        (None, Some((from, to))) => crate::replay::Moment::Span(from, to),
+        (None, None) => return Err("give --push K or --time A..B".into()),
+    };
+    let replay = crate::replay::moment_to_file(registry, &run_dir, moment, &out)
+        .map_err(|e| e.to_string())?;
+    println!("{}", crate::replay::summary_line(&replay, &out));
+    Ok(())
+}
+
+/// `steplearn merge`: the ablation table of a sweep's directory.
+fn merge_dir(dir: &Path) -> Result<(), String> {
+    let merged = merge(dir).map_err(|e| e.to_string())?;
+    for p in &merged.problems {
+        eprintln!("skipped {p}");
+    }
+    if merged.runs_read == 0 {
+        // Nothing to tabulate: an empty table would overwrite a real one.
+        return Err(format!(
+            "no finished runs to merge in {} (a run is a directory with {SUMMARY_FILE}; {} unfinished, {} unreadable)",
+            dir.display(),
+            merged.unfinished.len(),
+            merged.problems.len()
+        ));
+    }
+    merged.write(dir).map_err(|e| e.to_string())?;
+    write_index(
+        dir,
+        "steplearn merge: the ablation table",
+        &["ablation.md"],
+        &command_line(),
+        None,
+    )
+    .map_err(|e| e.to_string())?;
+    println!(
+        "{} runs merged into {}",
+        merged.runs_read,
+        dir.join("ablation.md").display()
+    );
+    Ok(())
 }
 
 /// A progress bar of `len` runs on stderr (hidden when stderr is not a terminal).

@@ -10,6 +10,7 @@
 use super::{BenchError, Registry};
 use crate::control::step_parameter::LearnSet;
 use crate::experiments::experiment::{Experiment, Headline};
+use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
@@ -437,6 +438,18 @@ impl Leaderboard {
     /// Writes the leaderboard files ([`LEADERBOARD_FILES`]) into `dir`, `index.html` with the
     /// `command` and `config` (TOML) that produced it.
     pub fn write(&self, dir: &Path, command: &str, config: &str) -> Result<(), BenchError> {
+        self.write_with_replays(dir, command, config, &[])
+    }
+
+    /// [`Leaderboard::write`], with `index.html` linking each of `replays` (pages beside it,
+    /// written by the caller) after the forest plot.
+    pub fn write_with_replays(
+        &self,
+        dir: &Path,
+        command: &str,
+        config: &str,
+        replays: &[ReplayLink],
+    ) -> Result<(), BenchError> {
         let json =
             serde_json::to_string_pretty(self).map_err(|e| ReportError::invalid(e.to_string()))?;
         write_file(&dir.join(LEADERBOARD_FILES[0]), json.as_bytes())?;
@@ -455,6 +468,12 @@ impl Leaderboard {
                 "Each combination's first comparison with the model per experiment: the mean \
                  over seeds (dot) and its 95% interval (bar); the grey line is no difference.",
             );
+        }
+        if !replays.is_empty() {
+            page.heading(2, "Replays");
+        }
+        for r in replays {
+            page.link(&r.file, &format!("Replay in 3D: {}", r.caption));
         }
         page.heading(2, "How this page was made");
         page.code(command);

@@ -5,6 +5,7 @@ use super::{BenchError, Registry};
 use crate::config::limits::MAX_SEEDS;
 use crate::control::step_parameter::LearnSet;
 use crate::experiments::config_file::ConfigFile;
+use crate::experiments::index_page::ReplayLink;
 use crate::experiments::sweep::{
     RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, check_distinct_sets, run_sweep,
 };
@@ -40,10 +41,15 @@ pub struct Bench<'r> {
     baseline: Option<(String, String)>,
     command: String,
     on_run: Option<Box<OnRun<'r>>>,
+    replays: Option<Box<Replays<'r>>>,
 }
 
 /// A callback called as each run ends.
 type OnRun<'r> = dyn Fn(&RunOutcome) + Sync + 'r;
+
+/// A callback that writes replay pages beside the leaderboard's `index.html` and returns the
+/// links to them.
+type Replays<'r> = dyn Fn(&Leaderboard, &Path) -> Vec<ReplayLink> + 'r;
 
 /// What a bench did: every run's outcome and the leaderboard over the runs finished in its
 /// directory.
@@ -99,6 +105,7 @@ impl<'r> Bench<'r> {
             baseline: None,
             command: String::new(),
             on_run: None,
+            replays: None,
         }
     }
 
@@ -190,6 +197,15 @@ impl<'r> Bench<'r> {
     /// Called as each run ends (from worker threads), e.g. to advance a progress bar.
     pub fn on_run(mut self, f: impl Fn(&RunOutcome) + Sync + 'r) -> Self {
         self.on_run = Some(Box::new(f));
+        self
+    }
+
+    /// Calls `f` with the leaderboard and the output directory before `index.html` is
+    /// written; `f` writes pages beside it (replays: the command line writes those of the best
+    /// and the worst row) and returns the links the page shows. This crate's `bench` layer
+    /// does not make replays itself (`crate::replay` depends on it).
+    pub fn replays(mut self, f: impl Fn(&Leaderboard, &Path) -> Vec<ReplayLink> + 'r) -> Self {
+        self.replays = Some(Box::new(f));
         self
     }
 
@@ -352,7 +368,11 @@ impl<'r> Bench<'r> {
             config.settings.scale,
             &runner,
         )?;
-        leaderboard.write(&self.out, &self.command, &config_toml)?;
+        let replays = self
+            .replays
+            .as_ref()
+            .map_or_else(Vec::new, |f| f(&leaderboard, &self.out));
+        leaderboard.write_with_replays(&self.out, &self.command, &config_toml, &replays)?;
         let failed: Vec<(String, String)> = outcomes
             .iter()
             .filter_map(|o| match &o.status {

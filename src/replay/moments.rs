@@ -1,5 +1,6 @@
 //! A telling moment of a finished run, read from the tables the run wrote, and the replays of
-//! the results page of `steplearn reproduce` (written beside its `index.html`).
+//! the results page of `steplearn reproduce` and of the page of `steplearn bench` (its best
+//! and its worst row), written beside their `index.html`.
 //!
 //! - B, C: the push (C: of smallest impulse) where one walker fell and the other recovered;
 //!   else the first push (C: of smallest impulse) where one fell; else push 1.
@@ -10,9 +11,11 @@
 
 use super::{Moment, REPLAYED, ReplayError, RunConfig, moment_to_file, summary_line};
 use crate::bench::Registry;
+use crate::bench::leaderboard::{Leaderboard, LeaderboardRow};
 use crate::experiments::ExperimentKind;
 use crate::experiments::index_page::ReplayLink;
-use crate::experiments::sweep::IDENTITY_FILE;
+use crate::experiments::paired::Verdict;
+use crate::experiments::sweep::{IDENTITY_FILE, RunSpec};
 use crate::experiments::tracking::{self, TrackingProtocol};
 use std::path::Path;
 
@@ -198,24 +201,115 @@ pub fn write_results_replays(
     let mut links = Vec::new();
     for (experiment, dir) in runs {
         let file = replay_file_name(experiment);
-        let page = out.join(&file);
-        let written = telling_moment(dir).and_then(|(moment, why)| {
-            moment_to_file(registry, dir, moment, &page).map(|r| (r, why))
-        });
-        match written {
-            Ok((replay, why)) => {
-                eprintln!("{}", summary_line(&replay, &page));
-                let run = dir
-                    .file_name()
-                    .map(|n| n.to_string_lossy().into_owned())
-                    .unwrap_or_default();
-                links.push(ReplayLink {
-                    experiment: experiment.clone(),
-                    file,
-                    caption: format!("{run}, {why} ({} walkers side by side)", replay.walks.len()),
-                });
-            }
-            Err(e) => eprintln!("no replay of {}: {e}", dir.display()),
+        if let Some(caption) = write_replay(registry, out, &file, dir, "") {
+            links.push(ReplayLink {
+                experiment: experiment.clone(),
+                file,
+                caption,
+            });
+        }
+    }
+    links
+}
+
+/// Writes the replay of a telling moment of the run in `dir` to `out/file`, printing its
+/// summary line on stderr; returns the link's caption, `label` first, or `None` with a
+/// warning on stderr if the run cannot be replayed.
+fn write_replay(
+    registry: &Registry,
+    out: &Path,
+    file: &str,
+    dir: &Path,
+    label: &str,
+) -> Option<String> {
+    let page = out.join(file);
+    let written = telling_moment(dir)
+        .and_then(|(moment, why)| moment_to_file(registry, dir, moment, &page).map(|r| (r, why)));
+    match written {
+        Ok((replay, why)) => {
+            eprintln!("{}", summary_line(&replay, &page));
+            let run = dir
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            Some(format!(
+                "{label}{run}, {why} ({} walkers side by side)",
+                replay.walks.len()
+            ))
+        }
+        Err(e) => {
+            eprintln!("no replay of {}: {e}", dir.display());
+            None
+        }
+    }
+}
+
+/// The file names of the bench page's replays of its best and its worst row.
+pub const BENCH_REPLAY_FILES: [&str; 2] = ["replay-best.html", "replay-worst.html"];
+
+/// A row's standing against the model: verdicts better minus verdicts worse.
+fn standing(row: &LeaderboardRow) -> isize {
+    let count = |v: Verdict| row.vs_model.iter().filter(|c| c.verdict == Some(v)).count();
+    count(Verdict::Better) as isize - count(Verdict::Worse) as isize
+}
+
+/// The best and the worst row of `leaderboard` among those whose experiment has a replay
+/// ([`REPLAYED`]) and with a finished run: the most and the fewest verdicts better minus worse
+/// against the model (ties: the first row for the best, the last for the worst). `None`
+/// without such a row.
+pub fn best_and_worst(leaderboard: &Leaderboard) -> Option<(&LeaderboardRow, &LeaderboardRow)> {
+    let rows: Vec<&LeaderboardRow> = leaderboard
+        .rows
+        .iter()
+        .filter(|r| {
+            !r.seeds.is_empty()
+                && REPLAYED
+                    .into_iter()
+                    .any(|k| <&str>::from(k) == r.experiment)
+        })
+        .collect();
+    let best = rows.iter().rev().max_by_key(|r| standing(r))?;
+    let worst = rows.iter().min_by_key(|r| standing(r))?;
+    Some((best, worst))
+}
+
+/// Writes the replays of the bench page (`index.html` in `out`): a telling moment of its best
+/// and of its worst row ([`best_and_worst`]) as [`BENCH_REPLAY_FILES`], the best row's of its
+/// first seed's run, the worst row's of its last seed's (so that a bench of one row shows two
+/// runs). Returns the links for the page; a run that cannot be replayed is left out with a
+/// warning on stderr, and the page is written regardless.
+pub fn write_bench_replays(
+    registry: &Registry,
+    out: &Path,
+    leaderboard: &Leaderboard,
+) -> Vec<ReplayLink> {
+    let Some((best, worst)) = best_and_worst(leaderboard) else {
+        return Vec::new();
+    };
+    let picks = [
+        ("best", best, best.seeds.first()),
+        ("worst", worst, worst.seeds.last()),
+    ];
+    let mut links = Vec::new();
+    for ((which, row, seed), file) in picks.into_iter().zip(BENCH_REPLAY_FILES) {
+        let Some(&seed) = seed else { continue };
+        let spec = RunSpec {
+            experiment: row.experiment.clone(),
+            approx: row.approx.clone(),
+            rule: row.rule.clone(),
+            seed,
+            learn: Some(row.learn),
+        };
+        let label = format!(
+            "the {which} row ({} + {} [{}], {}): ",
+            row.approx, row.rule, row.learn, row.experiment
+        );
+        if let Some(caption) = write_replay(registry, out, file, &out.join(spec.id()), &label) {
+            links.push(ReplayLink {
+                experiment: row.experiment.clone(),
+                file: file.to_string(),
+                caption,
+            });
         }
     }
     links

@@ -418,6 +418,46 @@ fn the_reproduce_page_links_a_replay_of_each_experiment_beside_it() {
 }
 
 #[test]
+fn the_bench_page_links_a_replay_of_its_best_and_its_worst_row_beside_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("bench");
+    let o = Command::new(env!("CARGO_BIN_EXE_steplearn"))
+        .args([
+            "bench",
+            "--approx",
+            "lwpr",
+            "--rule",
+            "pendulum-cart",
+            "--experiments",
+            "stability",
+            "--seeds",
+            "2",
+            "--scale",
+            "0.03",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let index = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let links: Vec<String> = hrefs(&index)
+        .into_iter()
+        .filter(|h| h.starts_with("replay-"))
+        .collect();
+    assert_eq!(links, ["replay-best.html", "replay-worst.html"]);
+    // one row: the best row's first seed and the worst row's last seed
+    for (link, seed) in links.iter().zip([0, 1]) {
+        let file = out.join(link);
+        assert!(file.is_file(), "{link}");
+        let r = embedded_replay(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        assert_eq!(r.experiment, "stability");
+        assert_eq!(r.seed, seed);
+        assert!(r.walks.len() >= 2 && r.walks.iter().all(|w| !w.frames.is_empty()));
+    }
+}
+
+#[test]
 fn the_page_holds_exactly_the_recorded_frames_and_nothing_external() {
     let dir = run_dir();
     let r = record(&Registry::builtin(), dir, 2).unwrap();
