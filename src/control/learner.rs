@@ -279,14 +279,38 @@ impl Default for StepInProgress {
     }
 }
 
-/// Checks that every reach in `reach` is an interval (`what` names the offset in the error).
-fn check_reaches(what: &str, reach: &[[Option<f64>; 2]]) -> Result<(), ApproxError> {
+/// Checks one offset's saved state against a step of `recorded` inputs and `queries`
+/// queries: a reach per recorded input, each an interval, a finite last value and exploration,
+/// and no exploration before the step's first query (`what` names the offset in the error).
+fn check_saved_offset(
+    what: &str,
+    reach: &[[Option<f64>; 2]],
+    last_offset: f64,
+    exploration: f64,
+    recorded: usize,
+    queries: usize,
+) -> Result<(), ApproxError> {
+    let corrupt = |msg: String| {
+        Err(ApproxError::Corrupt(format!(
+            "step in progress: {what}: {msg}"
+        )))
+    };
+    if reach.len() != recorded {
+        return corrupt(format!(
+            "{} reaches for {recorded} recorded inputs",
+            reach.len()
+        ));
+    }
+    if !last_offset.is_finite() || !exploration.is_finite() {
+        return corrupt("the last offset or the exploration is not finite".into());
+    }
+    if exploration != 0.0 && queries == 0 {
+        return corrupt("an exploration perturbation before the step's first query".into());
+    }
     for [lo, hi] in reach {
         let (lo, hi) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
         if !is_reach(lo, hi) {
-            return Err(ApproxError::Corrupt(format!(
-                "step in progress: {what} reach [{lo}, {hi}] is not an interval"
-            )));
+            return corrupt(format!("reach [{lo}, {hi}] is not an interval"));
         }
     }
     Ok(())
@@ -298,11 +322,8 @@ impl StepInProgress {
     fn check(&self, max_samples: usize, inputs: usize) -> Result<(), ApproxError> {
         let corrupt = |msg: String| Err(ApproxError::Corrupt(format!("step in progress: {msg}")));
         let n = self.recorded.len();
-        if n > max_samples || self.reach.len() != n {
-            return corrupt(format!(
-                "{n} recorded inputs and {} reaches, need equal counts of at most {max_samples}",
-                self.reach.len()
-            ));
+        if n > max_samples {
+            return corrupt(format!("{n} recorded inputs, at most {max_samples}"));
         }
         if !self.stride.is_power_of_two()
             || n > self.queries
@@ -317,50 +338,38 @@ impl StepInProgress {
         if self.last_recorded && n == 0 {
             return corrupt("the last query is recorded but nothing is".into());
         }
-        if self.exploration != 0.0 && self.queries == 0 {
-            return corrupt("an exploration perturbation before the step's first query".into());
-        }
         if let Some(x) = self.recorded.iter().find(|x| x.len() != inputs) {
             return corrupt(format!(
                 "a recorded input has {} values, the approximator {inputs} inputs",
                 x.len()
             ));
         }
-        if !self.recorded.iter().flatten().all(|v| v.is_finite())
-            || !self.last_offset.is_finite()
-            || !self.exploration.is_finite()
-        {
-            return corrupt(
-                "a recorded input, the last offset or the exploration is not finite".into(),
-            );
+        if !self.recorded.iter().flatten().all(|v| v.is_finite()) {
+            return corrupt("a recorded input is not finite".into());
         }
-        check_reaches("the first offset's", &self.reach)
+        check_saved_offset(
+            "the first offset",
+            &self.reach,
+            self.last_offset,
+            self.exploration,
+            n,
+            self.queries,
+        )
     }
 }
 
 impl SavedOffset {
     /// Checks that the offset could have come from a learner whose step recorded `recorded`
-    /// inputs.
+    /// inputs in `queries` queries.
     fn check(&self, recorded: usize, queries: usize) -> Result<(), ApproxError> {
-        let corrupt = |msg: String| {
-            Err(ApproxError::Corrupt(format!(
-                "offset {}: {msg}",
-                self.parameter
-            )))
-        };
-        if self.reach.len() != recorded {
-            return corrupt(format!(
-                "{} reaches for {recorded} recorded inputs",
-                self.reach.len()
-            ));
-        }
-        if !self.last_offset.is_finite() || !self.exploration.is_finite() {
-            return corrupt("the last offset or the exploration is not finite".into());
-        }
-        if self.exploration != 0.0 && queries == 0 {
-            return corrupt("an exploration perturbation before the step's first query".into());
-        }
-        check_reaches(&format!("offset {}'s", self.parameter), &self.reach)
+        check_saved_offset(
+            &format!("offset {}", self.parameter),
+            &self.reach,
+            self.last_offset,
+            self.exploration,
+            recorded,
+            queries,
+        )
     }
 }
 
@@ -1230,37 +1239,38 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule, const I: usize,
     /// Everything the learner holds but its rules, with the rules' states, as [`Self::save`]
     /// writes it.
     pub fn checkpoint(&self) -> SavedLearner<A> {
-        let reach = |k: usize| -> Vec<[Option<f64>; 2]> {
-            self.step
-                .reach
-                .iter()
-                .map(|r| [finite_or_none(r[k][0]), finite_or_none(r[k][1])])
-                .collect()
-        };
+        let mut offsets: Vec<SavedOffset> = (0..O)
+            .map(|k| SavedOffset {
+                parameter: self.parameters[k],
+                reach: self
+                    .step
+                    .reach
+                    .iter()
+                    .map(|r| [finite_or_none(r[k][0]), finite_or_none(r[k][1])])
+                    .collect(),
+                last_offset: self.last_offset[k],
+                exploration: self.exploration[k],
+                rule_state: self.rules[k].state(),
+            })
+            .collect();
+        // The first offset's state lives beside the step, as in files of one-offset learners.
+        let first = offsets.remove(0);
         SavedLearner {
             config: self.config,
-            parameter: self.parameters[0],
+            parameter: first.parameter,
             approximator: self.approx.clone(),
             trained: self.trained.to_vec(),
             step: StepInProgress {
                 recorded: self.step.inputs.iter().map(|x| x.to_vec()).collect(),
-                reach: reach(0),
+                reach: first.reach,
                 last_recorded: self.step.last_recorded,
                 stride: self.step.stride,
                 queries: self.step.queries,
-                last_offset: self.last_offset[0],
-                exploration: self.exploration[0],
+                last_offset: first.last_offset,
+                exploration: first.exploration,
             },
-            rule_state: self.rules[0].state(),
-            more_offsets: (1..O)
-                .map(|k| SavedOffset {
-                    parameter: self.parameters[k],
-                    reach: reach(k),
-                    last_offset: self.last_offset[k],
-                    exploration: self.exploration[k],
-                    rule_state: self.rules[k].state(),
-                })
-                .collect(),
+            rule_state: first.rule_state,
+            more_offsets: offsets,
         }
     }
 
@@ -1287,51 +1297,54 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule, const I: usize,
 
     /// [`Self::from_checkpoint_with`] of a checkpoint whose invariants hold.
     fn from_checked(saved: SavedLearner<A>, mut rules: [R; O]) -> Result<Self, LearnerError> {
-        if saved.more_offsets.len() + 1 != O {
+        let SavedLearner {
+            config,
+            parameter,
+            approximator,
+            trained,
+            step,
+            rule_state,
+            more_offsets,
+        } = saved;
+        // Every offset's state in output order, the first's from beside the step.
+        let offsets: Vec<SavedOffset> = std::iter::once(SavedOffset {
+            parameter,
+            reach: step.reach,
+            last_offset: step.last_offset,
+            exploration: step.exploration,
+            rule_state,
+        })
+        .chain(more_offsets)
+        .collect();
+        if offsets.len() != O {
             return Err(LearnerError::WrongApproximatorShape {
                 expected: (I, O),
-                inputs: saved.approximator.input_dim(),
-                outputs: saved.more_offsets.len() + 1,
+                inputs: approximator.input_dim(),
+                outputs: offsets.len(),
             });
         }
-        let states = std::iter::once(&saved.rule_state)
-            .chain(saved.more_offsets.iter().map(|o| &o.rule_state));
-        for (rule, state) in rules.iter_mut().zip(states) {
-            if let Some(state) = state {
+        for (rule, offset) in rules.iter_mut().zip(&offsets) {
+            if let Some(state) = &offset.rule_state {
                 rule.set_state(state)?;
             }
         }
-        let parameters: [StepParameter; O] = std::array::from_fn(|k| match k {
-            0 => saved.parameter,
-            _ => saved.more_offsets[k - 1].parameter,
-        });
-        let mut learner = Self::assemble(saved.approximator, rules, parameters, saved.config)?;
-        let step = saved.step;
-        if !saved.trained.is_empty() {
-            learner.trained = std::array::from_fn(|a| saved.trained[a]);
+        let parameters = std::array::from_fn(|k| offsets[k].parameter);
+        let mut learner = Self::assemble(approximator, rules, parameters, config)?;
+        if !trained.is_empty() {
+            learner.trained = std::array::from_fn(|a| trained[a]);
         }
-        let unsaved = |v: &Option<f64>, infinite: f64| v.unwrap_or(infinite);
         for (i, x) in step.recorded.iter().enumerate() {
             learner.step.inputs.push(std::array::from_fn(|a| x[a]));
             learner.step.reach.push(std::array::from_fn(|k| {
-                let [lo, hi] = match k {
-                    0 => step.reach[i],
-                    _ => saved.more_offsets[k - 1].reach[i],
-                };
-                [unsaved(&lo, f64::NEG_INFINITY), unsaved(&hi, f64::INFINITY)]
+                let [lo, hi] = offsets[k].reach[i];
+                [lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)]
             }));
         }
         learner.step.last_recorded = step.last_recorded;
         learner.step.stride = step.stride;
         learner.step.queries = step.queries;
-        learner.last_offset = std::array::from_fn(|k| match k {
-            0 => step.last_offset,
-            _ => saved.more_offsets[k - 1].last_offset,
-        });
-        learner.exploration = std::array::from_fn(|k| match k {
-            0 => step.exploration,
-            _ => saved.more_offsets[k - 1].exploration,
-        });
+        learner.last_offset = std::array::from_fn(|k| offsets[k].last_offset);
+        learner.exploration = std::array::from_fn(|k| offsets[k].exploration);
         Ok(learner)
     }
 

@@ -20,6 +20,7 @@ pub mod moments;
 pub mod page;
 pub mod record;
 
+use crate::Named;
 use crate::bench::{BenchError, Registry};
 use crate::config::ConfigError;
 use crate::control::learner::LearnerError;
@@ -270,9 +271,7 @@ pub fn record_moment(
         seed: config.seed,
         learn: None,
     };
-    let kind = REPLAYED
-        .into_iter()
-        .find(|&k| <&str>::from(k) == config.experiment)
+    let kind = replayed(&config.experiment)
         .ok_or_else(|| ReplayError::Unsupported(config.experiment.clone()))?;
     match (kind, moment) {
         (ExperimentKind::Tracking, Moment::Push(_)) => {
@@ -430,6 +429,11 @@ pub const REPLAYED: [ExperimentKind; 4] = [
     ExperimentKind::Stability,
     ExperimentKind::Robustness,
 ];
+
+/// The experiment named `name`, if it has a replay ([`REPLAYED`]).
+pub(crate) fn replayed(name: &str) -> Option<ExperimentKind> {
+    ExperimentKind::from_name(name).filter(|k| REPLAYED.contains(k))
+}
 
 fn check_push(push: usize, pushes: usize) -> Result<(), ReplayError> {
     if push == 0 || push > pushes {

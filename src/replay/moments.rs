@@ -9,7 +9,7 @@
 //! - A: the largest reference change in the run's first two minutes, from 1 s before it to the
 //!   protocol's horizon after it.
 
-use super::{Moment, REPLAYED, ReplayError, RunConfig, moment_to_file, summary_line};
+use super::{Moment, ReplayError, RunConfig, moment_to_file, replayed, summary_line};
 use crate::bench::Registry;
 use crate::bench::leaderboard::{Leaderboard, LeaderboardRow};
 use crate::experiments::ExperimentKind;
@@ -17,39 +17,14 @@ use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::Verdict;
 use crate::experiments::sweep::{IDENTITY_FILE, RunSpec};
 use crate::experiments::tracking::{self, TrackingProtocol};
+use crate::report::csv_read::read_rows;
+use serde::Deserialize;
+use serde::de::DeserializeOwned;
 use std::path::Path;
 
 /// The file name of experiment `experiment`'s replay beside `index.html`.
 pub fn replay_file_name(experiment: &str) -> String {
     format!("replay-{experiment}.html")
-}
-
-/// The rows of the CSV table `path` as maps from column name to cell.
-fn rows(path: &Path) -> Result<Vec<Vec<(String, String)>>, ReplayError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ReplayError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let mut lines = text.lines();
-    let header: Vec<String> = lines
-        .next()
-        .unwrap_or_default()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    Ok(lines
-        .map(|l| {
-            header
-                .iter()
-                .cloned()
-                .zip(l.split(',').map(str::to_string))
-                .collect()
-        })
-        .collect())
-}
-
-fn cell<'a>(row: &'a [(String, String)], name: &str) -> Option<&'a str> {
-    row.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_str())
 }
 
 fn corrupt(path: &Path, reason: &str) -> ReplayError {
@@ -59,20 +34,40 @@ fn corrupt(path: &Path, reason: &str) -> ReplayError {
     }
 }
 
-/// (impulse, fell) per push of `controller` in a pushes table (controller, time_s,
-/// impulse_ns, fell, ...).
+/// The rows of a CSV table the run wrote ([`read_rows`]), its errors as the run's.
+fn table<R: DeserializeOwned>(path: &Path) -> Result<Vec<R>, ReplayError> {
+    read_rows(path).map_err(|e| corrupt(path, &e.to_string()))
+}
+
+/// A push of a pushes table of B or C (`pushes.csv`, `disturbance_pushes.csv`).
+#[derive(Deserialize)]
+struct PushRow {
+    controller: String,
+    impulse_ns: f64,
+    fell: bool,
+}
+
+/// A push of `robustness_pushes.csv`; `no_learning_fell` is empty where the run had no walker
+/// without learning.
+#[derive(Deserialize)]
+struct RobustnessRow {
+    fell: bool,
+    #[serde(default)]
+    no_learning_fell: Option<bool>,
+}
+
+/// (impulse, fell) per push of `controller` in a pushes table of B or C.
 fn pushes_of(path: &Path, controller: &str) -> Result<Vec<(f64, bool)>, ReplayError> {
-    rows(path)?
-        .iter()
-        .filter(|r| cell(r, "controller") == Some(controller))
-        .map(|r| {
-            let impulse = cell(r, "impulse_ns").and_then(|v| v.parse().ok());
-            let fell = cell(r, "fell").and_then(|v| v.parse().ok());
-            impulse
-                .zip(fell)
-                .ok_or_else(|| corrupt(path, "a push row without impulse_ns or fell"))
-        })
-        .collect()
+    Ok(table::<PushRow>(path)?
+        .into_iter()
+        .filter(|r| r.controller == controller)
+        .map(|r| (r.impulse_ns, r.fell))
+        .collect())
+}
+
+/// How a walker came out of a push, in a moment's description.
+fn outcome(fell: bool) -> &'static str {
+    if fell { "fell" } else { "absorbed it" }
 }
 
 /// The push (1-based) where `a` and `b` differ, of smallest impulse (ties: the first); else
@@ -95,23 +90,18 @@ fn differing_push(a: &[(f64, bool)], b: &[(f64, bool)]) -> usize {
 /// description.
 pub fn telling_moment(dir: &Path) -> Result<(Moment, String), ReplayError> {
     let (config, _) = RunConfig::read(dir)?;
-    let kind = REPLAYED
-        .into_iter()
-        .find(|&k| <&str>::from(k) == config.experiment)
+    let kind = replayed(&config.experiment)
         .ok_or_else(|| ReplayError::Unsupported(config.experiment.clone()))?;
     let differ = |a: &[(f64, bool)], b: &[(f64, bool)], an: &str, bn: &str| {
         let k = differing_push(a, b);
-        let verdict = |x: Option<&(f64, bool)>| match x {
-            Some((_, true)) => "fell",
-            _ => "absorbed it",
-        };
+        let fell = |x: &[(f64, bool)]| x.get(k - 1).is_some_and(|p| p.1);
         let impulse = a.get(k - 1).map_or(0.0, |p| p.0);
         (
             Moment::Push(k),
             format!(
                 "push {k} ({impulse:.1} Ns): {an} {}, {bn} {}",
-                verdict(a.get(k - 1)),
-                verdict(b.get(k - 1))
+                outcome(fell(a)),
+                outcome(fell(b))
             ),
         )
     };
@@ -128,26 +118,18 @@ pub fn telling_moment(dir: &Path) -> Result<(Moment, String), ReplayError> {
             differ(&l, &m, "learned", "model")
         }
         ExperimentKind::Robustness => {
-            let path = dir.join("robustness_pushes.csv");
-            let mut learned = Vec::new();
-            let mut without = Vec::new();
-            for r in rows(&path)? {
-                let flag = |name: &str| {
-                    cell(&r, name)
-                        .and_then(|v| v.parse::<bool>().ok())
-                        .ok_or_else(|| corrupt(&path, &format!("a row without {name}")))
-                };
-                // Equal impulses: the first push that differs.
-                learned.push((0.0, flag("fell")?));
-                // Empty where the run had no walker without learning.
-                without.push((0.0, flag("no_learning_fell").unwrap_or(false)));
-            }
+            let rows: Vec<RobustnessRow> = table(&dir.join("robustness_pushes.csv"))?;
+            // Equal impulses: the first push that differs.
+            let learned: Vec<(f64, bool)> = rows.iter().map(|r| (0.0, r.fell)).collect();
+            let without: Vec<(f64, bool)> = rows
+                .iter()
+                .map(|r| (0.0, r.no_learning_fell.unwrap_or(false)))
+                .collect();
             let k = learned
                 .iter()
                 .zip(&without)
                 .position(|(l, w)| !l.1 && w.1)
                 .map_or_else(|| differing_push(&learned, &without), |i| i + 1);
-            let said = |fell: bool| if fell { "fell" } else { "absorbed it" };
             let (l, w) = (
                 learned.get(k - 1).is_some_and(|p| p.1),
                 without.get(k - 1).is_some_and(|p| p.1),
@@ -156,8 +138,8 @@ pub fn telling_moment(dir: &Path) -> Result<(Moment, String), ReplayError> {
                 Moment::Push(k),
                 format!(
                     "push {k}: learned {}, without learning {}",
-                    said(l),
-                    said(w)
+                    outcome(l),
+                    outcome(w)
                 ),
             )
         }
@@ -254,19 +236,14 @@ fn standing(row: &LeaderboardRow) -> isize {
 }
 
 /// The best and the worst row of `leaderboard` among those whose experiment has a replay
-/// ([`REPLAYED`]) and with a finished run: the most and the fewest verdicts better minus worse
+/// ([`super::REPLAYED`]) and with a finished run: the most and the fewest verdicts better minus worse
 /// against the model (ties: the first row for the best, the last for the worst). `None`
 /// without such a row.
 pub fn best_and_worst(leaderboard: &Leaderboard) -> Option<(&LeaderboardRow, &LeaderboardRow)> {
     let rows: Vec<&LeaderboardRow> = leaderboard
         .rows
         .iter()
-        .filter(|r| {
-            !r.seeds.is_empty()
-                && REPLAYED
-                    .into_iter()
-                    .any(|k| <&str>::from(k) == r.experiment)
-        })
+        .filter(|r| !r.seeds.is_empty() && replayed(&r.experiment).is_some())
         .collect();
     let best = rows.iter().rev().max_by_key(|r| standing(r))?;
     let worst = rows.iter().min_by_key(|r| standing(r))?;
