@@ -232,7 +232,9 @@ function main() {
     const b = document.body.dataset;
     b.framesDrawn = String(drawn);
     if (drawn === 1) { b.firstTime = time.toFixed(4); b.nonblank = String(nonblank()); }
-    b.lastTime = time.toFixed(4);
+    // the largest distance of a drawn moment from the first (playback that loops back to the
+    // start still moved)
+    b.moved = Math.max(Number(b.moved || 0), Math.abs(time - Number(b.firstTime))).toFixed(4);
   }
   // pixels of the first picture that differ from the background: the walkers were drawn
   function nonblank() {

@@ -597,6 +597,7 @@ fn the_page_draws_and_plays_in_a_real_browser() {
     assert!(number("data-frames-drawn") >= 2.0, "not animating");
     // coloured pixels (bodies, markers) in the first picture: the walkers were drawn
     assert!(number("data-nonblank") > 1000.0, "blank scene");
-    // playback moves
-    assert!(number("data-last-time") > number("data-first-time"));
+    // playback moves: a drawn moment differs from the first (the last one alone may have
+    // looped back to the start under a slow browser)
+    assert!(number("data-moved") > 0.0, "playback did not move");
 }
