@@ -75,245 +75,293 @@ fn segment_mass(
     )
 }
 
+/// The robot's colliders as they are attached, each with its body part, all with the ground's
+/// friction.
+struct Parts {
+    friction: f64,
+    list: Vec<(ColliderHandle, BodyPart)>,
+}
+
+impl Parts {
+    fn attach(
+        &mut self,
+        world: &mut PhysicsWorld,
+        mut collider: Collider,
+        body: RigidBodyHandle,
+        part: BodyPart,
+    ) -> ColliderHandle {
+        collider.set_friction(self.friction);
+        let h = world
+            .colliders
+            .insert_with_parent(collider, body, &mut world.bodies);
+        self.list.push((h, part));
+        h
+    }
+}
+
+/// An empty world with the config's gravity and solver settings, and the ground: a thick fixed
+/// slab whose top face is z = 0.
+fn world_with_ground(config: &SimConfig) -> (PhysicsWorld, ColliderHandle) {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::new(0.0, 0.0, -config.gravity);
+    let p = &mut world.integration_parameters;
+    p.dt = config.dt;
+    p.num_solver_iterations = config.solver_iterations;
+    p.num_internal_pgs_iterations = config.pgs_iterations;
+    let ground_rb = world.bodies.insert(RigidBodyBuilder::fixed());
+    let ground = world.colliders.insert_with_parent(
+        ColliderBuilder::cuboid(100.0, 100.0, 0.5)
+            .translation(Vector::new(0.0, 0.0, -0.5))
+            .friction(config.friction),
+        ground_rb,
+        &mut world.bodies,
+    );
+    (world, ground)
+}
+
+/// The torso (trunk, pelvis, head, arms): the floating root, its frame midway between the hip
+/// centres.
+fn add_torso(world: &mut PhysicsWorld, body: &BodyConfig, parts: &mut Parts) -> RigidBodyHandle {
+    let t = &body.torso;
+    let torso = world.bodies.insert(
+        RigidBodyBuilder::dynamic()
+            .can_sleep(false)
+            .additional_mass_properties(MassProperties::new(
+                Vector::new(0.0, 0.0, t.com_height),
+                t.mass,
+                v3(t.inertia),
+            )),
+    );
+    let pelvis_h = 0.12;
+    parts.attach(
+        world,
+        ColliderBuilder::cuboid(t.depth / 2.0, t.width / 2.0, t.length / 2.0)
+            .translation(Vector::new(
+                0.0,
+                0.0,
+                t.length / 2.0 - pelvis_h / 2.0 + 0.02,
+            ))
+            .density(0.0)
+            .build(),
+        torso,
+        BodyPart::Torso,
+    );
+    parts.attach(
+        world,
+        ColliderBuilder::ball(t.head_radius)
+            .translation(Vector::new(
+                0.0,
+                0.0,
+                t.length + head_neck_length(t) - t.head_radius,
+            ))
+            .density(0.0)
+            .build(),
+        torso,
+        BodyPart::Torso,
+    );
+    for s in [1.0, -1.0] {
+        parts.attach(
+            world,
+            ColliderBuilder::capsule_z(t.arm_length / 2.0 - t.arm_radius, t.arm_radius)
+                .translation(Vector::new(
+                    0.0,
+                    s * (t.width / 2.0 + t.arm_radius + 0.01),
+                    t.length - t.arm_length / 2.0,
+                ))
+                .density(0.0)
+                .build(),
+            torso,
+            BodyPart::Torso,
+        );
+    }
+    torso
+}
+
+/// A dynamic body with the given mass properties that never sleeps.
+fn link_body(mass: MassProperties) -> RigidBodyBuilder {
+    RigidBodyBuilder::dynamic()
+        .can_sleep(false)
+        .additional_mass_properties(mass)
+}
+
+/// One leg on `side`, hung from the torso: its bodies (two hip gimbals, thigh, shank, ankle
+/// gimbal, foot), their colliders and the six revolute joints. Writes the body each joint
+/// moves into `links` and returns the foot's collider.
+fn add_leg(
+    world: &mut PhysicsWorld,
+    body: &BodyConfig,
+    parts: &mut Parts,
+    torso: RigidBodyHandle,
+    side: Side,
+    links: &mut [RigidBodyHandle; NUM_JOINTS],
+) -> Result<ColliderHandle, SimError> {
+    let gimbal = || {
+        link_body(MassProperties::new(
+            Vector::ZERO,
+            body.gimbal_mass,
+            Vector::splat(1e-4),
+        ))
+    };
+    let (th, sh, f) = (&body.thigh, &body.shank, &body.foot);
+    let hip_yaw = world.bodies.insert(gimbal());
+    let hip_roll = world.bodies.insert(gimbal());
+    let thigh = world.bodies.insert(link_body(segment_mass(
+        th.length,
+        th.mass - 2.0 * body.gimbal_mass,
+        th.com_fraction,
+        th.gyration_fraction,
+        th.radius,
+    )));
+    parts.attach(
+        world,
+        capsule_below(th.length, th.radius, 0.0),
+        thigh,
+        BodyPart::Thigh(side),
+    );
+    let shank = world.bodies.insert(link_body(segment_mass(
+        sh.length,
+        sh.mass,
+        sh.com_fraction,
+        sh.gyration_fraction,
+        sh.radius,
+    )));
+    parts.attach(
+        world,
+        capsule_below(sh.length, sh.radius, 0.01),
+        shank,
+        BodyPart::Shank(side),
+    );
+    let ankle = world.bodies.insert(gimbal());
+    let fm = f.mass - body.gimbal_mass;
+    let (lx, ly, lz) = (f.length, f.width, f.ankle_height);
+    let foot = world.bodies.insert(link_body(MassProperties::new(
+        Vector::new(f.sole_offset_x, 0.0, -lz / 2.0),
+        fm,
+        Vector::new(
+            fm * (ly * ly + lz * lz) / 12.0,
+            fm * (lx * lx + lz * lz) / 12.0,
+            fm * (lx * lx + ly * ly) / 12.0,
+        ),
+    )));
+    let foot_collider = parts.attach(
+        world,
+        ColliderBuilder::cuboid(lx / 2.0, ly / 2.0, lz / 2.0)
+            .translation(Vector::new(f.sole_offset_x, 0.0, -lz / 2.0))
+            .density(0.0)
+            .build(),
+        foot,
+        BodyPart::Foot(side),
+    );
+    let hip = Vector::new(0.0, side.sign() * body.hip_half_width, 0.0);
+    let chain = [
+        (torso, hip_yaw, Vector::Z, hip),
+        (hip_yaw, hip_roll, Vector::X, Vector::ZERO),
+        (hip_roll, thigh, Vector::Y, Vector::ZERO),
+        (thigh, shank, Vector::Y, Vector::new(0.0, 0.0, -th.length)),
+        (shank, ankle, Vector::Y, Vector::new(0.0, 0.0, -sh.length)),
+        (ankle, foot, Vector::X, Vector::ZERO),
+    ];
+    for (j, (parent, child, axis, anchor)) in LegJoint::ALL.iter().zip(chain) {
+        let joint = RevoluteJointBuilder::new(axis)
+            .local_anchor1(anchor)
+            .local_anchor2(Vector::ZERO)
+            .contacts_enabled(false);
+        world
+            .multibody_joints
+            .insert(parent, child, joint, true)
+            .ok_or_else(|| SimError::BlowUp {
+                time: 0.0,
+                what: "rapier refused a joint".into(),
+            })?;
+        links[j.index(side)] = child;
+    }
+    Ok(foot_collider)
+}
+
+/// The multibody of the robot rooted at `torso`, with each joint's link id and
+/// generalized-coordinate index; self-contacts off, no damping on the floating base and each
+/// joint's servo damping on its own coordinate.
+fn configure_multibody(
+    world: &mut PhysicsWorld,
+    body: &BodyConfig,
+    torso: RigidBodyHandle,
+    links: &[RigidBodyHandle; NUM_JOINTS],
+) -> Result<(MultibodyIndex, [usize; NUM_JOINTS], [usize; NUM_JOINTS]), SimError> {
+    let multibody = world
+        .multibody_joints
+        .rigid_body_link(torso)
+        .map(|l| l.multibody)
+        .ok_or_else(|| SimError::BlowUp {
+            time: 0.0,
+            what: "torso is not in a multibody".into(),
+        })?;
+    let mut link_ids = [0; NUM_JOINTS];
+    for (i, h) in links.iter().enumerate() {
+        link_ids[i] = world
+            .multibody_joints
+            .rigid_body_link(*h)
+            .map(|l| l.id)
+            .unwrap_or(0);
+    }
+    let mb = world
+        .multibody_joints
+        .get_multibody_mut(multibody)
+        .expect("multibody just built");
+    mb.set_self_contacts_enabled(false);
+    let mut dofs = [0; NUM_JOINTS];
+    for (i, id) in link_ids.iter().enumerate() {
+        dofs[i] = mb.link(*id).expect("link").assembly_id();
+    }
+    // No artificial damping on the floating base; joint damping is the servo's.
+    let damping = mb.damping_mut();
+    for k in 0..6 {
+        damping[k] = 0.0;
+    }
+    for side in Side::BOTH {
+        for j in LegJoint::ALL {
+            damping[dofs[j.index(side)]] = body.joint(j).damping;
+        }
+    }
+    Ok((multibody, link_ids, dofs))
+}
+
+/// Every dynamic body's mass and local centre of mass, after recomputing all mass properties
+/// from the colliders.
+fn link_masses(world: &mut PhysicsWorld) -> Vec<(RigidBodyHandle, f64, Vector)> {
+    let handles: Vec<_> = world.bodies.iter().map(|(h, _)| h).collect();
+    for h in handles {
+        world.bodies[h].recompute_mass_properties_from_colliders(&world.colliders);
+    }
+    world
+        .bodies
+        .iter()
+        .filter(|(_, rb)| rb.is_dynamic())
+        .map(|(h, rb)| {
+            let mp = rb.mass_properties().local_mprops;
+            (h, mp.mass(), mp.local_com)
+        })
+        .collect()
+}
+
 impl Humanoid {
     /// Builds the robot standing in `config.initial_joints` with its soles
     /// `config.initial_clearance` above the ground. Rejects invalid configs.
     pub fn new(config: SimConfig) -> Result<Self, SimError> {
         config.validate()?;
         let body = &config.body;
-        let mut world = PhysicsWorld::new();
-        world.gravity = Vector::new(0.0, 0.0, -config.gravity);
-        let p = &mut world.integration_parameters;
-        p.dt = config.dt;
-        p.num_solver_iterations = config.solver_iterations;
-        p.num_internal_pgs_iterations = config.pgs_iterations;
-
-        // Ground: a thick fixed slab whose top face is z = 0.
-        let ground_rb = world.bodies.insert(RigidBodyBuilder::fixed());
-        let ground = world.colliders.insert_with_parent(
-            ColliderBuilder::cuboid(100.0, 100.0, 0.5)
-                .translation(Vector::new(0.0, 0.0, -0.5))
-                .friction(config.friction),
-            ground_rb,
-            &mut world.bodies,
-        );
-
-        let mut parts = Vec::new();
-        let mut attach = |world: &mut PhysicsWorld, c: Collider, rb, part| {
-            let mut c = c;
-            c.set_friction(config.friction);
-            let h = world.colliders.insert_with_parent(c, rb, &mut world.bodies);
-            parts.push((h, part));
-            h
+        let (mut world, ground) = world_with_ground(&config);
+        let mut parts = Parts {
+            friction: config.friction,
+            list: Vec::new(),
         };
-
-        // Torso (trunk, pelvis, head, arms): the floating root. Its frame sits midway between
-        // the hip centres.
-        let t = &body.torso;
-        let torso = world.bodies.insert(
-            RigidBodyBuilder::dynamic()
-                .can_sleep(false)
-                .additional_mass_properties(MassProperties::new(
-                    Vector::new(0.0, 0.0, t.com_height),
-                    t.mass,
-                    v3(t.inertia),
-                )),
-        );
-        let pelvis_h = 0.12;
-        attach(
-            &mut world,
-            ColliderBuilder::cuboid(t.depth / 2.0, t.width / 2.0, t.length / 2.0)
-                .translation(Vector::new(
-                    0.0,
-                    0.0,
-                    t.length / 2.0 - pelvis_h / 2.0 + 0.02,
-                ))
-                .density(0.0)
-                .build(),
-            torso,
-            BodyPart::Torso,
-        );
-        attach(
-            &mut world,
-            ColliderBuilder::ball(t.head_radius)
-                .translation(Vector::new(
-                    0.0,
-                    0.0,
-                    t.length + head_neck_length(t) - t.head_radius,
-                ))
-                .density(0.0)
-                .build(),
-            torso,
-            BodyPart::Torso,
-        );
-        for s in [1.0, -1.0] {
-            attach(
-                &mut world,
-                ColliderBuilder::capsule_z(t.arm_length / 2.0 - t.arm_radius, t.arm_radius)
-                    .translation(Vector::new(
-                        0.0,
-                        s * (t.width / 2.0 + t.arm_radius + 0.01),
-                        t.length - t.arm_length / 2.0,
-                    ))
-                    .density(0.0)
-                    .build(),
-                torso,
-                BodyPart::Torso,
-            );
-        }
-
-        let gimbal = || {
-            RigidBodyBuilder::dynamic()
-                .can_sleep(false)
-                .additional_mass_properties(MassProperties::new(
-                    Vector::ZERO,
-                    body.gimbal_mass,
-                    Vector::splat(1e-4),
-                ))
-        };
+        let torso = add_torso(&mut world, body, &mut parts);
         let mut links = [torso; NUM_JOINTS];
         let mut feet = [ground; 2];
         for side in Side::BOTH {
-            let sign = side.sign();
-            let th = &body.thigh;
-            let sh = &body.shank;
-            let f = &body.foot;
-            let hip_yaw = world.bodies.insert(gimbal());
-            let hip_roll = world.bodies.insert(gimbal());
-            let thigh = world.bodies.insert(
-                RigidBodyBuilder::dynamic()
-                    .can_sleep(false)
-                    .additional_mass_properties(segment_mass(
-                        th.length,
-                        th.mass - 2.0 * body.gimbal_mass,
-                        th.com_fraction,
-                        th.gyration_fraction,
-                        th.radius,
-                    )),
-            );
-            attach(
-                &mut world,
-                capsule_below(th.length, th.radius, 0.0),
-                thigh,
-                BodyPart::Thigh(side),
-            );
-            let shank = world.bodies.insert(
-                RigidBodyBuilder::dynamic()
-                    .can_sleep(false)
-                    .additional_mass_properties(segment_mass(
-                        sh.length,
-                        sh.mass,
-                        sh.com_fraction,
-                        sh.gyration_fraction,
-                        sh.radius,
-                    )),
-            );
-            attach(
-                &mut world,
-                capsule_below(sh.length, sh.radius, 0.01),
-                shank,
-                BodyPart::Shank(side),
-            );
-            let ankle = world.bodies.insert(gimbal());
-            let fm = f.mass - body.gimbal_mass;
-            let (lx, ly, lz) = (f.length, f.width, f.ankle_height);
-            let foot = world.bodies.insert(
-                RigidBodyBuilder::dynamic()
-                    .can_sleep(false)
-                    .additional_mass_properties(MassProperties::new(
-                        Vector::new(f.sole_offset_x, 0.0, -lz / 2.0),
-                        fm,
-                        Vector::new(
-                            fm * (ly * ly + lz * lz) / 12.0,
-                            fm * (lx * lx + lz * lz) / 12.0,
-                            fm * (lx * lx + ly * ly) / 12.0,
-                        ),
-                    )),
-            );
-            feet[side.index()] = attach(
-                &mut world,
-                ColliderBuilder::cuboid(lx / 2.0, ly / 2.0, lz / 2.0)
-                    .translation(Vector::new(f.sole_offset_x, 0.0, -lz / 2.0))
-                    .density(0.0)
-                    .build(),
-                foot,
-                BodyPart::Foot(side),
-            );
-
-            let hip = Vector::new(0.0, sign * body.hip_half_width, 0.0);
-            let chain = [
-                (torso, hip_yaw, Vector::Z, hip),
-                (hip_yaw, hip_roll, Vector::X, Vector::ZERO),
-                (hip_roll, thigh, Vector::Y, Vector::ZERO),
-                (thigh, shank, Vector::Y, Vector::new(0.0, 0.0, -th.length)),
-                (shank, ankle, Vector::Y, Vector::new(0.0, 0.0, -sh.length)),
-                (ankle, foot, Vector::X, Vector::ZERO),
-            ];
-            for (j, (parent, child, axis, anchor)) in LegJoint::ALL.iter().zip(chain) {
-                let joint = RevoluteJointBuilder::new(axis)
-                    .local_anchor1(anchor)
-                    .local_anchor2(Vector::ZERO)
-                    .contacts_enabled(false);
-                world
-                    .multibody_joints
-                    .insert(parent, child, joint, true)
-                    .ok_or_else(|| SimError::BlowUp {
-                        time: 0.0,
-                        what: "rapier refused a joint".into(),
-                    })?;
-                links[j.index(side)] = child;
-            }
+            feet[side.index()] = add_leg(&mut world, body, &mut parts, torso, side, &mut links)?;
         }
-
-        let multibody = world
-            .multibody_joints
-            .rigid_body_link(torso)
-            .map(|l| l.multibody)
-            .ok_or_else(|| SimError::BlowUp {
-                time: 0.0,
-                what: "torso is not in a multibody".into(),
-            })?;
-        let mut link_ids = [0; NUM_JOINTS];
-        for (i, h) in links.iter().enumerate() {
-            link_ids[i] = world
-                .multibody_joints
-                .rigid_body_link(*h)
-                .map(|l| l.id)
-                .unwrap_or(0);
-        }
-        let mb = world
-            .multibody_joints
-            .get_multibody_mut(multibody)
-            .expect("multibody just built");
-        mb.set_self_contacts_enabled(false);
-        let mut dofs = [0; NUM_JOINTS];
-        for (i, id) in link_ids.iter().enumerate() {
-            dofs[i] = mb.link(*id).expect("link").assembly_id();
-        }
-        // No artificial damping on the floating base; joint damping is the servo's.
-        let damping = mb.damping_mut();
-        for k in 0..6 {
-            damping[k] = 0.0;
-        }
-        for side in Side::BOTH {
-            for j in LegJoint::ALL {
-                damping[dofs[j.index(side)]] = body.joint(j).damping;
-            }
-        }
-
-        let handles: Vec<_> = world.bodies.iter().map(|(h, _)| h).collect();
-        for h in handles {
-            world.bodies[h].recompute_mass_properties_from_colliders(&world.colliders);
-        }
-        let masses = world
-            .bodies
-            .iter()
-            .filter(|(_, rb)| rb.is_dynamic())
-            .map(|(h, rb)| {
-                let mp = rb.mass_properties().local_mprops;
-                (h, mp.mass(), mp.local_com)
-            })
-            .collect();
+        let (multibody, link_ids, dofs) = configure_multibody(&mut world, body, torso, &links)?;
+        let masses = link_masses(&mut world);
         let mut sim = Humanoid {
             masses,
             targets: config.initial_joints,
@@ -326,7 +374,7 @@ impl Humanoid {
             dofs,
             feet,
             ground,
-            parts,
+            parts: parts.list,
             time: 0.0,
             push_force: [0.0; 3],
             push_steps_left: 0,
