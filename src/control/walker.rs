@@ -310,117 +310,14 @@ impl Walker {
         let dt = self.last_time.map_or(0.0, |t| (sensors.time - t).max(0.0));
         self.last_time = Some(sensors.time);
 
-        let step = estimate.touch_down.map(|td| StepOutcome {
-            theta_e: estimate.theta_e,
-            theta_e_dot: estimate.theta_e_rate,
-            f_e: td.step[0] - f_r,
-            f_r,
-        });
-        // The frontal plane, mirrored to the side of the leg that landed.
-        let lateral_step = estimate.touch_down.map(|td| {
-            let width = td.support.sign() * td.step[1];
-            self.lateral_outcome(&estimate, td.support, width)
-        });
-        let mut reports = StepReports::default();
-        let always =
-            self.config.learner_during_fade_in || self.config.mode == WalkerMode::LearnerOnly;
-        let engaged = always || self.generator.fade() >= 1.0;
-        // Bumpless engagement: the offset ramps in like the generator's fade, one fade-in time
-        // later, so that switching the learner on does not jolt the gait.
-        let engagement = if always {
-            1.0
-        } else {
-            self.generator.fade_after(self.config.motion.fade_in)
-        };
-        if let (Some(outcome), Some(lateral), Some(p)) =
-            (&step, &lateral_step, policy.as_deref_mut())
-        {
-            if engaged {
-                reports = p.touch_down(&per_parameter(*outcome, *lateral))?;
-            } else {
-                p.discard_step();
-            }
-        }
-
+        let (step, lateral_step, reports) =
+            self.teach_at_touch_down(&estimate, f_r, policy.as_deref_mut())?;
         let mut offsets = PerParameter::<f64>::default();
         let (command, decision) = match self.config.mode {
             WalkerMode::OpenLoop => (self.generator.open_loop(f_r), None),
             WalkerMode::CaptureStep | WalkerMode::LearnerOnly => {
-                let support = self.generator.support();
-                // The lateral learner's input and width offset, towards the swing leg's side.
-                let swing_sign = support.other().sign();
-                let [lean, lean_rate] = lean_towards(&estimate, support.other());
-                let width_r = self.width_reference(support.other()) - self.reference_width();
-                if let Some(p) = policy.as_deref_mut() {
-                    let learned = p.offsets(&per_parameter(
-                        LearnerInput::new(estimate.theta_e, estimate.theta_e_rate, f_r),
-                        LearnerInput::new(lean, lean_rate, width_r),
-                    ))?;
-                    offsets = learned.map(|v| v * engagement);
-                    offsets[StepParameter::StepY] *= swing_sign;
-                }
-                let learned_offset = offsets[StepParameter::StepX];
-                let lateral_offset = offsets[StepParameter::StepY];
-                let com = com_relative_to(&estimate, support);
-                // In learner-only mode the offset is the whole sagittal step.
-                let into_reference = self.config.offset_target == OffsetTarget::Reference
-                    && self.config.mode == WalkerMode::CaptureStep;
-                let (planned_f_r, footstep_offset) = if into_reference {
-                    (f_r + learned_offset, 0.0)
-                } else {
-                    (f_r, learned_offset)
-                };
-                let reference = GaitReference {
-                    step_x: planned_f_r,
-                    ..gait
-                };
-                let d = self.controller.update_with_offsets(
-                    &com,
-                    &reference,
-                    [
-                        footstep_offset,
-                        lateral_offset,
-                        offsets[StepParameter::StepTime],
-                    ],
-                )?;
-                if let Some(p) = policy {
-                    // Offsets beyond these would be clamped away by the step range.
-                    let cap = self.config.capture_step.max_step_x;
-                    let lo = m.step_x_range[0].max(-cap);
-                    let hi = m.step_x_range[1].min(cap);
-                    // The step without the offset (in reference mode the analytic step holds
-                    // it, at about one metre of step per metre of reference).
-                    let base = if into_reference {
-                        d.analytic_step_x - learned_offset
-                    } else {
-                        d.analytic_step_x
-                    };
-                    // The generator keeps the width within its range: offsets beyond that
-                    // range's ends cannot change the step.
-                    let width = swing_sign * (d.step[1] - lateral_offset);
-                    let [w_lo, w_hi] = m.step_y_range;
-                    p.set_reach(&PerParameter([
-                        [lo - base, hi - base],
-                        [w_lo - width, w_hi - width],
-                        d.time_reach,
-                    ]))?;
-                }
-                let gait_x = if self.config.offset_in_gait {
-                    f_r + learned_offset
-                } else {
-                    f_r
-                };
-                let command = StepCommand {
-                    step_x: d.step[0],
-                    step_y: d.step[1],
-                    turn: 0.0,
-                    step_time: d.time_to_step,
-                    gait_x,
-                    tilt: Some([
-                        [estimate.roll, estimate.pitch],
-                        [estimate.roll_rate, estimate.theta_e_rate],
-                    ]),
-                };
+                let (command, d) =
+                    self.capture_step_command(&estimate, f_r, gait, policy, &mut offsets)?;
                 (command, Some(d))
             }
         };
@@ -441,6 +338,158 @@ impl Walker {
             lateral_learning: reports[StepParameter::StepY],
             time_learning: reports[StepParameter::StepTime],
         })
+    }
+
+    /// At a touch-down, the step's outcome in both planes (the frontal one mirrored to the
+    /// side of the leg that landed), handed to the policy once the learner is engaged (a step
+    /// before that is discarded).
+    fn teach_at_touch_down(
+        &mut self,
+        estimate: &Estimate,
+        f_r: f64,
+        policy: Option<&mut (dyn FootstepPolicy + '_)>,
+    ) -> Result<(Option<StepOutcome>, Option<StepOutcome>, StepReports), WalkerError> {
+        let step = estimate.touch_down.map(|td| StepOutcome {
+            theta_e: estimate.theta_e,
+            theta_e_dot: estimate.theta_e_rate,
+            f_e: td.step[0] - f_r,
+            f_r,
+        });
+        let lateral_step = estimate.touch_down.map(|td| {
+            let width = td.support.sign() * td.step[1];
+            self.lateral_outcome(estimate, td.support, width)
+        });
+        let mut reports = StepReports::default();
+        if let (Some(outcome), Some(lateral), Some(p)) = (&step, &lateral_step, policy) {
+            if self.learner_engaged() {
+                reports = p.touch_down(&per_parameter(*outcome, *lateral))?;
+            } else {
+                p.discard_step();
+            }
+        }
+        Ok((step, lateral_step, reports))
+    }
+
+    /// Whether the learner learns and acts at all: always in learner-only mode or with
+    /// `learner_during_fade_in`, otherwise once the generator has faded in.
+    fn learner_engaged(&self) -> bool {
+        self.learner_always_engaged() || self.generator.fade() >= 1.0
+    }
+
+    fn learner_always_engaged(&self) -> bool {
+        self.config.learner_during_fade_in || self.config.mode == WalkerMode::LearnerOnly
+    }
+
+    /// The share of the learned offsets applied: bumpless engagement ramps them in like the
+    /// generator's fade, one fade-in time later, so that switching the learner on does not
+    /// jolt the gait.
+    fn engagement(&self) -> f64 {
+        if self.learner_always_engaged() {
+            1.0
+        } else {
+            self.generator.fade_after(self.config.motion.fade_in)
+        }
+    }
+
+    /// The Capture Step walker's command for this tick: the policy's offsets (scaled by the
+    /// engagement, the lateral one towards the swing leg's side, written to `offsets`) enter
+    /// the controller's footstep or its reference, the policy is told each offset's reach, and
+    /// the generator gets the step, its time, the support leg's sweep and the trunk's tilt.
+    fn capture_step_command(
+        &mut self,
+        estimate: &Estimate,
+        f_r: f64,
+        gait: GaitReference,
+        mut policy: Option<&mut (dyn FootstepPolicy + '_)>,
+        offsets: &mut PerParameter<f64>,
+    ) -> Result<(StepCommand, StepDecision), WalkerError> {
+        let support = self.generator.support();
+        // The lateral learner's input and width offset, towards the swing leg's side.
+        let swing_sign = support.other().sign();
+        let [lean, lean_rate] = lean_towards(estimate, support.other());
+        let width_r = self.width_reference(support.other()) - self.reference_width();
+        if let Some(p) = policy.as_deref_mut() {
+            let learned = p.offsets(&per_parameter(
+                LearnerInput::new(estimate.theta_e, estimate.theta_e_rate, f_r),
+                LearnerInput::new(lean, lean_rate, width_r),
+            ))?;
+            let engagement = self.engagement();
+            *offsets = learned.map(|v| v * engagement);
+            offsets[StepParameter::StepY] *= swing_sign;
+        }
+        let learned_offset = offsets[StepParameter::StepX];
+        let lateral_offset = offsets[StepParameter::StepY];
+        let com = com_relative_to(estimate, support);
+        // In learner-only mode the offset is the whole sagittal step.
+        let into_reference = self.config.offset_target == OffsetTarget::Reference
+            && self.config.mode == WalkerMode::CaptureStep;
+        let (planned_f_r, footstep_offset) = if into_reference {
+            (f_r + learned_offset, 0.0)
+        } else {
+            (f_r, learned_offset)
+        };
+        let reference = GaitReference {
+            step_x: planned_f_r,
+            ..gait
+        };
+        let d = self.controller.update_with_offsets(
+            &com,
+            &reference,
+            [
+                footstep_offset,
+                lateral_offset,
+                offsets[StepParameter::StepTime],
+            ],
+        )?;
+        if let Some(p) = policy {
+            // The step without the offset (in reference mode the analytic step holds it, at
+            // about one metre of step per metre of reference).
+            let base = if into_reference {
+                d.analytic_step_x - learned_offset
+            } else {
+                d.analytic_step_x
+            };
+            let width = swing_sign * (d.step[1] - lateral_offset);
+            p.set_reach(&self.reach(base, width, d.time_reach))?;
+        }
+        let gait_x = if self.config.offset_in_gait {
+            f_r + learned_offset
+        } else {
+            f_r
+        };
+        let command = StepCommand {
+            step_x: d.step[0],
+            step_y: d.step[1],
+            turn: 0.0,
+            step_time: d.time_to_step,
+            gait_x,
+            tilt: Some([
+                [estimate.roll, estimate.pitch],
+                [estimate.roll_rate, estimate.theta_e_rate],
+            ]),
+        };
+        Ok((command, d))
+    }
+
+    /// The offsets that can still change the step, per parameter: beyond the step range's
+    /// ends (and the controller's largest step) an offset would be clamped away, as would a
+    /// width beyond the generator's width range; `time_reach` is the controller's.
+    fn reach(
+        &self,
+        base_step: f64,
+        base_width: f64,
+        time_reach: [f64; 2],
+    ) -> PerParameter<[f64; 2]> {
+        let m = &self.config.motion;
+        let cap = self.config.capture_step.max_step_x;
+        let lo = m.step_x_range[0].max(-cap);
+        let hi = m.step_x_range[1].min(cap);
+        let [w_lo, w_hi] = m.step_y_range;
+        PerParameter([
+            [lo - base_step, hi - base_step],
+            [w_lo - base_width, w_hi - base_width],
+            time_reach,
+        ])
     }
 
     /// The reference step width in place (m): the Capture Step controller's stance, the feet
