@@ -33,7 +33,7 @@ use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::{PushPlan, ReferenceSchedule};
 use crate::experiments::summary::{CustomResult, ExperimentResult, Summary};
-use crate::experiments::trial::{Observer, TrialLog, run_trial};
+use crate::experiments::trial::{Observer, PushRecord, TrialLog, run_trial};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
 use rayon::prelude::*;
@@ -286,6 +286,199 @@ pub fn direction(deg: f64) -> [f64; 3] {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Omnidirectional;
 
+/// What one walker did in one sector: its pushes, I50, falls and falls per cause.
+struct SectorOutcome {
+    pushes: Vec<PushRecord>,
+    i50: f64,
+    fell: usize,
+    causes: BTreeMap<String, u32>,
+}
+
+/// Every (sector, walker) job's pushes, in parallel: each sector its own pushes, the same for
+/// every walker; walker 0 open-loop, 1 the model, 2 the sagittal learner, 3 both planes' and 4
+/// the learner of the run's set.
+fn push_sectors(
+    ctx: &RunContext<'_>,
+    p: &OmnidirectionalProtocol,
+    sectors: &[f64],
+    jobs: &[(usize, usize)],
+) -> Vec<Result<SectorOutcome, ExperimentError>> {
+    let plan = PushPlan {
+        count: ctx.settings.scaled(p.pushes, 2),
+        impulse: p.impulse,
+        settle: 3.0,
+        gap: p.gap_s,
+    };
+    jobs.par_iter()
+        .map(|&(k, w)| {
+            let seed = ctx.seed.wrapping_mul(SECTORS as u64).wrapping_add(k as u64);
+            let mode = if w == 0 {
+                WalkerMode::OpenLoop
+            } else {
+                WalkerMode::CaptureStep
+            };
+            let setup = ctx
+                .settings
+                .push_trial(mode, 0.0, &plan, seed, direction(sectors[k]));
+            let mut learners: Option<Box<dyn FootstepPolicy>> = match w {
+                2 => Some(Box::new(ctx.make_learner()?)),
+                3 => Some(both_learners(ctx, p.both_planes)?),
+                4 => Some(Box::new(ctx.make_step_learner()?)),
+                _ => None,
+            };
+            let policy = learners.as_deref_mut();
+            let (log, falls) = run_classified(&setup, policy)?;
+            let samples: Vec<PushResult> = log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
+            let i50 = impulse_at_50pct_fall(&samples)?.impulse_ns;
+            let fell = log.pushes.iter().filter(|p| p.fell).count();
+            Ok(SectorOutcome {
+                pushes: log.pushes,
+                i50,
+                fell,
+                causes: count(&falls),
+            })
+        })
+        .collect()
+}
+
+/// The walk of [`WALK_WALKERS`] through the same random 2-D references, in parallel: each
+/// walker's log and steps.
+fn walk(
+    ctx: &RunContext<'_>,
+    p: &OmnidirectionalProtocol,
+) -> Result<Vec<Result<(TrialLog, Vec<WalkStep>), ExperimentError>>, ExperimentError> {
+    let walk_s = (p.walk_s * ctx.settings.scale).max(4.0 * p.walk_hold_s.1);
+    let [walk_x, walk_y] = ReferenceSchedule::random_disc(
+        ctx.seed.wrapping_add(WALK_SEED),
+        walk_s,
+        p.walk_radius,
+        p.walk_hold_s,
+    )?;
+    Ok(WALK_WALKERS
+        .par_iter()
+        .map(|&walker| {
+            let mut setup = ctx.settings.trial(
+                WalkerMode::CaptureStep,
+                walk_x.clone(),
+                Vec::new(),
+                [1.0, 0.0, 0.0],
+                walk_s,
+            );
+            setup.lateral_reference = Some(walk_y.clone());
+            let mut learners = if walker == "both" {
+                Some(both_learners(ctx, p.both_planes)?)
+            } else {
+                None
+            };
+            let policy = learners.as_deref_mut();
+            let mut steps = WalkSteps {
+                walker,
+                steps: Vec::new(),
+            };
+            let log = run_trial(&setup, policy, &mut [&mut steps])?;
+            Ok((log, steps.steps))
+        })
+        .collect())
+}
+
+/// Writes each walker's walk figures into `result` (steps while the walker ramps its
+/// reference in after a start, before `start_ramp_s`, left out) and returns the steps kept.
+fn record_walks(
+    result: &mut OmnidirectionalResult,
+    walks: Vec<Result<(TrialLog, Vec<WalkStep>), ExperimentError>>,
+    start_ramp_s: f64,
+) -> Result<Vec<WalkStep>, ExperimentError> {
+    let mut walk_rows = Vec::new();
+    for (walker, walk) in WALK_WALKERS.iter().zip(walks) {
+        let (log, steps) = walk?;
+        let steps: Vec<WalkStep> = steps
+            .into_iter()
+            .filter(|s| s.time_s > start_ramp_s)
+            .collect();
+        let name = walker.to_string();
+        let (counts, errors) = by_sector(&steps, |s| s.f_e_m.hypot(s.w_e_m))
+            .into_iter()
+            .unzip();
+        result.walk_steps.insert(name.clone(), counts);
+        result.walk_error_m.insert(name.clone(), errors);
+        result
+            .walk_step_error_m
+            .insert(name.clone(), means_by_sector(&steps, |s| s.f_e_m.abs()));
+        result
+            .walk_width_error_m
+            .insert(name.clone(), means_by_sector(&steps, |s| s.w_e_m.abs()));
+        result.walk_falls.insert(name, log.falls.len());
+        walk_rows.extend(steps);
+    }
+    Ok(walk_rows)
+}
+
+/// `omnidirectional_i50.svg` (I50 by push direction, every walker) and, where any reference
+/// pointed into a sector, `omnidirectional_walk_error.svg`.
+fn write_figures(
+    dir: &Path,
+    result: &OmnidirectionalResult,
+    walkers: &[&str],
+    sectors: &[f64],
+) -> Result<(), ExperimentError> {
+    let series: Vec<(String, Vec<f64>)> = walkers
+        .iter()
+        .map(|w| {
+            let v = result.i50_ns[*w].iter().map(|v| v.max(0.0)).collect();
+            (w.replace('_', "-"), v)
+        })
+        .collect();
+    let series: Vec<Series> = series
+        .iter()
+        .map(|(name, y)| Series {
+            name,
+            x: sectors,
+            y,
+            spread: None,
+        })
+        .collect();
+    polar_plot(
+        &dir.join("omnidirectional_i50.svg"),
+        &PolarPlot {
+            title: "Impulse at 50% falls by push direction",
+            radius_label: "I50 (Ns)",
+            series: &series,
+        },
+    )?;
+    let errors: Vec<(String, Vec<f64>, Vec<f64>)> = WALK_WALKERS
+        .iter()
+        .map(|w| {
+            let (x, y): (Vec<f64>, Vec<f64>) = result.walk_error_m[*w]
+                .iter()
+                .zip(sectors)
+                .filter_map(|(e, deg)| e.map(|e| (*deg, 100.0 * e)))
+                .unzip();
+            (w.to_string(), x, y)
+        })
+        .collect();
+    let series: Vec<Series> = errors
+        .iter()
+        .filter(|(_, x, _)| !x.is_empty())
+        .map(|(name, x, y)| Series {
+            name,
+            x,
+            y,
+            spread: None,
+        })
+        .collect();
+    if !series.is_empty() {
+        polar_plot(
+            &dir.join("omnidirectional_walk_error.svg"),
+            &PolarPlot {
+                title: "Walk: mean step error by reference direction",
+                radius_label: "|(F_E, W_E)| (cm)",
+                series: &series,
+            },
+        )?;
+    }
+    Ok(())
+}
+
 fn parse(runs: &[&Summary]) -> Vec<OmnidirectionalResult> {
     runs.iter()
         .filter_map(|s| match &s.result {
@@ -332,12 +525,6 @@ impl Experiment for Omnidirectional {
         ctx.settings.validate()?;
         p.validate()
             .map_err(|e| e.within(&format!("protocols.{}", self.name())))?;
-        let plan = PushPlan {
-            count: ctx.settings.scaled(p.pushes, 2),
-            impulse: p.impulse,
-            settle: 3.0,
-            gap: p.gap_s,
-        };
         let sectors: Vec<f64> = (0..SECTORS).map(|k| 45.0 * k as f64).collect();
         let learned = !ctx.settings.learner.learn.is_paper();
         let walkers: Vec<&'static str> = WALKERS
@@ -348,67 +535,8 @@ impl Experiment for Omnidirectional {
         let jobs: Vec<(usize, usize)> = (0..SECTORS)
             .flat_map(|k| (0..walkers.len()).map(move |w| (k, w)))
             .collect();
-        let outcomes: Vec<Result<_, ExperimentError>> = jobs
-            .par_iter()
-            .map(|&(k, w)| {
-                // Each sector its own pushes, the same for every walker.
-                let seed = ctx.seed.wrapping_mul(SECTORS as u64).wrapping_add(k as u64);
-                let mode = if w == 0 {
-                    WalkerMode::OpenLoop
-                } else {
-                    WalkerMode::CaptureStep
-                };
-                let setup = ctx
-                    .settings
-                    .push_trial(mode, 0.0, &plan, seed, direction(sectors[k]));
-                let mut learners: Option<Box<dyn FootstepPolicy>> = match w {
-                    2 => Some(Box::new(ctx.make_learner()?)),
-                    3 => Some(both_learners(ctx, p.both_planes)?),
-                    4 => Some(Box::new(ctx.make_step_learner()?)),
-                    _ => None,
-                };
-                let policy = learners.as_deref_mut();
-                let (log, falls) = run_classified(&setup, policy)?;
-                let samples: Vec<PushResult> =
-                    log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
-                let i50 = impulse_at_50pct_fall(&samples)?.impulse_ns;
-                let fell = log.pushes.iter().filter(|p| p.fell).count();
-                Ok((log.pushes, i50, fell, count(&falls)))
-            })
-            .collect();
-        // The walk: the same references for the model and both learners.
-        let walk_s = (p.walk_s * ctx.settings.scale).max(4.0 * p.walk_hold_s.1);
-        let [walk_x, walk_y] = ReferenceSchedule::random_disc(
-            ctx.seed.wrapping_add(WALK_SEED),
-            walk_s,
-            p.walk_radius,
-            p.walk_hold_s,
-        )?;
-        let walks: Vec<Result<(TrialLog, Vec<WalkStep>), ExperimentError>> = WALK_WALKERS
-            .par_iter()
-            .map(|&walker| {
-                let mut setup = ctx.settings.trial(
-                    WalkerMode::CaptureStep,
-                    walk_x.clone(),
-                    Vec::new(),
-                    [1.0, 0.0, 0.0],
-                    walk_s,
-                );
-                setup.lateral_reference = Some(walk_y.clone());
-                let mut learners = if walker == "both" {
-                    Some(both_learners(ctx, p.both_planes)?)
-                } else {
-                    None
-                };
-                let policy = learners.as_deref_mut();
-                let mut steps = WalkSteps {
-                    walker,
-                    steps: Vec::new(),
-                };
-                let log = run_trial(&setup, policy, &mut [&mut steps])?;
-                Ok((log, steps.steps))
-            })
-            .collect();
+        let outcomes = push_sectors(ctx, &p, &sectors, &jobs);
+        let walks = walk(ctx, &p)?;
         let mut result = OmnidirectionalResult {
             sectors_deg: sectors.clone(),
             pushes: vec![0; SECTORS],
@@ -422,36 +550,28 @@ impl Experiment for Omnidirectional {
             walk_falls: BTreeMap::new(),
             both_planes: p.both_planes,
         };
-        let mut walk_rows = Vec::new();
-        for (walker, walk) in WALK_WALKERS.iter().zip(walks) {
-            let (log, steps) = walk?;
-            // Steps while the walker ramps its reference in after a start are left out.
-            let start = ctx.settings.walker.start_ramp_s;
-            let steps: Vec<WalkStep> = steps.into_iter().filter(|s| s.time_s > start).collect();
-            let name = walker.to_string();
-            let (counts, errors) = by_sector(&steps, |s| s.f_e_m.hypot(s.w_e_m))
-                .into_iter()
-                .unzip();
-            result.walk_steps.insert(name.clone(), counts);
-            result.walk_error_m.insert(name.clone(), errors);
-            result
-                .walk_step_error_m
-                .insert(name.clone(), means_by_sector(&steps, |s| s.f_e_m.abs()));
-            result
-                .walk_width_error_m
-                .insert(name.clone(), means_by_sector(&steps, |s| s.w_e_m.abs()));
-            result.walk_falls.insert(name, log.falls.len());
-            walk_rows.extend(steps);
-        }
+        let walk_rows = record_walks(&mut result, walks, ctx.settings.walker.start_ramp_s)?;
         let mut rows: Vec<PushRow> = Vec::new();
         for (&(k, w), outcome) in jobs.iter().zip(outcomes) {
-            let (pushes, i50, fell, causes) = outcome?;
+            let sector = outcome?;
             let name = walkers[w].to_string();
-            result.pushes[k] = pushes.len();
-            result.i50_ns.entry(name.clone()).or_default().push(i50);
-            result.falls.entry(name.clone()).or_default().push(fell);
-            result.fall_causes.entry(name).or_default().push(causes);
-            rows.extend(pushes.iter().map(|push| PushRow {
+            result.pushes[k] = sector.pushes.len();
+            result
+                .i50_ns
+                .entry(name.clone())
+                .or_default()
+                .push(sector.i50);
+            result
+                .falls
+                .entry(name.clone())
+                .or_default()
+                .push(sector.fell);
+            result
+                .fall_causes
+                .entry(name)
+                .or_default()
+                .push(sector.causes);
+            rows.extend(sector.pushes.iter().map(|push| PushRow {
                 azimuth_deg: sectors[k],
                 walker: walkers[w],
                 time_s: push.time,
@@ -461,61 +581,7 @@ impl Experiment for Omnidirectional {
         }
         crate::report::write_rows(&dir.join("omnidirectional_pushes.csv"), &rows)?;
         crate::report::write_rows(&dir.join("omnidirectional_walk.csv"), &walk_rows)?;
-        let series: Vec<(String, Vec<f64>)> = walkers
-            .iter()
-            .map(|w| {
-                let v = result.i50_ns[*w].iter().map(|v| v.max(0.0)).collect();
-                (w.replace('_', "-"), v)
-            })
-            .collect();
-        let series: Vec<Series> = series
-            .iter()
-            .map(|(name, y)| Series {
-                name,
-                x: &sectors,
-                y,
-                spread: None,
-            })
-            .collect();
-        polar_plot(
-            &dir.join("omnidirectional_i50.svg"),
-            &PolarPlot {
-                title: "Impulse at 50% falls by push direction",
-                radius_label: "I50 (Ns)",
-                series: &series,
-            },
-        )?;
-        let errors: Vec<(String, Vec<f64>, Vec<f64>)> = WALK_WALKERS
-            .iter()
-            .map(|w| {
-                let (x, y): (Vec<f64>, Vec<f64>) = result.walk_error_m[*w]
-                    .iter()
-                    .zip(&sectors)
-                    .filter_map(|(e, deg)| e.map(|e| (*deg, 100.0 * e)))
-                    .unzip();
-                (w.to_string(), x, y)
-            })
-            .collect();
-        let series: Vec<Series> = errors
-            .iter()
-            .filter(|(_, x, _)| !x.is_empty())
-            .map(|(name, x, y)| Series {
-                name,
-                x,
-                y,
-                spread: None,
-            })
-            .collect();
-        if !series.is_empty() {
-            polar_plot(
-                &dir.join("omnidirectional_walk_error.svg"),
-                &PolarPlot {
-                    title: "Walk: mean step error by reference direction",
-                    radius_label: "|(F_E, W_E)| (cm)",
-                    series: &series,
-                },
-            )?;
-        }
+        write_figures(dir, &result, &walkers, &sectors)?;
         Ok(ExperimentResult::Custom(CustomResult::new(
             self.name(),
             &result,
