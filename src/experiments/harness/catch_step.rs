@@ -6,33 +6,14 @@
 //! the length commanded at its last tick before touch-down. A push counts only if its catch
 //! step touched down before the next push with no fall in between, and was commanded at least
 //! [`MIN_CATCH_BEYOND_REFERENCE`] beyond the reference step (a real catch step, not a step in
-//! the gait). [`CatchStepObserver::reach`] is the mean over the counted pushes.
+//! the gait). [`catch_step_reach`] is the mean over the counted pushes.
 
-use crate::control::walker::Tick;
-use crate::experiments::trial::{FallRecord, Observer, PushRecord};
+use crate::experiments::fall_causes::FallEvent;
+use crate::experiments::trial::PushRecord;
 use serde::{Deserialize, Serialize};
 
 /// How far beyond the reference step a catch step must be commanded to count (m).
 pub const MIN_CATCH_BEYOND_REFERENCE: f64 = 0.1;
-
-/// One touch-down: when, the commanded and the realised sagittal step, the reference step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Landing {
-    time: f64,
-    commanded: Option<f64>,
-    realised: f64,
-    f_r: f64,
-}
-
-/// Records what [`CatchStepObserver::reach`] needs from a trial: every touch-down's commanded
-/// and realised step, and every fall. Works with any walker mode (the open-loop walker has no
-/// commanded footstep, so none of its pushes counts).
-#[derive(Debug, Clone, Default)]
-pub struct CatchStepObserver {
-    landings: Vec<Landing>,
-    falls: Vec<f64>,
-    last_command: Option<f64>,
-}
 
 /// The catch step's mean reach over the counted pushes of one trial.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -43,60 +24,55 @@ pub struct CatchStepReach {
     pub pushes: usize,
 }
 
-impl CatchStepObserver {
-    /// A fresh observer.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// The catch step's reach over the trial's delivered `pushes` (time order).
-    pub fn reach(&self, pushes: &[PushRecord]) -> CatchStepReach {
-        let mut sum = 0.0;
-        let mut n = 0;
-        for (k, push) in pushes.iter().enumerate() {
-            let next_push = pushes.get(k + 1).map_or(f64::INFINITY, |p| p.time);
-            let first = self.landings.partition_point(|l| l.time <= push.time);
-            let Some(catch) = self.landings.get(first + 1) else {
-                continue;
-            };
-            let fell = self.falls.iter().any(|&t| t > push.time && t <= catch.time);
-            let Some(commanded) = catch.commanded else {
-                continue;
-            };
-            if fell
-                || catch.time >= next_push
-                || (commanded - catch.f_r).abs() < MIN_CATCH_BEYOND_REFERENCE
-                || commanded == 0.0
-            {
-                continue;
-            }
-            sum += catch.realised / commanded;
-            n += 1;
-        }
-        CatchStepReach {
-            reach: (n > 0).then(|| sum / n as f64),
-            pushes: n,
-        }
-    }
-}
-
-impl Observer for CatchStepObserver {
-    fn on_tick(&mut self, time: f64, tick: &Tick) {
-        // The decision of a touch-down tick is already for the next step.
-        if let Some(step) = &tick.step {
-            self.landings.push(Landing {
+/// The catch step's reach over a trial's delivered `pushes` (time order), from the touch-downs
+/// and falls a [`crate::experiments::fall_causes::FallCauseObserver`] recorded (`events`, time
+/// order). Works with any walker mode: the open-loop walker has no commanded footstep, so none
+/// of its pushes counts.
+pub fn catch_step_reach(events: &[FallEvent], pushes: &[PushRecord]) -> CatchStepReach {
+    let landings: Vec<(f64, Option<f64>, f64, f64)> = events
+        .iter()
+        .filter_map(|e| match *e {
+            FallEvent::TouchDown {
                 time,
-                commanded: self.last_command,
-                realised: step.f_e + step.f_r,
-                f_r: step.f_r,
-            });
+                step_x,
+                realised,
+                f_r,
+            } => Some((time, step_x, realised, f_r)),
+            FallEvent::Fall { .. } => None,
+        })
+        .collect();
+    let falls: Vec<f64> = events
+        .iter()
+        .filter_map(|e| match *e {
+            FallEvent::Fall { time, .. } => Some(time),
+            FallEvent::TouchDown { .. } => None,
+        })
+        .collect();
+    let mut sum = 0.0;
+    let mut n = 0;
+    for (k, push) in pushes.iter().enumerate() {
+        let next_push = pushes.get(k + 1).map_or(f64::INFINITY, |p| p.time);
+        let first = landings.partition_point(|l| l.0 <= push.time);
+        let Some(&(time, commanded, realised, f_r)) = landings.get(first + 1) else {
+            continue;
+        };
+        let fell = falls.iter().any(|&t| t > push.time && t <= time);
+        let Some(commanded) = commanded else {
+            continue;
+        };
+        if fell
+            || time >= next_push
+            || (commanded - f_r).abs() < MIN_CATCH_BEYOND_REFERENCE
+            || commanded == 0.0
+        {
+            continue;
         }
-        self.last_command = tick.decision.map(|d| d.step[0]);
+        sum += realised / commanded;
+        n += 1;
     }
-
-    fn on_fall(&mut self, fall: &FallRecord) {
-        self.falls.push(fall.time);
-        self.last_command = None;
+    CatchStepReach {
+        reach: (n > 0).then(|| sum / n as f64),
+        pushes: n,
     }
 }
 
@@ -112,28 +88,35 @@ mod tests {
         }
     }
 
-    fn observer(landings: &[(f64, f64, f64)], falls: &[f64]) -> CatchStepObserver {
-        CatchStepObserver {
-            landings: landings
-                .iter()
-                .map(|&(time, commanded, realised)| Landing {
-                    time,
-                    commanded: Some(commanded),
-                    realised,
-                    f_r: 0.0,
-                })
-                .collect(),
-            falls: falls.to_vec(),
-            last_command: None,
-        }
+    /// Touch-downs `(time, commanded, realised)` at F_R = 0 and falls, in time order.
+    fn events(landings: &[(f64, f64, f64)], falls: &[f64]) -> Vec<FallEvent> {
+        let mut events: Vec<FallEvent> = landings
+            .iter()
+            .map(|&(time, commanded, realised)| FallEvent::TouchDown {
+                time,
+                step_x: Some(commanded),
+                realised,
+                f_r: 0.0,
+            })
+            .chain(
+                falls
+                    .iter()
+                    .map(|&time| FallEvent::Fall { time, step_x: None }),
+            )
+            .collect();
+        let time = |e: &FallEvent| match *e {
+            FallEvent::TouchDown { time, .. } | FallEvent::Fall { time, .. } => time,
+        };
+        events.sort_by(|a, b| time(a).total_cmp(&time(b)));
+        events
     }
 
     #[test]
     fn the_catch_step_is_the_second_landing_after_the_push() {
         // Push at 1.0: the step under way lands at 1.2 (0.3 commanded, 0.3 realised), the
         // catch step at 1.6 (0.4 commanded, 0.2 realised).
-        let o = observer(&[(0.8, 0.0, 0.0), (1.2, 0.3, 0.3), (1.6, 0.4, 0.2)], &[]);
-        let r = o.reach(&[push(1.0)]);
+        let o = events(&[(0.8, 0.0, 0.0), (1.2, 0.3, 0.3), (1.6, 0.4, 0.2)], &[]);
+        let r = catch_step_reach(&o, &[push(1.0)]);
         assert_eq!(r.pushes, 1);
         assert!((r.reach.unwrap() - 0.5).abs() < 1e-12);
     }
@@ -141,20 +124,20 @@ mod tests {
     #[test]
     fn small_commands_falls_and_the_next_push_exclude_a_push() {
         // Commanded only 0.05 beyond the reference: not a catch step.
-        let o = observer(&[(1.2, 0.3, 0.3), (1.6, 0.05, 0.05)], &[]);
-        assert_eq!(o.reach(&[push(1.0)]).pushes, 0);
+        let o = events(&[(1.2, 0.3, 0.3), (1.6, 0.05, 0.05)], &[]);
+        assert_eq!(catch_step_reach(&o, &[push(1.0)]).pushes, 0);
         // A fall before the catch step lands.
-        let o = observer(&[(1.2, 0.3, 0.3), (1.6, 0.4, 0.4)], &[1.4]);
+        let o = events(&[(1.2, 0.3, 0.3), (1.6, 0.4, 0.4)], &[1.4]);
         assert_eq!(
-            o.reach(&[push(1.0)]),
+            catch_step_reach(&o, &[push(1.0)]),
             CatchStepReach {
                 reach: None,
                 pushes: 0
             }
         );
         // The next push comes before the catch step lands; its own catch step counts.
-        let o = observer(&[(1.2, 0.3, 0.3), (1.6, 0.4, 0.4), (2.0, -0.2, -0.1)], &[]);
-        let r = o.reach(&[push(1.0), push(1.5)]);
+        let o = events(&[(1.2, 0.3, 0.3), (1.6, 0.4, 0.4), (2.0, -0.2, -0.1)], &[]);
+        let r = catch_step_reach(&o, &[push(1.0), push(1.5)]);
         assert_eq!(r.pushes, 1);
         assert!((r.reach.unwrap() - 0.5).abs() < 1e-12);
     }

@@ -133,6 +133,10 @@ pub enum FallEvent {
         time: f64,
         /// `decision.step[0]` of the step's last tick (m).
         step_x: Option<f64>,
+        /// The realised sagittal step, foot to foot, as the estimator measured it (m).
+        realised: f64,
+        /// The reference step F_R at the touch-down (m).
+        f_r: f64,
     },
     /// A fall at `time`; `step_x` is the last command of the step in progress.
     Fall {
@@ -165,10 +169,12 @@ impl FallCauseObserver {
 impl Observer for FallCauseObserver {
     fn on_tick(&mut self, time: f64, tick: &Tick) {
         // The decision of a touch-down tick is already for the next step.
-        if tick.step.is_some() {
+        if let Some(step) = &tick.step {
             self.events.push(FallEvent::TouchDown {
                 time,
                 step_x: self.last_step_x,
+                realised: step.f_e + step.f_r,
+                f_r: step.f_r,
             });
         }
         self.last_step_x = tick.decision.map(|d| d.step[0]);
@@ -223,7 +229,9 @@ pub fn classify(
             events[since..k]
                 .iter()
                 .filter_map(|e| match *e {
-                    FallEvent::TouchDown { time: t, step_x } if t > t0 => Some(step_x),
+                    FallEvent::TouchDown {
+                        time: t, step_x, ..
+                    } if t > t0 => Some(step_x),
                     _ => None,
                 })
                 .collect()
@@ -288,30 +296,23 @@ pub fn run_classified(
     setup: &TrialSetup,
     policy: Option<&mut (dyn FootstepPolicy + '_)>,
 ) -> Result<(TrialLog, Vec<ClassifiedFall>), TrialError> {
-    run_classified_with(setup, policy, &mut [])
+    run_classified_with(setup, policy).map(|(log, falls, _)| (log, falls))
 }
 
-/// [`run_classified`] with further observers of the same trial.
+/// [`run_classified`] that also returns the observer's events (for
+/// [`crate::experiments::catch_step::catch_step_reach`]).
 pub fn run_classified_with(
     setup: &TrialSetup,
     policy: Option<&mut (dyn FootstepPolicy + '_)>,
-    observers: &mut [&mut dyn Observer],
-) -> Result<(TrialLog, Vec<ClassifiedFall>), TrialError> {
+) -> Result<(TrialLog, Vec<ClassifiedFall>, Vec<FallEvent>), TrialError> {
     let mut observer = FallCauseObserver::new();
-    let log = {
-        let mut all: Vec<&mut dyn Observer> = Vec::with_capacity(observers.len() + 1);
-        all.push(&mut observer);
-        for o in observers.iter_mut() {
-            all.push(&mut **o);
-        }
-        run_trial(setup, policy, &mut all)?
-    };
+    let log = run_trial(setup, policy, &mut [&mut observer])?;
     let falls = classify(
         observer.events(),
         &log.pushes,
         &StepLimits::of(&setup.walker),
     );
-    Ok((log, falls))
+    Ok((log, falls, observer.events))
 }
 
 /// One CSV row per push: controller, time (s), impulse (Ns), whether a fall followed and its
@@ -358,6 +359,8 @@ mod tests {
         FallEvent::TouchDown {
             time,
             step_x: Some(x),
+            realised: x,
+            f_r: 0.0,
         }
     }
 
@@ -484,6 +487,8 @@ mod tests {
             FallEvent::TouchDown {
                 time: 1.2,
                 step_x: None,
+                realised: 0.1,
+                f_r: 0.0,
             },
             FallEvent::Fall {
                 time: 1.5,

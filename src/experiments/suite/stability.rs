@@ -4,14 +4,14 @@
 
 use crate::config::{self, ConfigError};
 use crate::control::walker::{FootstepPolicy, WalkerMode};
-use crate::experiments::catch_step::{CatchStepObserver, CatchStepReach};
+use crate::experiments::catch_step::{CatchStepReach, catch_step_reach};
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
 use crate::experiments::experiment::{
     Experiment, Headline, PushOptions, PushOptionsError, RunContext,
 };
 use crate::experiments::fall_causes::{
-    ClassifiedFall, FallCause, cause_by_push, count, push_rows, run_classified_with,
+    ClassifiedFall, FallCause, FallEvent, cause_by_push, count, push_rows, run_classified_with,
 };
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
@@ -84,12 +84,12 @@ impl ControllerPushes {
     fn new(
         log: TrialLog,
         classified_falls: Vec<ClassifiedFall>,
-        catch_step: &CatchStepObserver,
+        events: &[FallEvent],
     ) -> Result<Self, ExperimentError> {
         let samples: Vec<PushResult> = log.pushes.iter().map(|p| (p.impulse, p.fell)).collect();
         let fall50 = impulse_at_50pct_fall(&samples)?;
         Ok(ControllerPushes {
-            catch_step: catch_step.reach(&log.pushes),
+            catch_step: catch_step_reach(events, &log.pushes),
             pushes: log.pushes,
             fall50,
             classified_falls,
@@ -185,9 +185,8 @@ fn observed(
     setup: TrialSetup,
     policy: Option<&mut (dyn FootstepPolicy + '_)>,
 ) -> Result<ControllerPushes, ExperimentError> {
-    let mut catch_step = CatchStepObserver::new();
-    let (log, falls) = run_classified_with(&setup, policy, &mut [&mut catch_step])?;
-    ControllerPushes::new(log, falls, &catch_step)
+    let (log, falls, events) = run_classified_with(&setup, policy)?;
+    ControllerPushes::new(log, falls, &events)
 }
 
 impl StabilityResult {
