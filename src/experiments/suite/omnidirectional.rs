@@ -341,12 +341,15 @@ fn push_sectors(
         .collect()
 }
 
+/// One walker's walk: its log and its steps.
+type WalkOutcome = Result<(TrialLog, Vec<WalkStep>), ExperimentError>;
+
 /// The walk of [`WALK_WALKERS`] through the same random 2-D references, in parallel: each
 /// walker's log and steps.
 fn walk(
     ctx: &RunContext<'_>,
     p: &OmnidirectionalProtocol,
-) -> Result<Vec<Result<(TrialLog, Vec<WalkStep>), ExperimentError>>, ExperimentError> {
+) -> Result<Vec<WalkOutcome>, ExperimentError> {
     let walk_s = (p.walk_s * ctx.settings.scale).max(4.0 * p.walk_hold_s.1);
     let [walk_x, walk_y] = ReferenceSchedule::random_disc(
         ctx.seed.wrapping_add(WALK_SEED),
@@ -385,7 +388,7 @@ fn walk(
 /// reference in after a start, before `start_ramp_s`, left out) and returns the steps kept.
 fn record_walks(
     result: &mut OmnidirectionalResult,
-    walks: Vec<Result<(TrialLog, Vec<WalkStep>), ExperimentError>>,
+    walks: Vec<WalkOutcome>,
     start_ramp_s: f64,
 ) -> Result<Vec<WalkStep>, ExperimentError> {
     let mut walk_rows = Vec::new();
