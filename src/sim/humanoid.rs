@@ -11,7 +11,7 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::body::{BodyConfig, head_neck_length};
+use super::body::{BodyConfig, Segment, head_neck_length};
 use super::config::SimConfig;
 use super::error::SimError;
 use super::fall::{BodyPart, Fall, FallTrigger};
@@ -184,6 +184,32 @@ fn link_body(mass: MassProperties) -> RigidBodyBuilder {
         .additional_mass_properties(mass)
 }
 
+/// A leg segment (thigh or shank) of `mass` (kg): its body and its capsule, `clearance` (m)
+/// short of the segment's ends.
+fn add_segment(
+    world: &mut PhysicsWorld,
+    parts: &mut Parts,
+    segment: &Segment,
+    mass: f64,
+    clearance: f64,
+    part: BodyPart,
+) -> RigidBodyHandle {
+    let handle = world.bodies.insert(link_body(segment_mass(
+        segment.length,
+        mass,
+        segment.com_fraction,
+        segment.gyration_fraction,
+        segment.radius,
+    )));
+    parts.attach(
+        world,
+        capsule_below(segment.length, segment.radius, clearance),
+        handle,
+        part,
+    );
+    handle
+}
+
 /// One leg on `side`, hung from the torso: its bodies (two hip gimbals, thigh, shank, ankle
 /// gimbal, foot), their colliders and the six revolute joints. Writes the body each joint
 /// moves into `links` and returns the foot's collider.
@@ -205,32 +231,15 @@ fn add_leg(
     let (th, sh, f) = (&body.thigh, &body.shank, &body.foot);
     let hip_yaw = world.bodies.insert(gimbal());
     let hip_roll = world.bodies.insert(gimbal());
-    let thigh = world.bodies.insert(link_body(segment_mass(
-        th.length,
-        th.mass - 2.0 * body.gimbal_mass,
-        th.com_fraction,
-        th.gyration_fraction,
-        th.radius,
-    )));
-    parts.attach(
+    let thigh = add_segment(
         world,
-        capsule_below(th.length, th.radius, 0.0),
-        thigh,
+        parts,
+        th,
+        th.mass - 2.0 * body.gimbal_mass,
+        0.0,
         BodyPart::Thigh(side),
     );
-    let shank = world.bodies.insert(link_body(segment_mass(
-        sh.length,
-        sh.mass,
-        sh.com_fraction,
-        sh.gyration_fraction,
-        sh.radius,
-    )));
-    parts.attach(
-        world,
-        capsule_below(sh.length, sh.radius, 0.01),
-        shank,
-        BodyPart::Shank(side),
-    );
+    let shank = add_segment(world, parts, sh, sh.mass, 0.01, BodyPart::Shank(side));
     let ankle = world.bodies.insert(gimbal());
     let fm = f.mass - body.gimbal_mass;
     let (lx, ly, lz) = (f.length, f.width, f.ankle_height);
