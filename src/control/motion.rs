@@ -220,7 +220,20 @@ pub struct MotionConfig {
     /// ones only beyond it (rad, >= 0): the trunk's sway within a step of undisturbed walking
     /// is not a tilt of the body.
     pub tilt_dead_band: f64,
+    /// [`Swing::Tracking`]: the hip strategy's gain (rad of extra trunk pitch per rad of the
+    /// legs' tilt deviation, in [-4, 4]; default 0: off, and every result is as without it).
+    /// Every tick the trunk leans by `hip_gain` times the trunk tilt's deviation from its
+    /// settled value (as the tracking swing measures it, beyond its dead band) less the extra
+    /// pitch last commanded, clamped to +-[`HIP_PITCH_LIMIT`]: positive, a forward fall pitches
+    /// the trunk forward about the hips, which by reaction slows the centre of mass. The extra
+    /// pitch enters the lean of both legs (the support leg's hip pitch moves the trunk); the
+    /// tracking swing places the foot for the legs' tilt without it. Without a measured tilt
+    /// (the paper's swing) it is 0.
+    pub hip_gain: f64,
 }
+
+/// The largest extra trunk pitch of the hip strategy ([`MotionConfig::hip_gain`], rad).
+pub const HIP_PITCH_LIMIT: f64 = 0.5;
 
 impl Default for MotionConfig {
     fn default() -> Self {
@@ -246,6 +259,7 @@ impl Default for MotionConfig {
             tilt_gain: 1.0,
             tilt_settle_s: 3.0,
             tilt_dead_band: 0.01,
+            hip_gain: 0.0,
         }
     }
 }
@@ -256,7 +270,8 @@ impl MotionConfig {
         config::non_negative("tilt_lead", self.tilt_lead)?;
         config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)?;
         config::positive("tilt_settle_s", self.tilt_settle_s)?;
-        config::non_negative("tilt_dead_band", self.tilt_dead_band)
+        config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
+        config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)
     }
 
     /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
@@ -310,6 +325,9 @@ pub struct MotionGenerator {
     /// The trunk's settled tilt `[roll, pitch]` (low-pass filtered measurement).
     #[serde(default)]
     tilt_settled: Option<[f64; 2]>,
+    /// The hip strategy's extra trunk pitch (rad, [`MotionConfig::hip_gain`]).
+    #[serde(default)]
+    hip: f64,
 }
 
 /// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
@@ -339,6 +357,7 @@ impl MotionGenerator {
             legs: [LegPose::default(); 2],
             tilt: None,
             tilt_settled: None,
+            hip: 0.0,
         };
         g.legs = [g.halt_pose(); 2];
         g
@@ -491,6 +510,11 @@ impl MotionGenerator {
             }
             _ => None,
         };
+        if c.hip_gain != 0.0 {
+            // The legs' tilt: the trunk's less the extra pitch the hips gave it.
+            let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
+            self.hip = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
+        }
         if self.phase >= 1.0 - 1e-9 {
             self.exchange();
         }
@@ -537,11 +561,20 @@ impl MotionGenerator {
         let end_support = [-end_swing[0], end_support_pitch, -turn / 2.0];
         let s_swing = smooth(window(p, c.swing_window));
         let lift = (std::f64::consts::PI * window(p, c.lift_window)).sin();
-        let lean = c.halt_lean + c.lean_per_step * gx;
+        let mut lean = c.halt_lean + c.lean_per_step * gx;
+        if c.hip_gain != 0.0 {
+            lean += self.hip;
+        }
         // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
         // support sole on the ground, for the trunk's predicted tilt.
         let tracking = self.tilt.map(|[roll, pitch]| {
             let roll = c.tilt_gain * roll;
+            // The legs' tilt: the hip strategy's extra pitch is in the lean already.
+            let pitch = if c.hip_gain != 0.0 {
+                pitch - self.hip
+            } else {
+                pitch
+            };
             let pitch = lean + c.tilt_gain * pitch;
             // The hip over the support sole at the end of the step, with the support leg
             // tilted by the trunk's tilt beyond its settled value.

@@ -151,6 +151,10 @@ fn out_of_range_protocol_values_are_errors_naming_the_field() {
         ),
         ("[settings]\nscale = 0.0\n", "settings.scale"),
         ("[settings.sim]\ndt = 0.5\n", "settings.sim"),
+        (
+            "[settings.walker.motion]\nhip_gain = 5.0\n",
+            "settings.walker.motion.hip_gain",
+        ),
     ] {
         let (ok, _, err) = check(text);
         assert!(!ok, "{text:?} accepted");
