@@ -228,8 +228,14 @@ pub struct MotionConfig {
     /// the trunk forward about the hips, which by reaction slows the centre of mass. The extra
     /// pitch enters the lean of both legs (the support leg's hip pitch moves the trunk); the
     /// tracking swing places the foot for the legs' tilt without it. Without a measured tilt
-    /// (the paper's swing) it is 0.
+    /// (the paper's swing) it is 0. Left out of written configs at 0, so that run identities
+    /// are those of the generator without it.
+    #[serde(skip_serializing_if = "is_zero")]
     pub hip_gain: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 /// The largest extra trunk pitch of the hip strategy ([`MotionConfig::hip_gain`], rad).
