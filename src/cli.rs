@@ -16,6 +16,7 @@
 use crate::bench::{Bench, BenchError, Registry};
 use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
 use crate::control::step_parameter::LearnSet;
+use crate::experiments::ablation::{self, merge};
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::PushOptions;
 use crate::experiments::index_page::{
@@ -27,7 +28,7 @@ use crate::experiments::settings::Settings;
 use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{
     IDENTITY_FILE, RunOutcome, RunSpec, RunStatus, SUMMARY_FILE, Shard, SweepGrid, SweepOptions,
-    check_identity, merge, run_sweep,
+    check_identity, run_sweep,
 };
 use crate::report::write_file;
 use crate::rules::PendulumCart;
@@ -655,7 +656,7 @@ fn sweep(registry: &Registry, args: SweepArgs) -> Result<(), String> {
     } = args;
     check_seeds(seeds)?;
     let grid = SweepGrid::new(
-        &["stability", "robustness"],
+        &ablation::EXPERIMENTS,
         &registry.approximator_names(),
         &registry.rule_names(),
         seeds,
@@ -669,7 +670,7 @@ fn sweep(registry: &Registry, args: SweepArgs) -> Result<(), String> {
     apply_push_options(
         registry,
         &mut config.protocols,
-        "stability",
+        ablation::PUSHED,
         pushes,
         None,
         None,

@@ -18,5 +18,5 @@ pub use crate::bench::{Bench, BenchError, Registry};
 #[cfg(feature = "experiments")]
 pub use crate::experiments::{
     ConfigFile, CustomResult, Experiment, ExperimentError, ExperimentResult, RunContext, Settings,
-    Summary,
+    Summary, TypedResult,
 };

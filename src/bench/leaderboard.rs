@@ -213,7 +213,12 @@ impl Leaderboard {
                 };
                 let path = out.join(spec.id()).join(SUMMARY_FILE);
                 if is_current(runner, &spec, out) {
-                    runs.push(Summary::read(&path)?);
+                    let summary = Summary::read(&path)?;
+                    runner.check(&summary).map_err(|e| ReportError::Parse {
+                        path: path.clone(),
+                        message: e.to_string(),
+                    })?;
+                    runs.push(summary);
                 } else {
                     missing.push(spec.id());
                 }

@@ -19,6 +19,7 @@ use crate::experiments::settings::{LwprSettings, Settings};
 use crate::experiments::suite;
 use crate::experiments::summary::{Summary, check_name};
 use crate::experiments::sweep::{RunError, RunSpec, Runner};
+use crate::report::ReportError;
 use crate::rules::{
     BalanceOnly, LearningRule, Linear, PendulumCart, PolicyGradient, RateDamped, TrackingOnly,
 };
@@ -497,6 +498,13 @@ impl Runner for RegistryRunner<'_> {
             self.settings,
             self.protocols,
         )?))
+    }
+
+    fn check(&self, summary: &Summary) -> Result<(), ReportError> {
+        match self.registry.find_experiment(summary.experiment()) {
+            Ok(experiment) => experiment.check_result(&summary.result),
+            Err(e) => Err(ReportError::invalid(e.to_string())),
+        }
     }
 }
 

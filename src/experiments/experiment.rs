@@ -9,6 +9,7 @@
 use super::error::ExperimentError;
 use super::paired::Paired;
 use super::protocol::{ProtocolTables, Table};
+use super::replay_plan::{Moment, ReplayPlan};
 use super::settings::Settings;
 use crate::approx::{ApproxError, BoxedApproximator, InputBox, Stacked};
 use crate::config::ConfigError;
@@ -17,6 +18,7 @@ use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, Learner
 use crate::control::step_learner::StepLearner;
 use crate::control::step_parameter::{LearnSet, StepParameter};
 use crate::experiments::summary::{ExperimentResult, Summary};
+use crate::report::ReportError;
 use crate::rules::{LearningRule, StepTime};
 use std::path::Path;
 
@@ -224,6 +226,16 @@ pub trait Experiment: Send + Sync {
     /// depend only on the context (the seed included), never on timing or thread count.
     fn run(&self, ctx: &RunContext<'_>, dir: &Path) -> Result<ExperimentResult, ExperimentError>;
 
+    /// Checks a result of this experiment, as its `run` returns it or as read back from
+    /// `summary.json`: the invariants of its own fields that JSON cannot state (finite
+    /// numbers, counts that add up). Runs whose result fails are not counted as finished and
+    /// are left out of tables. By default any result is accepted; an experiment with a
+    /// [`crate::experiments::summary::TypedResult`] returns `T::from_result(result).map(|_| ())`.
+    fn check_result(&self, result: &ExperimentResult) -> Result<(), ReportError> {
+        let _ = result;
+        Ok(())
+    }
+
     /// The learned walker against the model, paired by seed over `runs` (this experiment's
     /// summaries of one approximator and rule, in seed order): the leaderboard's verdicts.
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired>;
@@ -234,4 +246,33 @@ pub trait Experiment: Send + Sync {
         let _ = runs;
         Vec::new()
     }
+
+    /// How `steplearn replay` re-simulates its runs and which moment of a run it shows on the
+    /// results page; `None` (the default) for an experiment without a replay.
+    fn replay(&self) -> Option<&dyn Replayable> {
+        None
+    }
+}
+
+/// An experiment whose runs `steplearn replay` can re-simulate: the trials it walks for a
+/// run's seed, settings and protocol, and a telling moment of a finished run.
+pub trait Replayable: Sync {
+    /// How to re-simulate the run with `settings`, `protocols` (the run's recorded ones) and
+    /// `seed`: the experiment's own trials, built by its own functions.
+    fn replay_plan(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+    ) -> Result<ReplayPlan, ExperimentError>;
+
+    /// A telling moment of the finished run in `dir` (made with `settings`, `protocols` and
+    /// `seed`), read from the tables it wrote, with a one-line description.
+    fn telling_moment(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+        dir: &Path,
+    ) -> Result<(Moment, String), ExperimentError>;
 }

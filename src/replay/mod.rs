@@ -3,42 +3,36 @@
 //!
 //! A run is bit-reproducible from its `run-config.toml`: [`record_moment()`] reads it, checks
 //! that this registry would write the same identity (same experiment, approximator, rule,
-//! settings, protocol and results format), rebuilds the experiment's trials for the run's seed
-//! with the experiment's own functions, and runs them with [`run_trial`], the trial code every
+//! settings, protocol and results format), asks the experiment for its [`ReplayPlan`] (the
+//! trials it walks for the run's seed, built by its own functions,
+//! [`crate::experiments::Replayable`]) and runs them with [`run_trial`], the trial code every
 //! experiment uses, with a [`Recorder`] attached. [`page()`] writes the recording as one HTML
 //! page with three.js inlined ([`page::THREE_VERSION`]).
 //!
-//! Replayed: pushes of B (`disturbance`: learned and model), C (`stability`: learned, model,
-//! open-loop) and D (`robustness`: the learned walker after learning from the episodes before
-//! push K, and the walker without learning); spans of A (`tracking`), B and C. The learned
-//! walkers of A-C learn throughout one long trial, so their replay walks the trial from its
-//! start to the end of the moment replayed. Other experiments are a
-//! [`ReplayError::Unsupported`]. [`moments`] picks a telling moment of a run for the results
-//! page of `reproduce`.
+//! A plan of long trials (one per walker, the learned one learning throughout) is walked from
+//! its start to the end of the moment replayed, a push or a span; a plan of one episode per
+//! push replays push K after the learner has learned from the episodes before it. An
+//! experiment without a replay is a [`ReplayError::Unsupported`]. [`moments`] picks a telling
+//! moment of a run for the results pages.
 
 pub mod moments;
 pub mod page;
 pub mod record;
 
-use crate::Named;
 use crate::bench::{BenchError, Registry};
-use crate::config::ConfigError;
+use crate::control::learner::LearnerConfig;
 use crate::control::learner::LearnerError;
-use crate::control::walker::WalkerMode;
-use crate::experiments::disturbance::{self, DisturbanceProtocol};
+use crate::experiments::ExperimentError;
 use crate::experiments::experiment::RunContext;
 use crate::experiments::protocol::{ProtocolTables, Table};
-use crate::experiments::robustness::{self, RobustnessProtocol};
 use crate::experiments::settings::Settings;
-use crate::experiments::stability::{self, StabilityProtocol};
 use crate::experiments::sweep::{IDENTITY_FILE, RunSpec};
-use crate::experiments::tracking::{self, TrackingProtocol};
 use crate::experiments::trial::{TrialError, TrialSetup, run_trial};
-use crate::experiments::{ExperimentError, ExperimentKind};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
+pub use crate::experiments::replay_plan::{Moment, ReplayPlan};
 pub use page::{embedded_replay, page};
 pub use record::{Frame, Recorder, Touchdown, Walk};
 
@@ -70,9 +64,7 @@ pub enum ReplayError {
     )]
     NotReproducible(PathBuf),
     /// The run's experiment has no replay yet.
-    #[error(
-        "experiment `{0}` has no replay yet (supported: tracking, disturbance, stability, robustness)"
-    )]
+    #[error("experiment `{0}` has no replay (it does not implement `Replayable`)")]
     Unsupported(String),
     /// A span that is not `0 <= from < to`, both finite.
     #[error("bad time span {from}..{to}: {reason}")]
@@ -208,16 +200,7 @@ pub struct Replay {
 }
 
 /// One walker of a replay: its name, its trial, whether it has the run's learner.
-type Walker<'a> = (&'a str, TrialSetup, bool);
-
-/// What to replay of a run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Moment {
-    /// Push K (1-based) of a run with pushes.
-    Push(usize),
-    /// The span `[from, to]` of trial time (s) of a run made of one trial per walker.
-    Span(f64, f64),
-}
+type Walker = (String, TrialSetup, bool);
 
 /// Re-simulates push `push` (1-based) of the run in `dir` with `registry`.
 pub fn record(registry: &Registry, dir: &Path, push: usize) -> Result<Replay, ReplayError> {
@@ -271,25 +254,14 @@ pub fn record_moment(
         seed: config.seed,
         learn: None,
     };
-    let kind = replayed(&config.experiment)
+    let experiment = registry.find_experiment(&config.experiment)?;
+    let replayable = experiment
+        .replay()
         .ok_or_else(|| ReplayError::Unsupported(config.experiment.clone()))?;
-    match (kind, moment) {
-        (ExperimentKind::Tracking, Moment::Push(_)) => {
-            return Err(ReplayError::NoPushes(config.experiment));
-        }
-        (ExperimentKind::Robustness, Moment::Span(..)) => {
-            return Err(ReplayError::NoSpan(config.experiment));
-        }
-        _ => {}
-    }
     let identity = registry.run_identity(&spec, &config.settings, &protocols)?;
     if identity != text {
         return Err(ReplayError::NotReproducible(dir.join(IDENTITY_FILE)));
     }
-    let corrupt = |e: ConfigError| ReplayError::Corrupt {
-        path: dir.join(IDENTITY_FILE),
-        reason: e.to_string(),
-    };
     let components = registry.components(&config.approx, &config.rule, &config.settings.lwpr)?;
     let ctx = RunContext {
         settings: &config.settings,
@@ -300,53 +272,42 @@ pub fn record_moment(
         components: &components,
     };
     let settings = &config.settings;
-    let name = config.experiment.as_str();
-    // The walkers' trials, as the experiment builds them, and the push's impulse and direction.
-    let (trials, direction, after): (Vec<Walker<'_>>, [f64; 3], f64) = match kind {
-        ExperimentKind::Robustness => {
-            let protocol: RobustnessProtocol = protocols.get(name).map_err(corrupt)?;
-            let Moment::Push(push) = moment else {
-                unreachable!("checked above")
-            };
-            return replay_robustness(&ctx, &config, &protocol, push);
-        }
-        ExperimentKind::Stability => {
-            let p: StabilityProtocol = protocols.get(name).map_err(corrupt)?;
-            let setup = |mode| stability::trial_setup(settings, &p, config.seed, mode);
-            let capture = setup(WalkerMode::CaptureStep);
-            (
-                vec![
-                    ("learned", capture.clone(), true),
-                    ("model", capture, false),
-                    ("open-loop", setup(WalkerMode::OpenLoop), false),
-                ],
-                p.direction,
-                settings.push_window_s,
-            )
-        }
-        ExperimentKind::Disturbance => {
-            let p: DisturbanceProtocol = protocols.get(name).map_err(corrupt)?;
-            let setup = disturbance::trial_setup(settings, &p, config.seed);
-            (
-                vec![("learned", setup.clone(), true), ("model", setup, false)],
-                p.direction,
-                // The whole recovery the experiment measures.
-                p.horizon_s.max(settings.push_window_s),
-            )
-        }
-        ExperimentKind::Tracking => {
-            let p: TrackingProtocol = protocols.get(name).map_err(corrupt)?;
-            let setup = tracking::trial_setup(settings, &p, config.seed)?;
-            (
-                vec![("learned", setup.clone(), true), ("model", setup, false)],
-                [1.0, 0.0, 0.0],
-                0.0,
-            )
-        }
-    };
+    // The walkers' trials, as the experiment builds them, and the push's direction.
+    let (walkers, direction, after, pushes) =
+        match replayable.replay_plan(settings, &protocols, config.seed)? {
+            ReplayPlan::Episodes {
+                episodes,
+                learner,
+                impulse,
+                direction,
+            } => {
+                let Moment::Push(push) = moment else {
+                    return Err(ReplayError::NoSpan(config.experiment));
+                };
+                return replay_episodes(
+                    &ctx, &config, &episodes, *learner, impulse, direction, push,
+                );
+            }
+            ReplayPlan::Trials {
+                walkers,
+                direction,
+                after_push_s,
+                pushes,
+            } => (walkers, direction, after_push_s, pushes),
+        };
+    if matches!(moment, Moment::Push(_)) && !pushes {
+        return Err(ReplayError::NoPushes(config.experiment));
+    }
+    if walkers.is_empty() {
+        return Err(ReplayError::Unsupported(config.experiment));
+    }
+    let trials: Vec<Walker> = walkers
+        .into_iter()
+        .map(|w| (w.name, w.setup, w.learns))
+        .collect();
     let reference = trials[0].1.reference.clone();
     let (mut push_no, mut impulse, mut span, mut changes) = (0, 0.0, None, Vec::new());
-    let trials: Vec<(&str, TrialSetup, Recorder, bool)> = match moment {
+    let trials: Vec<(String, TrialSetup, Recorder, bool)> = match moment {
         Moment::Push(push) => {
             check_push(push, trials[0].1.pushes.len())?;
             (push_no, impulse) = (push, trials[0].1.pushes[push - 1].impulse);
@@ -405,7 +366,7 @@ pub fn record_moment(
 /// learner), on the rayon pool, and returns their recordings in order.
 fn walk_all(
     ctx: &RunContext<'_>,
-    trials: Vec<(&str, TrialSetup, Recorder, bool)>,
+    trials: Vec<(String, TrialSetup, Recorder, bool)>,
 ) -> Result<Vec<Walk>, ReplayError> {
     use rayon::prelude::*;
     trials
@@ -417,22 +378,9 @@ fn walk_all(
             } else {
                 run_trial(&setup, None, &mut [&mut recorder])?;
             }
-            Ok(recorder.finish(name))
+            Ok(recorder.finish(&name))
         })
         .collect()
-}
-
-/// The experiments [`record_moment()`] replays: pushes of B, C and D, spans of A, B and C.
-pub const REPLAYED: [ExperimentKind; 4] = [
-    ExperimentKind::Tracking,
-    ExperimentKind::Disturbance,
-    ExperimentKind::Stability,
-    ExperimentKind::Robustness,
-];
-
-/// The experiment named `name`, if it has a replay ([`REPLAYED`]).
-pub(crate) fn replayed(name: &str) -> Option<ExperimentKind> {
-    ExperimentKind::from_name(name).filter(|k| REPLAYED.contains(k))
 }
 
 fn check_push(push: usize, pushes: usize) -> Result<(), ReplayError> {
@@ -442,42 +390,41 @@ fn check_push(push: usize, pushes: usize) -> Result<(), ReplayError> {
     Ok(())
 }
 
-fn replay_robustness(
+/// Push `push` of a run of one episode per push: the run's learner learns from the
+/// `episodes` before it, then walks push `push`'s episode beside the walker without learning.
+fn replay_episodes(
     ctx: &RunContext<'_>,
     config: &RunConfig,
-    protocol: &RobustnessProtocol,
+    episodes: &[TrialSetup],
+    learner: LearnerConfig,
+    impulse: f64,
+    direction: [f64; 3],
     push: usize,
 ) -> Result<Replay, ReplayError> {
-    let settings = ctx.settings;
-    let times = robustness::push_times(settings, protocol, config.seed);
-    check_push(push, times.len())?;
+    check_push(push, episodes.len())?;
     // The run's learner, built as the run built it (`RunContext`, reseeded with its seed).
-    let mut learner = ctx.make_learner_with(robustness::learner_config(settings, protocol))?;
+    let mut learner = ctx.make_learner_with(learner)?;
     // The episodes before push K, as the run walked them: the learner learns from them.
-    for &t in &times[..push - 1] {
-        run_trial(
-            &robustness::episode_setup(settings, protocol, t),
-            Some(&mut learner),
-            &mut [],
-        )?;
+    for setup in &episodes[..push - 1] {
+        run_trial(setup, Some(&mut learner), &mut [])?;
     }
-    let push_time = times[push - 1];
-    let setup = robustness::episode_setup(settings, protocol, push_time);
+    let setup = &episodes[push - 1];
+    let push_time = setup.pushes.first().map_or(0.0, |p| p.time);
     let from = (push_time - BEFORE_PUSH_S).max(0.0);
     let to = setup.duration_s;
     let mut learned = Recorder::new(from, to, FRAME_S);
-    run_trial(&setup, Some(&mut learner), &mut [&mut learned])?;
+    run_trial(setup, Some(&mut learner), &mut [&mut learned])?;
     let mut without = Recorder::new(from, to, FRAME_S);
-    run_trial(&setup, None, &mut [&mut without])?;
+    run_trial(setup, None, &mut [&mut without])?;
     Ok(Replay {
         experiment: config.experiment.clone(),
         approx: config.approx.clone(),
         rule: config.rule.clone(),
         seed: config.seed,
         push,
-        impulse: protocol.impulse,
-        direction: protocol.direction,
-        window_s: settings.push_window_s,
+        impulse,
+        direction,
+        window_s: ctx.settings.push_window_s,
         span: None,
         changes: Vec::new(),
         walks: vec![

@@ -12,16 +12,7 @@ use crate::robot::Side;
 use crate::sim::GroundTruth;
 use serde::{Deserialize, Serialize};
 
-/// Decimals kept of every recorded number.
-pub const DECIMALS: i32 = 4;
-
-/// `x` rounded to [`DECIMALS`] decimals.
-pub fn round(x: f64) -> f64 {
-    let k = 10f64.powi(DECIMALS);
-    let r = (x * k).round() / k;
-    // no negative zero in the JSON
-    if r == 0.0 { 0.0 } else { r }
-}
+pub use crate::experiments::harness::replay_plan::{DECIMALS, round};
 
 fn round3(p: [f64; 3]) -> [f64; 3] {
     p.map(round)

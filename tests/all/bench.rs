@@ -12,8 +12,10 @@ use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::settings::Settings;
+use steplearn::experiments::summary::TypedResult;
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
 use steplearn::experiments::sweep::{RunSpec, Shard};
+use steplearn::experiments::tracking::TrackingSummary;
 use steplearn::rules::{LearningRule, StepOutcome};
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -387,7 +389,12 @@ fn custom_results_round_trip_and_cannot_pose_as_built_ins() {
         ),
         ..s.clone()
     };
-    assert!(posing.to_json().is_err());
+    // A result posing as a built-in experiment's is refused by that experiment's check (the
+    // registry refuses a second experiment of the same name).
+    assert!(TrackingSummary::from_result(&posing.result).is_err());
+    let registry = Registry::builtin();
+    let tracking = registry.find_experiment("tracking").unwrap();
+    assert!(tracking.check_result(&posing.result).is_err());
     let clash = Summary {
         result: ExperimentResult::Custom(
             CustomResult::new("probe", &serde_json::json!({"seed": 3})).unwrap(),

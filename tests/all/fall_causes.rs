@@ -10,10 +10,12 @@ use steplearn::experiments::fall_causes::{
 };
 use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::robustness::RobustnessProtocol;
+use steplearn::experiments::robustness::RobustnessSummary;
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::StabilityProtocol;
-use steplearn::experiments::summary::ExperimentResult;
+use steplearn::experiments::stability::StabilitySummary;
+use steplearn::experiments::summary::TypedResult;
 use steplearn::experiments::sweep::RunSpec;
 use steplearn::experiments::trial::run_trial;
 
@@ -105,14 +107,11 @@ fn stability_summary_counts_every_fall_by_cause() {
         )
         .unwrap();
     s.validate().unwrap();
-    let ExperimentResult::Stability {
+    let StabilitySummary {
         controllers,
         fall_causes,
         catch_step_reach,
-    } = &s.result
-    else {
-        panic!("{:?}", s.result)
-    };
+    } = &StabilitySummary::from_result(&s.result).unwrap();
     // The stability summary reports the catch step's reach of both Capture Step walkers.
     let reach = catch_step_reach.expect("catch_step_reach in a new summary");
     for r in [reach.model, reach.learned].into_iter().flatten() {
@@ -179,16 +178,13 @@ fn robustness_summary_carries_the_baseline_on_the_same_pushes() {
         )
         .unwrap();
     s.validate().unwrap();
-    let ExperimentResult::Robustness {
+    let RobustnessSummary {
         pushes_until_first_absorbed,
         falls,
         impulse_ns,
         absorbed_by_push,
         no_learning,
-    } = s.result.clone()
-    else {
-        panic!("{:?}", s.result)
-    };
+    } = RobustnessSummary::from_result(&s.result).unwrap();
     assert_eq!(impulse_ns, Some(RobustnessProtocol::default().impulse));
     assert_eq!(absorbed_by_push.len(), 3);
     let b = no_learning.as_ref().expect("baseline");

@@ -2,12 +2,14 @@
 
 use std::path::Path;
 use std::process::Command;
+use steplearn::experiments::disturbance::DisturbanceSummary;
 use steplearn::experiments::index_page::{INDEX_FILE, write_index};
 use steplearn::experiments::reproduce::Claims;
-use steplearn::experiments::summary::{
-    ControllerFalls, Controllers, ExperimentResult, ModelLearned, NoLearning, Summary,
-};
+use steplearn::experiments::robustness::{NoLearning, RobustnessSummary};
+use steplearn::experiments::stability::{ControllerFalls, Controllers, StabilitySummary};
+use steplearn::experiments::summary::{ModelLearned, Summary, TypedResult};
 use steplearn::experiments::sweep::SUMMARY_FILE;
+use steplearn::experiments::tracking::TrackingSummary;
 
 const SVG: &str = "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"100\"><rect x=\"10\" y=\"10\" width=\"80\" height=\"40\" fill=\"rgb(31,119,180)\"/></svg>\n";
 
@@ -71,7 +73,12 @@ fn the_page_holds_every_figure_the_claims_and_the_command_and_nothing_external()
 /// `summary.json` and the CSV files the figures across seeds read, plus large per-run figures
 /// like the real ones (a 1.3 MB `df_maps.svg`, 250 kB others).
 fn reproduction(dir: &Path, seeds: u64) {
-    let run = |experiment: &str, seed: u64, result: ExperimentResult| {
+    fn run(
+        dir: &Path,
+        experiment: &str,
+        seed: u64,
+        result: impl TypedResult,
+    ) -> std::path::PathBuf {
         let d = dir.join(format!("{experiment}__lwpr__pendulum-cart__s{seed}"));
         std::fs::create_dir_all(&d).unwrap();
         Summary {
@@ -79,19 +86,20 @@ fn reproduction(dir: &Path, seeds: u64) {
             rule: "pendulum-cart".into(),
             seed,
             learn: Default::default(),
-            result,
+            result: result.into_result().unwrap(),
         }
         .write(&d.join(SUMMARY_FILE))
         .unwrap();
         d
-    };
+    }
     let big = |bytes: usize| format!("{}<!--{}-->", SVG, "x".repeat(bytes));
     for seed in 0..seeds {
         let s = seed as f64;
         let d = run(
+            dir,
             "tracking",
             seed,
-            ExperimentResult::Tracking {
+            TrackingSummary {
                 step_error_std_m: ModelLearned {
                     model: vec![Some(0.05), Some(0.03), Some(0.02)],
                     learned: vec![Some(0.04 + 0.001 * s), Some(0.02), Some(0.01)],
@@ -101,9 +109,10 @@ fn reproduction(dir: &Path, seeds: u64) {
         );
         std::fs::write(d.join("tracking_std.svg"), big(250_000)).unwrap();
         let d = run(
+            dir,
             "disturbance",
             seed,
-            ExperimentResult::Disturbance {
+            DisturbanceSummary {
                 return_time_s: ModelLearned {
                     model: 3.0 + 0.1 * s,
                     learned: 2.0,
@@ -134,9 +143,10 @@ fn reproduction(dir: &Path, seeds: u64) {
             impulse_at_50pct_fall_ns: i50,
         };
         let d = run(
+            dir,
             "stability",
             seed,
-            ExperimentResult::Stability {
+            StabilitySummary {
                 controllers: Controllers {
                     open_loop: falls(4.0),
                     model: falls(12.0 + s),
@@ -161,9 +171,10 @@ fn reproduction(dir: &Path, seeds: u64) {
         std::fs::write(d.join("fall_probability.svg"), big(250_000)).unwrap();
         let absorbed: Vec<bool> = (0..6).map(|p| p + (seed as usize % 2) >= 2).collect();
         let d = run(
+            dir,
             "robustness",
             seed,
-            ExperimentResult::Robustness {
+            RobustnessSummary {
                 pushes_until_first_absorbed: absorbed.iter().position(|&a| a).map(|i| i as u32 + 1),
                 falls: absorbed.iter().filter(|&&a| !a).count() as u32,
                 impulse_ns: Some(8.0),

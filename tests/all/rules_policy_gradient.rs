@@ -9,7 +9,8 @@ use steplearn::bench::{Bench, Registry};
 use steplearn::control::learner::{
     FootstepLearner, LearnerConfig, LearnerError, LearnerInput, Prior, TouchDownReport,
 };
-use steplearn::experiments::summary::{ExperimentResult, Summary};
+use steplearn::experiments::robustness::RobustnessSummary;
+use steplearn::experiments::summary::{Summary, TypedResult};
 use steplearn::experiments::sweep::{RunSpec, RunStatus};
 use steplearn::rules::{
     LearningRule, PendulumCart, PolicyGradient, PolicyGradientParams, RuleConfig, RuleError,
@@ -436,12 +437,10 @@ fn policy_gradient_runs_experiment_d_on_the_humanoid_through_the_bench() {
     assert_eq!(spec.rule, "policy-gradient");
     let summary = Summary::read(&dir.path().join(spec.id()).join("summary.json")).unwrap();
     assert_eq!(summary.rule, "policy-gradient");
-    let pushes = match summary.result {
-        ExperimentResult::Robustness {
-            absorbed_by_push, ..
-        } => absorbed_by_push.len(),
-        other => panic!("{other:?}"),
-    };
+    let pushes = RobustnessSummary::from_result(&summary.result)
+        .unwrap()
+        .absorbed_by_push
+        .len();
     assert!(pushes >= 1);
     // The rule learns on the humanoid: experiment D's learner starts untrained (the learning
     // metric, the norm of the mean dF over the input grid, is exactly 0 before the first
@@ -508,11 +507,11 @@ fn tuning_probe() {
         );
         let spec = &outcome.spec;
         let summary = Summary::read(&dir.path().join(spec.id()).join("summary.json")).unwrap();
-        if let ExperimentResult::Robustness {
+        if let Some(RobustnessSummary {
             pushes_until_first_absorbed,
             falls,
             ..
-        } = summary.result
+        }) = RobustnessSummary::of(&summary)
         {
             println!(
                 "{} | {} | {:?} | {falls}",

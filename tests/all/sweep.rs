@@ -7,12 +7,15 @@ use rand::{RngExt, SeedableRng};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use steplearn::experiments::summary::{
-    ControllerFalls, Controllers, ExperimentResult, ModelLearned, NoLearning, Summary,
-};
+use steplearn::experiments::ablation::{AblationCsvRow, merge};
+use steplearn::experiments::disturbance::DisturbanceSummary;
+use steplearn::experiments::robustness::{NoLearning, RobustnessSummary};
+use steplearn::experiments::stability::{ControllerFalls, Controllers, StabilitySummary};
+use steplearn::experiments::summary::{ModelLearned, Summary, TypedResult};
 use steplearn::experiments::sweep::{
-    AblationCsvRow, RunError, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, merge, run_sweep,
+    RunError, RunSpec, RunStatus, Shard, SweepGrid, SweepOptions, run_sweep,
 };
+use steplearn::experiments::tracking::TrackingSummary;
 use steplearn::report::Shortest;
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -39,7 +42,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
         impulse_at_50pct_fall_ns: rng.random_range(2.0..15.0),
     };
     let result = match spec.experiment.as_str() {
-        "stability" => ExperimentResult::Stability {
+        "stability" => StabilitySummary {
             controllers: Controllers {
                 open_loop: controller(40),
                 model: controller(40),
@@ -47,10 +50,11 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
             },
             fall_causes: Default::default(),
             catch_step_reach: None,
-        },
+        }
+        .into_result()?,
         "robustness" => {
             let first = rng.random_range(1..=6u32);
-            ExperimentResult::Robustness {
+            RobustnessSummary {
                 pushes_until_first_absorbed: (first < 6).then_some(first),
                 falls: first - 1,
                 impulse_ns: Some(6.0),
@@ -61,15 +65,17 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                     falls: 4,
                 }),
             }
+            .into_result()?
         }
-        "tracking" => ExperimentResult::Tracking {
+        "tracking" => TrackingSummary {
             step_error_std_m: ModelLearned {
                 model: vec![Some(rng.random_range(0.0..0.1)); 4],
                 learned: vec![Some(rng.random_range(0.0..0.1)); 4],
             },
             bin_s: 0.5,
-        },
-        "disturbance" => ExperimentResult::Disturbance {
+        }
+        .into_result()?,
+        "disturbance" => DisturbanceSummary {
             return_time_s: ModelLearned {
                 model: rng.random_range(0.0..5.0),
                 learned: rng.random_range(0.0..5.0),
@@ -81,7 +87,8 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 learned: 0.15,
             },
             falls: None,
-        },
+        }
+        .into_result()?,
         other => return Err(format!("no fake {other}").into()),
     };
     Ok(Summary {
@@ -326,16 +333,16 @@ fn shards_fill_one_directory_and_merge_builds_the_table() {
             learn: None,
         };
         let s = fake(&spec("stability"), &dir.join(spec("stability").id())).unwrap();
-        if let ExperimentResult::Stability { controllers, .. } = s.result {
+        if let Some(StabilitySummary { controllers, .. }) = StabilitySummary::of(&s) {
             learned.push(controllers.learned.impulse_at_50pct_fall_ns);
         }
         let s = fake(&spec("robustness"), &dir.join(spec("robustness").id())).unwrap();
-        if let ExperimentResult::Robustness {
+        if let Some(RobustnessSummary {
             pushes_until_first_absorbed,
             absorbed_by_push,
             no_learning: Some(b),
             ..
-        } = s.result
+        }) = RobustnessSummary::of(&s)
         {
             if let Some(n) = pushes_until_first_absorbed {
                 absorbed_within_3 += usize::from(n <= 3);

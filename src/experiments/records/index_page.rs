@@ -59,13 +59,15 @@ pub fn caption(file_name: &str) -> &'static str {
     }
 }
 
-/// The paper's order of the experiments (A-D) for a run directory or figure file name that
-/// starts with the experiment's name; others after them.
+/// The built-in suite's order of the experiments (the paper's A-D, then those beyond it) for a
+/// run directory or figure file name that starts with the experiment's name; others after
+/// them.
 pub fn experiment_rank(name: &str) -> usize {
-    ["tracking", "disturbance", "stability", "robustness"]
+    let suite = crate::experiments::suite::builtin();
+    suite
         .iter()
-        .position(|e| name.starts_with(e))
-        .unwrap_or(4)
+        .position(|e| name.starts_with(e.name()))
+        .unwrap_or(suite.len())
 }
 
 /// Sort key of a run directory name: the experiment's rank, the name without its seed, the

@@ -1,12 +1,10 @@
 //! Records and reports of runs: `summary.json`, paired comparisons and claims, sweeps and
-//! their resumption, the paper's claims report, the results page and config files.
+//! their resumption, the results page and config files.
 
 pub mod claim;
 pub mod config_file;
 pub(crate) mod error;
 pub mod index_page;
-pub(crate) mod kind;
 pub mod paired;
-pub mod reproduce;
 pub mod summary;
 pub mod sweep;

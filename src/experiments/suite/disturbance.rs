@@ -13,13 +13,18 @@ use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
 use crate::experiments::error::ExperimentError;
 use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
 };
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::replay_plan::{
+    Moment, ReplayPlan, ReplayWalker, differing_push_moment, pushes_of,
+};
 use crate::experiments::schedule::PushPlan;
 use crate::experiments::settings::{LearnerFactory, Settings};
-use crate::experiments::summary::{ExperimentResult, ModelLearned, PushFalls, Summary};
+use crate::experiments::summary::{
+    ExperimentResult, ModelLearned, Summary, TypedResult, check_causes, finite_non_negative,
+};
 use crate::experiments::trial::{StepRecord, TrialLog, TrialSetup};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
@@ -27,7 +32,11 @@ use crate::report::csv_read::{number, read_rows};
 use crate::report::figures::{LinePlot, Series, line_plot};
 use crate::report::{Fixed, write_rows};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::Path;
+
+/// The experiment's registered name.
+pub const NAME: &str = "disturbance";
 
 /// The protocol (paper: F_R = 0.2 m, 8 Ns forward pushes at random times).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -455,13 +464,108 @@ impl DisturbanceResult {
     }
 }
 
+/// Pushes delivered and pushes that ended in a fall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PushFalls {
+    /// Pushes delivered, per controller.
+    pub pushes: ModelLearned<u32>,
+    /// Pushes followed by a fall, per controller.
+    pub falls: ModelLearned<u32>,
+    /// Every fall of the trial per cause (names from
+    /// [`crate::experiments::fall_causes::FallCause`]), per controller; absent in older
+    /// summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub causes: Option<ModelLearned<BTreeMap<String, u32>>>,
+    /// Pushes followed by a fall before the next push, per controller: `falls` plus the
+    /// pushes whose fall came after the push window closed; absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub before_next_push: Option<ModelLearned<u32>>,
+}
+
+/// Experiment B's part of `summary.json`: recovery after 8 Ns pushes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisturbanceSummary {
+    /// Time (s) from the push until the step size is back at the reference step (within
+    /// the protocol's tolerance; the horizon if never).
+    pub return_time_s: ModelLearned<f64>,
+    /// Time (s) from the push until the step size is back at the walker's own undisturbed
+    /// mean step (recovery without a steady bias); absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settle_time_s: Option<ModelLearned<f64>>,
+    /// Mean |F_hat - F_R| (m) of the touch-downs within the horizon after an absorbed
+    /// push; absent in older summaries and when a walker absorbed no push.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_error_after_push_m: Option<ModelLearned<f64>>,
+    /// Largest |theta_E| (rad) after the push.
+    pub max_tda_rad: ModelLearned<f64>,
+    /// Pushes delivered and pushes that ended in a fall, per controller (the return time
+    /// and TDA cover the absorbed pushes only); absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub falls: Option<PushFalls>,
+}
+
+/// B: finite non-negative times, errors and angles; falls within pushes, causes adding up.
+impl TypedResult for DisturbanceSummary {
+    const EXPERIMENT: &'static str = NAME;
+
+    fn validate(&self) -> Result<(), ReportError> {
+        let DisturbanceSummary {
+            return_time_s,
+            settle_time_s,
+            step_error_after_push_m,
+            max_tda_rad,
+            falls,
+        } = self;
+        if let Some(t) = settle_time_s {
+            finite_non_negative("settle_time_s.model", t.model)?;
+            finite_non_negative("settle_time_s.learned", t.learned)?;
+        }
+        if let Some(e) = step_error_after_push_m {
+            finite_non_negative("step_error_after_push_m.model", e.model)?;
+            finite_non_negative("step_error_after_push_m.learned", e.learned)?;
+        }
+        if let Some(f) = falls {
+            if f.falls.model > f.pushes.model || f.falls.learned > f.pushes.learned {
+                return Err(ReportError::invalid(format!(
+                    "falls: more falls than pushes ({f:?})"
+                )));
+            }
+            if let Some(causes) = &f.causes {
+                check_causes("model", &causes.model, f.falls.model)?;
+                check_causes("learned", &causes.learned, f.falls.learned)?;
+            }
+            if let Some(late) = &f.before_next_push {
+                let within = |late: u32, falls: u32, pushes: u32| (falls..=pushes).contains(&late);
+                if !within(late.model, f.falls.model, f.pushes.model)
+                    || !within(late.learned, f.falls.learned, f.pushes.learned)
+                {
+                    return Err(ReportError::invalid(format!(
+                        "falls: falls before the next push {late:?} outside [falls, pushes]"
+                    )));
+                }
+            }
+        }
+        finite_non_negative("return_time_s.model", return_time_s.model)?;
+        finite_non_negative("return_time_s.learned", return_time_s.learned)?;
+        finite_non_negative("max_tda_rad.model", max_tda_rad.model)?;
+        finite_non_negative("max_tda_rad.learned", max_tda_rad.learned)?;
+        Ok(())
+    }
+}
+
 /// Experiment B as a registered [`Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Disturbance;
 
 impl Experiment for Disturbance {
     fn name(&self) -> &str {
-        crate::experiments::ExperimentKind::Disturbance.into()
+        NAME
+    }
+
+    fn replay(&self) -> Option<&dyn Replayable> {
+        Some(self)
     }
 
     fn description(&self) -> &str {
@@ -472,6 +576,10 @@ impl Experiment for Disturbance {
         tables.resolve::<DisturbanceProtocol>(self.name())
     }
 
+    fn check_result(&self, result: &ExperimentResult) -> Result<(), ReportError> {
+        DisturbanceSummary::from_result(result).map(|_| ())
+    }
+
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
         claim(runs, 0.0).over_seeds
     }
@@ -479,11 +587,11 @@ impl Experiment for Disturbance {
     fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut h: [Vec<f64>; 4] = Default::default();
         for s in runs {
-            if let ExperimentResult::Disturbance {
+            if let Some(DisturbanceSummary {
                 return_time_s,
                 falls,
                 ..
-            } = &s.result
+            }) = DisturbanceSummary::of(s)
             {
                 h[0].push(return_time_s.model);
                 h[1].push(return_time_s.learned);
@@ -519,7 +627,7 @@ impl Experiment for Disturbance {
         let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_step_learner())?;
         r.write(dir, p.f_r)?;
         let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
-        Ok(ExperimentResult::Disturbance {
+        Ok(DisturbanceSummary {
             return_time_s: ModelLearned {
                 model: r.model.return_time_s,
                 learned: r.learned.return_time_s,
@@ -553,7 +661,45 @@ impl Experiment for Disturbance {
                     learned: count(r.learned.falls_before_next_push),
                 }),
             }),
+        }
+        .into_result()?)
+    }
+}
+
+impl Replayable for Disturbance {
+    /// The learned and model walkers on the run's pushes, each push's whole recovery.
+    fn replay_plan(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+    ) -> Result<ReplayPlan, ExperimentError> {
+        let p: DisturbanceProtocol = protocols.get(NAME)?;
+        let setup = trial_setup(settings, &p, seed);
+        Ok(ReplayPlan::Trials {
+            walkers: vec![
+                ReplayWalker::new("learned", setup.clone(), true),
+                ReplayWalker::new("model", setup, false),
+            ],
+            direction: p.direction,
+            // The whole recovery the experiment measures.
+            after_push_s: p.horizon_s.max(settings.push_window_s),
+            pushes: true,
         })
+    }
+
+    /// The first push where one of learned and model fell and the other recovered (all
+    /// pushes have one impulse); else the first where one fell; else push 1.
+    fn telling_moment(
+        &self,
+        _settings: &Settings,
+        _protocols: &ProtocolTables,
+        _seed: u64,
+        dir: &Path,
+    ) -> Result<(Moment, String), ExperimentError> {
+        let path = dir.join("disturbance_pushes.csv");
+        let (l, m) = (pushes_of(&path, "learned")?, pushes_of(&path, "model")?);
+        Ok(differing_push_moment(&l, &m, "learned", "model"))
     }
 }
 
@@ -643,19 +789,14 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
     let (mut return_diff, mut settle_diff, mut error_diff, mut falls_diff) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut late_falls_diff = Vec::new();
-    for (seed, result) in by_seed(runs, |s| {
-        matches!(s.result, ExperimentResult::Disturbance { .. }).then_some(&s.result)
-    }) {
-        let ExperimentResult::Disturbance {
+    for (seed, result) in by_seed(runs, DisturbanceSummary::of) {
+        let DisturbanceSummary {
             return_time_s,
             settle_time_s,
             step_error_after_push_m,
             max_tda_rad,
             falls,
-        } = result
-        else {
-            continue;
-        };
+        } = &result;
         let sooner = return_time_s.learned < return_time_s.model;
         // Paired over seeds: return times only where both walkers absorbed a push (without
         // one the return time is the horizon, not a measurement), fall rates only where both
@@ -767,7 +908,106 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::experiments::fall_causes::FallCause;
     use crate::experiments::trial::PushRecord;
+
+    /// Every cause at zero but `nonzero`.
+    fn cause_counts(nonzero: &[(&str, u32)]) -> BTreeMap<String, u32> {
+        let mut m: BTreeMap<String, u32> = FallCause::ALL
+            .iter()
+            .map(|c| (c.name().to_string(), 0))
+            .collect();
+        for &(k, n) in nonzero {
+            m.insert(k.to_string(), n);
+        }
+        m
+    }
+
+    fn typed(model: &[(&str, u32)], learned: &[(&str, u32)]) -> DisturbanceSummary {
+        DisturbanceSummary {
+            return_time_s: ModelLearned {
+                model: 1.0,
+                learned: 1.0,
+            },
+            settle_time_s: None,
+            step_error_after_push_m: None,
+            max_tda_rad: ModelLearned {
+                model: 0.1,
+                learned: 0.1,
+            },
+            falls: Some(PushFalls {
+                pushes: ModelLearned {
+                    model: 10,
+                    learned: 10,
+                },
+                falls: ModelLearned {
+                    model: 2,
+                    learned: 1,
+                },
+                causes: Some(ModelLearned {
+                    model: cause_counts(model),
+                    learned: cause_counts(learned),
+                }),
+                before_next_push: Some(ModelLearned {
+                    model: 3,
+                    learned: 1,
+                }),
+            }),
+        }
+    }
+
+    #[test]
+    fn fall_causes_must_match_its_falls_and_fields_keep_their_order() {
+        let ok = typed(
+            &[("later_step_clamped", 2), ("no_push", 4)],
+            &[("catch_step_clamped", 1)],
+        );
+        let result = ok.clone().into_result().unwrap();
+        Disturbance.check_result(&result).unwrap();
+        let json = serde_json::to_string_pretty(&crate::experiments::summary::Summary {
+            approx: "lwpr".into(),
+            rule: "pendulum-cart".into(),
+            seed: 0,
+            learn: Default::default(),
+            result,
+        })
+        .unwrap();
+        let at = |k: &str| json.find(&format!("\"{k}\"")).unwrap();
+        assert!(at("return_time_s") < at("max_tda_rad") && at("max_tda_rad") < at("falls"));
+        assert!(!json.contains("settle_time_s"));
+        // one fall after a push short, one too many, an unknown cause, more falls than pushes
+        let refused = |r: DisturbanceSummary| {
+            let read = Disturbance
+                .check_result(&ExperimentResult::new(NAME, &r).unwrap())
+                .is_err();
+            assert_eq!(r.clone().into_result().is_err(), read);
+            read
+        };
+        assert!(refused(typed(
+            &[("later_step_clamped", 1)],
+            &[("catch_step_clamped", 1)]
+        )));
+        assert!(refused(typed(
+            &[("later_step_clamped", 2)],
+            &[("before_touch_down", 2)]
+        )));
+        assert!(refused(typed(
+            &[("later_step_clamped", 2), ("gremlins", 0)],
+            &[("no_push", 0), ("before_touch_down", 1)]
+        )));
+        let mut more = ok.clone();
+        more.falls.as_mut().unwrap().falls.model = 11;
+        assert!(refused(more));
+        let mut late = ok.clone();
+        late.falls.as_mut().unwrap().before_next_push = Some(ModelLearned {
+            model: 1,
+            learned: 1,
+        });
+        assert!(refused(late));
+        let mut nan = ok;
+        nan.return_time_s.learned = f64::NAN;
+        assert!(refused(nan));
+    }
 
     /// Steps every 0.5 s for 60 s at F_R + `bias`, pushes at 10, 20, 30, 40 s; the two steps
     /// after each push are 8 cm and 4 cm long of that.

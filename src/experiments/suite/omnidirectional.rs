@@ -17,7 +17,7 @@
 //! model and for both learners (learning as they walk). Every step's error is the sagittal
 //! step error and the width error against the reference width
 //! ([`crate::control::walker::Walker::width_reference`]); per direction sector of the reference,
-//! the mean of its norm. Registered as `omnidirectional`; its result is a [`CustomResult`], as
+//! the mean of its norm. Registered as `omnidirectional`; its result is a [`crate::experiments::CustomResult`] written in alphabetical order, as
 //! a user's experiment would write it.
 
 use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
@@ -32,7 +32,7 @@ use crate::experiments::fall_causes::{count, run_classified};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::{PushPlan, ReferenceSchedule};
-use crate::experiments::summary::{CustomResult, ExperimentResult, Summary};
+use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::experiments::trial::{Observer, PushRecord, TrialLog, run_trial};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
@@ -484,10 +484,8 @@ fn write_figures(
 
 fn parse(runs: &[&Summary]) -> Vec<OmnidirectionalResult> {
     runs.iter()
-        .filter_map(|s| match &s.result {
-            ExperimentResult::Custom(c) => c.parse::<OmnidirectionalResult>().ok(),
-            _ => None,
-        })
+        .filter(|s| s.experiment() == "omnidirectional")
+        .filter_map(|s| s.result.parse::<OmnidirectionalResult>().ok())
         .collect()
 }
 
@@ -585,10 +583,7 @@ impl Experiment for Omnidirectional {
         crate::report::write_rows(&dir.join("omnidirectional_pushes.csv"), &rows)?;
         crate::report::write_rows(&dir.join("omnidirectional_walk.csv"), &walk_rows)?;
         write_figures(dir, &result, &walkers, &sectors)?;
-        Ok(ExperimentResult::Custom(CustomResult::new(
-            self.name(),
-            &result,
-        )?))
+        Ok(ExperimentResult::new(self.name(), &result)?)
     }
 
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {

@@ -21,16 +21,18 @@ use crate::control::walker::WalkerMode;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
 use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
 };
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::replay_plan::{Moment, PushOutcome, ReplayPlan, differing_push, outcome};
 use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::experiments::settings::Settings;
-use crate::experiments::summary::{ExperimentResult, NoLearning, Summary};
+use crate::experiments::summary::{ExperimentResult, Summary, TypedResult, finite_non_negative};
 use crate::experiments::trial::{StepCells, StepRecord, TrialSetup, run_trial};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
+use crate::report::csv_read::read_rows;
 use crate::report::figures::{HeatMapGrid, HeatPanel, LinePlot, Series, heat_map_grid, line_plot};
 use crate::report::{Fixed, write_rows};
 use crate::rules::LearningRule;
@@ -38,6 +40,9 @@ use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+
+/// The experiment's registered name.
+pub const NAME: &str = "robustness";
 
 /// The protocol (paper: stepping in place, 8 Ns forward pushes, no analytic footstep; here
 /// the impulse is calibrated so that the walker without learning falls).
@@ -190,8 +195,8 @@ impl RobustnessResult {
     }
 
     /// The experiment's part of `summary.json`.
-    pub fn summary_result(&self) -> ExperimentResult {
-        ExperimentResult::Robustness {
+    pub fn summary(&self) -> RobustnessSummary {
+        RobustnessSummary {
             pushes_until_first_absorbed: self.pushes_until_first_absorbed().map(|n| n as u32),
             falls: self.falls() as u32,
             impulse_ns: Some(self.impulse),
@@ -201,6 +206,92 @@ impl RobustnessResult {
                 falls: self.no_learning_falls() as u32,
             }),
         }
+    }
+}
+
+/// The same episodes walked without learning (dF = 0 throughout).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoLearning {
+    /// Whether each push (in order) was absorbed.
+    pub absorbed_by_push: Vec<bool>,
+    /// Falls over the whole run.
+    pub falls: u32,
+}
+
+/// Experiment D's part of `summary.json`: learning from scratch.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobustnessSummary {
+    /// 1-based index of the first push absorbed without a fall; `null` if none was.
+    pub pushes_until_first_absorbed: Option<u32>,
+    /// Falls over the whole run.
+    pub falls: u32,
+    /// The push impulse (Ns); absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impulse_ns: Option<f64>,
+    /// The learned walker: whether each push (in order) was absorbed (empty in older
+    /// summaries).
+    #[serde(default)]
+    pub absorbed_by_push: Vec<bool>,
+    /// The same episodes without learning; absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_learning: Option<NoLearning>,
+}
+
+/// D: the first absorbed push agrees with the per-push record; a missed push means a fall.
+impl TypedResult for RobustnessSummary {
+    const EXPERIMENT: &'static str = NAME;
+
+    fn validate(&self) -> Result<(), ReportError> {
+        let RobustnessSummary {
+            pushes_until_first_absorbed,
+            falls,
+            impulse_ns,
+            absorbed_by_push,
+            no_learning,
+        } = self;
+        if *pushes_until_first_absorbed == Some(0) {
+            return Err(ReportError::invalid(
+                "pushes_until_first_absorbed is 1-based, got 0",
+            ));
+        }
+        if let Some(i) = impulse_ns {
+            finite_non_negative("impulse_ns", *i)?;
+        }
+        let first = absorbed_by_push
+            .iter()
+            .position(|&a| a)
+            .map(|i| i as u32 + 1);
+        if !absorbed_by_push.is_empty() && first != *pushes_until_first_absorbed {
+            return Err(ReportError::invalid(format!(
+                "absorbed_by_push first absorbs push {first:?}, \
+                 pushes_until_first_absorbed says {pushes_until_first_absorbed:?}"
+            )));
+        }
+        // A push not absorbed means at least one fall in its episode.
+        let check_falls = |what: &str, absorbed: &[bool], falls: u32| {
+            let missed = absorbed.iter().filter(|&&a| !a).count();
+            if (falls as usize) < missed {
+                Err(ReportError::invalid(format!(
+                    "{what}: {missed} pushes not absorbed but only {falls} falls"
+                )))
+            } else {
+                Ok(())
+            }
+        };
+        check_falls("learned", absorbed_by_push, *falls)?;
+        if let Some(n) = no_learning {
+            if n.absorbed_by_push.len() != absorbed_by_push.len() {
+                return Err(ReportError::invalid(format!(
+                    "no_learning has {} pushes, the learned walker {}",
+                    n.absorbed_by_push.len(),
+                    absorbed_by_push.len()
+                )));
+            }
+            check_falls("no_learning", &n.absorbed_by_push, n.falls)?;
+        }
+        Ok(())
     }
 }
 
@@ -429,7 +520,11 @@ pub struct Robustness;
 
 impl Experiment for Robustness {
     fn name(&self) -> &str {
-        crate::experiments::ExperimentKind::Robustness.into()
+        NAME
+    }
+
+    fn replay(&self) -> Option<&dyn Replayable> {
+        Some(self)
     }
 
     fn description(&self) -> &str {
@@ -440,22 +535,24 @@ impl Experiment for Robustness {
         tables.resolve::<RobustnessProtocol>(self.name())
     }
 
+    fn check_result(&self, result: &ExperimentResult) -> Result<(), ReportError> {
+        RobustnessSummary::from_result(result).map(|_| ())
+    }
+
     /// The claim's comparison (pushes absorbed), then the falls while learning and the pushes
     /// until the first absorbed one (a run without any counts as one more than its pushes),
     /// each learned minus without learning.
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
         let mut out = claim(runs).over_seeds;
         let (mut falls, mut first) = (Vec::new(), Vec::new());
-        for (_, result) in by_seed(runs, |s| {
-            matches!(s.result, ExperimentResult::Robustness { .. }).then_some(&s.result)
-        }) {
-            if let ExperimentResult::Robustness {
+        for (_, result) in by_seed(runs, RobustnessSummary::of) {
+            if let RobustnessSummary {
                 pushes_until_first_absorbed,
                 falls: learned_falls,
                 absorbed_by_push,
                 no_learning: Some(b),
                 ..
-            } = result
+            } = &result
             {
                 falls.push(f64::from(*learned_falls) - f64::from(b.falls));
                 let learned_first =
@@ -486,13 +583,13 @@ impl Experiment for Robustness {
     fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut h: [Vec<f64>; 4] = Default::default();
         for s in runs {
-            if let ExperimentResult::Robustness {
+            if let Some(RobustnessSummary {
                 pushes_until_first_absorbed,
                 absorbed_by_push,
                 no_learning,
                 falls,
                 ..
-            } = &s.result
+            }) = &RobustnessSummary::of(s)
             {
                 let count = |v: &[bool]| v.iter().filter(|&&a| a).count() as f64;
                 h[0].push(pushes_until_first_absorbed.map_or(f64::NAN, f64::from));
@@ -531,7 +628,69 @@ impl Experiment for Robustness {
             ctx.make_learner_with(config)
         })?;
         r.write(dir)?;
-        Ok(r.summary_result())
+        Ok(r.summary().into_result()?)
+    }
+}
+
+impl Replayable for Robustness {
+    /// One episode per push; the learned walker learns from the episodes before the push
+    /// replayed, beside the walker without learning.
+    fn replay_plan(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+    ) -> Result<ReplayPlan, ExperimentError> {
+        let p: RobustnessProtocol = protocols.get(NAME)?;
+        Ok(ReplayPlan::Episodes {
+            episodes: push_times(settings, &p, seed)
+                .into_iter()
+                .map(|t| episode_setup(settings, &p, t))
+                .collect(),
+            learner: Box::new(learner_config(settings, &p)),
+            impulse: p.impulse,
+            direction: p.direction,
+        })
+    }
+
+    /// The first push the learned walker absorbed and the walker without learning did not;
+    /// else the first where they differ; else push 1.
+    fn telling_moment(
+        &self,
+        _settings: &Settings,
+        _protocols: &ProtocolTables,
+        _seed: u64,
+        dir: &Path,
+    ) -> Result<(Moment, String), ExperimentError> {
+        /// A push of `robustness_pushes.csv`; `no_learning_fell` is empty where the run had
+        /// no walker without learning.
+        #[derive(Deserialize)]
+        struct Row {
+            fell: bool,
+            #[serde(default)]
+            no_learning_fell: Option<bool>,
+        }
+        let rows: Vec<Row> = read_rows(&dir.join("robustness_pushes.csv"))?;
+        // Equal impulses: the first push that differs.
+        let learned: Vec<PushOutcome> = rows.iter().map(|r| (0.0, r.fell)).collect();
+        let without: Vec<PushOutcome> = rows
+            .iter()
+            .map(|r| (0.0, r.no_learning_fell.unwrap_or(false)))
+            .collect();
+        let k = learned
+            .iter()
+            .zip(&without)
+            .position(|(l, w)| !l.1 && w.1)
+            .map_or_else(|| differing_push(&learned, &without), |i| i + 1);
+        let fell = |x: &[PushOutcome]| x.get(k - 1).is_some_and(|p| p.1);
+        Ok((
+            Moment::Push(k),
+            format!(
+                "push {k}: learned {}, without learning {}",
+                outcome(fell(&learned)),
+                outcome(fell(&without))
+            ),
+        ))
     }
 }
 
@@ -569,15 +728,10 @@ pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportEr
             to[k].push(so_far);
         }
     };
-    for (_, (absorbed, no_learning)) in by_seed(runs, |s| match &s.result {
-        ExperimentResult::Robustness {
-            absorbed_by_push,
-            no_learning,
-            ..
-        } => Some((absorbed_by_push, no_learning)),
-        _ => None,
+    for (_, (absorbed, no_learning)) in by_seed(runs, |s| {
+        RobustnessSummary::of(s).map(|r| (r.absorbed_by_push, r.no_learning))
     }) {
-        add(&mut learned, absorbed);
+        add(&mut learned, &absorbed);
         if let Some(n) = no_learning {
             add(&mut without, &n.absorbed_by_push);
         }
@@ -606,19 +760,14 @@ pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportEr
 pub fn claim(runs: &[&Summary]) -> Claim {
     let mut seeds = Vec::new();
     let mut absorbed_diff = Vec::new();
-    for (seed, result) in by_seed(runs, |s| {
-        matches!(s.result, ExperimentResult::Robustness { .. }).then_some(&s.result)
-    }) {
-        let ExperimentResult::Robustness {
+    for (seed, result) in by_seed(runs, RobustnessSummary::of) {
+        let RobustnessSummary {
             pushes_until_first_absorbed,
             falls,
             impulse_ns,
             absorbed_by_push,
             no_learning,
-        } = result
-        else {
-            continue;
-        };
+        } = &result;
         let n = *pushes_until_first_absorbed;
         let early = n.is_some_and(|n| n <= 3);
         let absorbed = absorbed_by_push.iter().filter(|&&a| a).count();
@@ -658,4 +807,85 @@ pub fn claim(runs: &[&Summary]) -> Claim {
             Direction::HigherIsBetter,
         )],
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn typed() -> RobustnessSummary {
+        RobustnessSummary {
+            pushes_until_first_absorbed: Some(3),
+            falls: 2,
+            impulse_ns: Some(8.0),
+            absorbed_by_push: vec![false, false, true],
+            no_learning: Some(NoLearning {
+                absorbed_by_push: vec![false, false, false],
+                falls: 4,
+            }),
+        }
+    }
+
+    /// Whether `r` is refused, written and read back alike.
+    fn refused(r: RobustnessSummary) -> bool {
+        let read = Robustness
+            .check_result(&ExperimentResult::new(NAME, &r).unwrap())
+            .is_err();
+        assert_eq!(r.into_result().is_err(), read);
+        read
+    }
+
+    #[test]
+    fn inconsistent_series_are_refused() {
+        assert!(!refused(typed()));
+        let with = |f: &dyn Fn(&mut RobustnessSummary)| {
+            let mut r = typed();
+            f(&mut r);
+            refused(r)
+        };
+        // the first absorbed push disagrees with the series
+        assert!(with(&|r| r.absorbed_by_push[1] = true));
+        // 1-based
+        assert!(with(&|r| {
+            r.pushes_until_first_absorbed = Some(0);
+            r.absorbed_by_push.clear();
+        }));
+        // different lengths
+        assert!(with(&|r| r
+            .no_learning
+            .as_mut()
+            .unwrap()
+            .absorbed_by_push
+            .push(true)));
+        // fewer falls than pushes not absorbed
+        assert!(with(&|r| r.no_learning.as_mut().unwrap().falls = 2));
+        assert!(with(&|r| r.falls = 1));
+        // A NaN impulse cannot be written; in JSON it could only be `null`, no impulse.
+        let mut r = typed();
+        r.impulse_ns = Some(f64::NAN);
+        assert!(r.into_result().is_err());
+    }
+
+    #[test]
+    fn older_summaries_read_and_write_back_without_invented_fields() {
+        let old_d = r#"{"approx": "lwpr", "rule": "pendulum-cart", "seed": 1,
+            "experiment": "robustness", "pushes_until_first_absorbed": 2, "falls": 1}"#;
+        let s = Summary::from_json(old_d).unwrap();
+        let r = RobustnessSummary::of(&s).unwrap();
+        assert_eq!(
+            r,
+            RobustnessSummary {
+                pushes_until_first_absorbed: Some(2),
+                falls: 1,
+                impulse_ns: None,
+                absorbed_by_push: vec![],
+                no_learning: None,
+            }
+        );
+        let written = Summary {
+            result: r.into_result().unwrap(),
+            ..s
+        };
+        assert!(!written.to_json().unwrap().contains("no_learning"));
+    }
 }

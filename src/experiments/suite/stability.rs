@@ -8,18 +8,20 @@ use crate::experiments::catch_step::{CatchStepReach, catch_step_reach};
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
 use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
 };
 use crate::experiments::fall_causes::{
     ClassifiedFall, FallCause, FallEvent, cause_by_push, count, push_rows, run_classified_with,
 };
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::replay_plan::{
+    Moment, ReplayPlan, ReplayWalker, differing_push_moment, pushes_of,
+};
 use crate::experiments::schedule::PushPlan;
 use crate::experiments::settings::{LearnerFactory, Settings};
-use crate::experiments::summary::FallCauseCounts;
 use crate::experiments::summary::{
-    CatchStepReaches, ControllerFalls, Controllers, ExperimentResult, Summary,
+    ExperimentResult, Summary, TypedResult, check_causes, finite_non_negative,
 };
 use crate::experiments::trial::{PushRecord, TrialLog, TrialSetup};
 use crate::report::ReportError;
@@ -31,6 +33,9 @@ use crate::report::write_rows;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// The experiment's registered name.
+pub const NAME: &str = "stability";
 
 /// The protocol (paper: 400 pushes uniform in [0, 20] Ns, walking in place).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -277,13 +282,126 @@ pub fn direction_name(d: [f64; 3]) -> String {
     }
 }
 
+/// Pushes, falls and the 50% fall impulse of one controller (experiment C).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControllerFalls {
+    /// Pushes applied.
+    pub pushes: u32,
+    /// Falls among them.
+    pub falls: u32,
+    /// Impulse (Ns) at which half the pushes make the robot fall, from
+    /// [`crate::report::fall_rate::impulse_at_50pct_fall`] (with its documented fallbacks).
+    pub impulse_at_50pct_fall_ns: f64,
+}
+
+/// Experiment C's three controllers.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Controllers {
+    /// Walking in place at a fixed frequency, not reacting to pushes.
+    pub open_loop: ControllerFalls,
+    /// The Capture Step controller.
+    pub model: ControllerFalls,
+    /// Capture Step plus the learned offset.
+    pub learned: ControllerFalls,
+}
+
+/// Experiment C: falls per cause (names from [`crate::experiments::fall_causes::FallCause`])
+/// of each controller, over every fall of its trial. Empty in summaries written before the
+/// causes were recorded.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FallCauseCounts {
+    /// The open-loop walker.
+    pub open_loop: BTreeMap<String, u32>,
+    /// The Capture Step controller.
+    pub model: BTreeMap<String, u32>,
+    /// Capture Step plus the learned offset.
+    pub learned: BTreeMap<String, u32>,
+}
+
+/// The catch step's mean reach (realised / commanded length) of the two Capture Step
+/// walkers; `null` where no push had a catch step that counts.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CatchStepReaches {
+    /// The Capture Step model.
+    pub model: Option<f64>,
+    /// The learned walker.
+    pub learned: Option<f64>,
+}
+
+/// Experiment C's part of `summary.json`: falls vs impulse for three controllers.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilitySummary {
+    /// Per controller.
+    pub controllers: Controllers,
+    /// Falls per cause, per controller (empty in older summaries).
+    #[serde(default)]
+    pub fall_causes: FallCauseCounts,
+    /// The catch step's reach of the model and the learned walker (see
+    /// [`crate::experiments::catch_step`]); absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub catch_step_reach: Option<CatchStepReaches>,
+}
+
+/// C: falls within pushes per controller, causes adding up, finite reaches.
+impl TypedResult for StabilitySummary {
+    const EXPERIMENT: &'static str = NAME;
+
+    fn validate(&self) -> Result<(), ReportError> {
+        let (controllers, fall_causes, catch_step_reach) =
+            (&self.controllers, &self.fall_causes, &self.catch_step_reach);
+        for (name, c, causes) in [
+            ("open_loop", &controllers.open_loop, &fall_causes.open_loop),
+            ("model", &controllers.model, &fall_causes.model),
+            ("learned", &controllers.learned, &fall_causes.learned),
+        ] {
+            c.validate(name)?;
+            check_causes(name, causes, c.falls)?;
+        }
+        if let Some(r) = catch_step_reach {
+            for (name, v) in [
+                ("catch_step_reach.model", r.model),
+                ("catch_step_reach.learned", r.learned),
+            ] {
+                if v.is_some_and(|v| !v.is_finite()) {
+                    return Err(ReportError::invalid(format!("{name} must be finite")));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl ControllerFalls {
+    fn validate(&self, name: &str) -> Result<(), ReportError> {
+        if self.falls > self.pushes {
+            return Err(ReportError::invalid(format!(
+                "{name}: {} falls out of {} pushes",
+                self.falls, self.pushes
+            )));
+        }
+        finite_non_negative(
+            &format!("{name}.impulse_at_50pct_fall_ns"),
+            self.impulse_at_50pct_fall_ns,
+        )
+    }
+}
+
 /// Experiment C as a registered [`Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Stability;
 
 impl Experiment for Stability {
     fn name(&self) -> &str {
-        crate::experiments::ExperimentKind::Stability.into()
+        NAME
+    }
+
+    fn replay(&self) -> Option<&dyn Replayable> {
+        Some(self)
     }
 
     fn description(&self) -> &str {
@@ -294,6 +412,10 @@ impl Experiment for Stability {
         tables.resolve::<StabilityProtocol>(self.name())
     }
 
+    fn check_result(&self, result: &ExperimentResult) -> Result<(), ReportError> {
+        StabilitySummary::from_result(result).map(|_| ())
+    }
+
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
         claim(runs).over_seeds
     }
@@ -301,7 +423,7 @@ impl Experiment for Stability {
     fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut h: [Vec<f64>; 4] = Default::default();
         for s in runs {
-            if let ExperimentResult::Stability { controllers: c, .. } = &s.result {
+            if let Some(StabilitySummary { controllers: c, .. }) = StabilitySummary::of(s) {
                 h[0].push(c.open_loop.impulse_at_50pct_fall_ns);
                 h[1].push(c.model.impulse_at_50pct_fall_ns);
                 h[2].push(c.learned.impulse_at_50pct_fall_ns);
@@ -339,7 +461,7 @@ impl Experiment for Stability {
             falls: c.falls() as u32,
             impulse_at_50pct_fall_ns: c.fall50.impulse_ns,
         };
-        Ok(ExperimentResult::Stability {
+        Ok(StabilitySummary {
             controllers: Controllers {
                 open_loop: falls(&r.open_loop),
                 model: falls(&r.model),
@@ -350,7 +472,46 @@ impl Experiment for Stability {
                 model: r.model.catch_step.reach,
                 learned: r.learned.catch_step.reach,
             }),
+        }
+        .into_result()?)
+    }
+}
+
+impl Replayable for Stability {
+    /// The learned, model and open-loop walkers on the run's pushes.
+    fn replay_plan(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+    ) -> Result<ReplayPlan, ExperimentError> {
+        let p: StabilityProtocol = protocols.get(NAME)?;
+        let setup = |mode| trial_setup(settings, &p, seed, mode);
+        let capture = setup(WalkerMode::CaptureStep);
+        Ok(ReplayPlan::Trials {
+            walkers: vec![
+                ReplayWalker::new("learned", capture.clone(), true),
+                ReplayWalker::new("model", capture, false),
+                ReplayWalker::new("open-loop", setup(WalkerMode::OpenLoop), false),
+            ],
+            direction: p.direction,
+            after_push_s: settings.push_window_s,
+            pushes: true,
         })
+    }
+
+    /// The push of smallest impulse where one of learned and model fell and the other
+    /// recovered; else the first (of smallest impulse) where one fell; else push 1.
+    fn telling_moment(
+        &self,
+        _settings: &Settings,
+        _protocols: &ProtocolTables,
+        _seed: u64,
+        dir: &Path,
+    ) -> Result<(Moment, String), ExperimentError> {
+        let path = dir.join("pushes.csv");
+        let (l, m) = (pushes_of(&path, "learned")?, pushes_of(&path, "model")?);
+        Ok(differing_push_moment(&l, &m, "learned", "model"))
     }
 }
 
@@ -436,10 +597,7 @@ pub fn figure_over_seeds(
 pub fn claim(runs: &[&Summary]) -> Claim {
     let mut seeds = Vec::new();
     let (mut i50_ratio, mut model_over_open) = (Vec::new(), Vec::new());
-    for (seed, c) in by_seed(runs, |s| match &s.result {
-        ExperimentResult::Stability { controllers, .. } => Some(controllers),
-        _ => None,
-    }) {
+    for (seed, c) in by_seed(runs, |s| StabilitySummary::of(s).map(|r| r.controllers)) {
         let (o, m, l) = (
             c.open_loop.impulse_at_50pct_fall_ns,
             c.model.impulse_at_50pct_fall_ns,
@@ -479,7 +637,143 @@ pub fn claim(runs: &[&Summary]) -> Claim {
 
 #[cfg(test)]
 mod tests {
-    use super::direction_name;
+    use super::*;
+    use crate::control::step_parameter::LearnSet;
+
+    fn falls(pushes: u32, falls: u32, x: f64) -> ControllerFalls {
+        ControllerFalls {
+            pushes,
+            falls,
+            impulse_at_50pct_fall_ns: x,
+        }
+    }
+
+    fn causes(no_push: u32, pushed: [u32; 2]) -> BTreeMap<String, u32> {
+        [
+            ("no_push".to_string(), no_push),
+            ("before_touch_down".to_string(), pushed[0]),
+            ("tipped_after_catch_step".to_string(), pushed[1]),
+        ]
+        .into()
+    }
+
+    fn typed() -> StabilitySummary {
+        StabilitySummary {
+            controllers: Controllers {
+                open_loop: falls(400, 250, 4.5),
+                model: falls(400, 120, 11.0),
+                learned: falls(400, 90, 13.25),
+            },
+            fall_causes: FallCauseCounts {
+                open_loop: causes(3, [200, 50]),
+                model: causes(0, [100, 20]),
+                learned: causes(1, [60, 30]),
+            },
+            catch_step_reach: Some(CatchStepReaches {
+                model: Some(0.93),
+                learned: None,
+            }),
+        }
+    }
+
+    fn summary(r: StabilitySummary) -> Summary {
+        Summary {
+            approx: "lwpr".into(),
+            rule: "pendulum-cart".into(),
+            seed: 3,
+            learn: LearnSet::default(),
+            result: r.into_result().unwrap(),
+        }
+    }
+
+    #[test]
+    fn json_has_exactly_the_promised_fields_in_order() {
+        let json = summary(typed()).to_json().unwrap();
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        let mut keys: Vec<_> = v.as_object().unwrap().keys().cloned().collect();
+        keys.sort();
+        assert_eq!(
+            keys,
+            [
+                "approx",
+                "catch_step_reach",
+                "controllers",
+                "experiment",
+                "fall_causes",
+                "learn",
+                "rule",
+                "seed"
+            ]
+        );
+        assert_eq!(v["learn"], serde_json::json!(["step-x"]));
+        assert_eq!(v["catch_step_reach"]["model"], 0.93);
+        assert!(v["catch_step_reach"]["learned"].is_null());
+        assert_eq!(v["fall_causes"]["model"]["before_touch_down"], 100);
+        assert_eq!(v["experiment"], "stability");
+        assert_eq!(
+            v["controllers"]["open_loop"]["impulse_at_50pct_fall_ns"],
+            4.5
+        );
+        assert_eq!(v["controllers"]["learned"]["falls"], 90);
+        // Written in the order summaries have always had: the type's, not alphabetical.
+        let at = |k: &str| json.find(&format!("\"{k}\"")).unwrap();
+        assert!(at("experiment") < at("controllers"));
+        assert!(at("controllers") < at("fall_causes"));
+        assert!(at("fall_causes") < at("catch_step_reach"));
+        assert!(at("pushes") < at("falls") && at("falls") < at("impulse_at_50pct_fall_ns"));
+        let back = Summary::from_json(&json).unwrap();
+        assert_eq!(StabilitySummary::of(&back), Some(typed()));
+        Stability.check_result(&back.result).unwrap();
+    }
+
+    #[test]
+    fn inconsistent_results_are_refused_both_ways() {
+        let refused = |f: &dyn Fn(&mut StabilitySummary)| {
+            let mut r = typed();
+            f(&mut r);
+            let written = r.clone().into_result().is_err();
+            let read = Stability
+                .check_result(&ExperimentResult::new(NAME, &r).unwrap())
+                .is_err();
+            assert_eq!(written, read);
+            written
+        };
+        assert!(!refused(&|_| {}));
+        // 91 falls after pushes for 90 fell pushes.
+        assert!(refused(&|r| {
+            *r.fall_causes.learned.get_mut("before_touch_down").unwrap() += 1
+        }));
+        // no_push falls are outside the pushes' count.
+        assert!(!refused(&|r| {
+            *r.fall_causes.learned.get_mut("no_push").unwrap() += 5
+        }));
+        assert!(refused(&|r| {
+            r.fall_causes.model.insert("gremlins".into(), 0);
+        }));
+        assert!(refused(&|r| r.controllers.model.falls = 401));
+        assert!(refused(&|r| {
+            r.controllers.model.impulse_at_50pct_fall_ns = f64::NAN
+        }));
+        // A non-finite reach cannot be written; in JSON it could only be `null`, no reach.
+        let mut r = typed();
+        r.catch_step_reach = Some(CatchStepReaches {
+            model: Some(f64::INFINITY),
+            learned: None,
+        });
+        assert!(r.into_result().is_err());
+    }
+
+    #[test]
+    fn older_summaries_without_causes_still_read() {
+        let old_c = r#"{"approx": "lwpr", "rule": "pendulum-cart", "seed": 1,
+            "experiment": "stability", "controllers": {
+            "open_loop": {"pushes": 4, "falls": 2, "impulse_at_50pct_fall_ns": 5.0},
+            "model": {"pushes": 4, "falls": 1, "impulse_at_50pct_fall_ns": 9.0},
+            "learned": {"pushes": 4, "falls": 1, "impulse_at_50pct_fall_ns": 10.0}}}"#;
+        let r = StabilitySummary::of(&Summary::from_json(old_c).unwrap()).unwrap();
+        assert_eq!(r.fall_causes, FallCauseCounts::default());
+        assert_eq!(r.catch_step_reach, None);
+    }
 
     #[test]
     fn titles_name_the_push_direction() {

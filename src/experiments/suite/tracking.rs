@@ -11,13 +11,16 @@ use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
 use crate::experiments::error::ExperimentError;
 use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
 };
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
+use crate::experiments::replay_plan::{Moment, ReplayPlan, ReplayWalker, round};
 use crate::experiments::schedule::ReferenceSchedule;
 use crate::experiments::settings::{LearnerFactory, Settings};
-use crate::experiments::summary::{ExperimentResult, ModelLearned, Summary};
+use crate::experiments::summary::{
+    ExperimentResult, ModelLearned, Summary, TypedResult, finite_non_negative,
+};
 use crate::experiments::trial::TrialLog;
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
@@ -25,6 +28,9 @@ use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot}
 use crate::report::{Fixed, write_rows};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+
+/// The experiment's registered name.
+pub const NAME: &str = "tracking";
 
 /// The protocol (paper: F_R uniform in [-0.1, 0.2] m held 4-8 s, statistics over 1000 steps).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -273,13 +279,57 @@ impl TrackingResult {
     }
 }
 
+/// Experiment A's part of `summary.json`: the std of the step size error per time bin after
+/// a reference change.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrackingSummary {
+    /// Std of F_E (m) in consecutive bins of `bin_s` after each change; `null` where fewer
+    /// than two steps of that controller fell into the bin (e.g. a walker that kept falling).
+    pub step_error_std_m: ModelLearned<Vec<Option<f64>>>,
+    /// Bin width (s).
+    pub bin_s: f64,
+}
+
+/// A: a positive bin width, equal-length series, finite non-negative spreads.
+impl TypedResult for TrackingSummary {
+    const EXPERIMENT: &'static str = NAME;
+
+    fn validate(&self) -> Result<(), ReportError> {
+        let (step_error_std_m, bin_s) = (&self.step_error_std_m, &self.bin_s);
+        if !(bin_s.is_finite() && *bin_s > 0.0) {
+            return Err(ReportError::invalid(format!(
+                "bin_s must be finite and > 0, got {bin_s}"
+            )));
+        }
+        if step_error_std_m.model.len() != step_error_std_m.learned.len() {
+            return Err(ReportError::invalid(
+                "step_error_std_m: model and learned have different lengths",
+            ));
+        }
+        for v in step_error_std_m
+            .model
+            .iter()
+            .chain(&step_error_std_m.learned)
+            .flatten()
+        {
+            finite_non_negative("step_error_std_m", *v)?;
+        }
+        Ok(())
+    }
+}
+
 /// Experiment A as a registered [`Experiment`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Tracking;
 
 impl Experiment for Tracking {
     fn name(&self) -> &str {
-        crate::experiments::ExperimentKind::Tracking.into()
+        NAME
+    }
+
+    fn replay(&self) -> Option<&dyn Replayable> {
+        Some(self)
     }
 
     fn description(&self) -> &str {
@@ -290,6 +340,10 @@ impl Experiment for Tracking {
         tables.resolve::<TrackingProtocol>(self.name())
     }
 
+    fn check_result(&self, result: &ExperimentResult) -> Result<(), ReportError> {
+        TrackingSummary::from_result(result).map(|_| ())
+    }
+
     fn versus_model(&self, runs: &[&Summary]) -> Vec<Paired> {
         claim(runs).over_seeds
     }
@@ -298,9 +352,9 @@ impl Experiment for Tracking {
         let mut model = Vec::new();
         let mut learned = Vec::new();
         for s in runs {
-            if let ExperimentResult::Tracking {
+            if let Some(TrackingSummary {
                 step_error_std_m, ..
-            } = &s.result
+            }) = TrackingSummary::of(s)
             {
                 model.extend(step_error_std_m.model.iter().flatten().map(|v| 100.0 * v));
                 learned.extend(step_error_std_m.learned.iter().flatten().map(|v| 100.0 * v));
@@ -331,10 +385,66 @@ impl Experiment for Tracking {
         let r = run(ctx.settings, p, ctx.seed, &|| ctx.make_step_learner())?;
         r.write(dir)?;
         let (model, learned) = r.std_per_bin();
-        Ok(ExperimentResult::Tracking {
+        Ok(TrackingSummary {
             step_error_std_m: ModelLearned { model, learned },
             bin_s: p.bin_s,
+        }
+        .into_result()?)
+    }
+}
+
+impl Replayable for Tracking {
+    /// The learned and model walkers through the run's reference changes (no pushes).
+    fn replay_plan(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+    ) -> Result<ReplayPlan, ExperimentError> {
+        let p: TrackingProtocol = protocols.get(NAME)?;
+        let setup = trial_setup(settings, &p, seed)?;
+        Ok(ReplayPlan::Trials {
+            walkers: vec![
+                ReplayWalker::new("learned", setup.clone(), true),
+                ReplayWalker::new("model", setup, false),
+            ],
+            direction: [1.0, 0.0, 0.0],
+            after_push_s: 0.0,
+            pushes: false,
         })
+    }
+
+    /// The largest reference change in the run's first two minutes, from 1 s before it to
+    /// the protocol's horizon after it.
+    fn telling_moment(
+        &self,
+        settings: &Settings,
+        protocols: &ProtocolTables,
+        seed: u64,
+        _dir: &Path,
+    ) -> Result<(Moment, String), ExperimentError> {
+        let protocol: TrackingProtocol = protocols.get(NAME)?;
+        let setup = trial_setup(settings, &protocol, seed)?;
+        let reference = &setup.reference;
+        let last = (setup.duration_s - protocol.horizon_s).min(120.0);
+        let jump = |t: f64| (reference.at(t) - reference.at(t - 1e-6)).abs();
+        let change = reference
+            .change_times()
+            .into_iter()
+            .filter(|&t| t >= 1.0 && t <= last)
+            .max_by(|&a, &b| jump(a).total_cmp(&jump(b)))
+            .ok_or_else(|| {
+                ExperimentError::NothingToMeasure("no reference change to replay".into())
+            })?;
+        let (from, to) = (round(change - 1.0), round(change + protocol.horizon_s));
+        Ok((
+            Moment::Span(from, to),
+            format!(
+                "the reference change at {change:.2} s (F_R {:.3} to {:.3} m), {from}..{to} s",
+                reference.at(change - 1e-6),
+                reference.at(change)
+            ),
+        ))
     }
 }
 
@@ -475,12 +585,6 @@ pub fn figure_over_seeds(dir: &Path, runs: &[&Summary]) -> Result<bool, ReportEr
 }
 
 /// A tracking summary's std of F_E per bin and its bin width.
-fn bins(s: &Summary) -> Option<(&ModelLearned<Vec<Option<f64>>>, f64)> {
-    match &s.result {
-        ExperimentResult::Tracking {
-            step_error_std_m,
-            bin_s,
-        } => Some((step_error_std_m, *bin_s)),
-        _ => None,
-    }
+fn bins(s: &Summary) -> Option<(ModelLearned<Vec<Option<f64>>>, f64)> {
+    TrackingSummary::of(s).map(|r| (r.step_error_std_m, r.bin_s))
 }

@@ -314,7 +314,12 @@ pub fn read_summaries(
     for spec in runs {
         let path = out.join(spec.id()).join(SUMMARY_FILE);
         if is_current(runner, &spec, out) {
-            summaries.push(Summary::read(&path)?);
+            let summary = Summary::read(&path)?;
+            runner.check(&summary).map_err(|e| ReportError::Parse {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+            summaries.push(summary);
         } else {
             missing.push(spec.id());
         }
@@ -325,18 +330,19 @@ pub fn read_summaries(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiments::summary::ExperimentResult;
-    use crate::experiments::summary::{
-        ControllerFalls, Controllers, ModelLearned, NoLearning, PushFalls,
-    };
+    use crate::experiments::disturbance::{DisturbanceSummary, PushFalls};
+    use crate::experiments::robustness::{NoLearning, RobustnessSummary};
+    use crate::experiments::stability::{ControllerFalls, Controllers, StabilitySummary};
+    use crate::experiments::summary::{ModelLearned, TypedResult};
+    use crate::experiments::tracking::TrackingSummary;
 
-    fn summary(seed: u64, result: ExperimentResult) -> Summary {
+    fn summary(seed: u64, result: impl TypedResult) -> Summary {
         Summary {
             approx: "lwpr".into(),
             rule: "pendulum-cart".into(),
             seed,
             learn: Default::default(),
-            result,
+            result: result.into_result().unwrap(),
         }
     }
 
@@ -352,7 +358,7 @@ mod tests {
         let misses = |a: &[bool; 4]| a.iter().filter(|&&x| !x).count() as u32;
         summary(
             seed,
-            ExperimentResult::Robustness {
+            RobustnessSummary {
                 pushes_until_first_absorbed: learned.iter().position(|&a| a).map(|i| i as u32 + 1),
                 falls: misses(&learned),
                 impulse_ns: Some(10.0),
@@ -373,7 +379,7 @@ mod tests {
     ) -> Summary {
         summary(
             seed,
-            ExperimentResult::Disturbance {
+            DisturbanceSummary {
                 return_time_s: ModelLearned {
                     model: returns.0,
                     learned: returns.1,
@@ -456,7 +462,7 @@ mod tests {
             // bin worse and one without data.
             summary(
                 0,
-                ExperimentResult::Tracking {
+                TrackingSummary {
                     step_error_std_m: ModelLearned {
                         model: vec![Some(0.05), Some(0.02), Some(0.02)],
                         learned: vec![Some(0.04), Some(0.01), Some(0.01)],
@@ -466,7 +472,7 @@ mod tests {
             ),
             summary(
                 1,
-                ExperimentResult::Tracking {
+                TrackingSummary {
                     step_error_std_m: ModelLearned {
                         model: vec![Some(0.05), Some(0.02), Some(0.02)],
                         learned: vec![Some(0.04), Some(0.03), Some(0.01)],
@@ -476,7 +482,7 @@ mod tests {
             ),
             summary(
                 2,
-                ExperimentResult::Tracking {
+                TrackingSummary {
                     step_error_std_m: ModelLearned {
                         model: vec![Some(0.05), Some(0.02), Some(0.02)],
                         learned: vec![Some(0.06), None, Some(0.01)],
@@ -487,7 +493,7 @@ mod tests {
             // Disturbance: sooner but TDA far above p_theta fails.
             summary(
                 0,
-                ExperimentResult::Disturbance {
+                DisturbanceSummary {
                     return_time_s: ModelLearned {
                         model: 3.0,
                         learned: 2.0,
@@ -503,7 +509,7 @@ mod tests {
             ),
             summary(
                 1,
-                ExperimentResult::Disturbance {
+                DisturbanceSummary {
                     return_time_s: ModelLearned {
                         model: 3.0,
                         learned: 2.0,
@@ -519,7 +525,7 @@ mod tests {
             ),
             summary(
                 0,
-                ExperimentResult::Stability {
+                StabilitySummary {
                     controllers: Controllers {
                         open_loop: falls(4.0),
                         model: falls(12.0),
@@ -532,7 +538,7 @@ mod tests {
             // Stability: learned above the model, but the model not 1.5 x open-loop.
             summary(
                 1,
-                ExperimentResult::Stability {
+                StabilitySummary {
                     controllers: Controllers {
                         open_loop: falls(9.0),
                         model: falls(12.0),
@@ -551,7 +557,7 @@ mod tests {
             robustness(3, [true, true, false, true], [false, false, true, false]),
             summary(
                 4,
-                ExperimentResult::Robustness {
+                RobustnessSummary {
                     pushes_until_first_absorbed: Some(1),
                     falls: 0,
                     impulse_ns: None,
