@@ -6,7 +6,9 @@
 //! `steplearn::experiments::catch_step`), and for the step under way at the push, the catch
 //! step and the step after it: the length commanded at the step's first tick and at its last
 //! tick (and at half and three quarters of its duration, the share of the step after which it
-//! last had the other sign, and the placement the motion generator got), the last tick's analytic part and learned dF and dT, the step time planned and the dT
+//! last had the other sign, the placement the motion generator got, how long before the
+//! touch-down the generator exchanged its legs and the command it released the swing foot at),
+//! the last tick's analytic part and learned dF and dT, the step time planned and the dT
 //! at the first tick, the
 //! duration, the realised length and F_R. Prints each walker's reach (checked against the
 //! library's) and the counted pushes' reach split by the catch step's realised length.
@@ -67,6 +69,12 @@ struct Landing {
     flip: f64,
     /// The sagittal placement the motion generator was given at the last tick.
     generator: f64,
+    /// How long before this touch-down (the estimator's) the generator exchanged its legs
+    /// (the controller's support changed) within the step (s; NaN: it had not yet), and the
+    /// command of the tick before that exchange: where the swing foot was sent when the
+    /// generator let it go.
+    lead: f64,
+    released: f64,
     realised: f64,
     f_r: f64,
     /// Whether the step had a decision (a step after a reset may not).
@@ -81,6 +89,10 @@ struct Recorder {
     falls: Vec<f64>,
     /// The current step's (time, command) per tick.
     path: Vec<(f64, f64)>,
+    /// The controller's support foot at the last tick, and the last generator exchange within
+    /// the current step: (time, command the tick before).
+    support: Option<steplearn::control::Side>,
+    exchange: Option<(f64, f64)>,
 }
 
 /// The command at `time` along `path` (the last tick at or before it).
@@ -112,9 +124,20 @@ impl Observer for Recorder {
             } else {
                 (l.half_commanded, l.late_commanded, l.flip) = (f64::NAN, f64::NAN, f64::NAN);
             }
+            (l.lead, l.released) = match self.exchange {
+                Some((t, c)) => (time - t, c),
+                None => (f64::NAN, l.commanded),
+            };
             self.landings.push(l);
             self.start = None;
             self.path.clear();
+            self.exchange = None;
+        }
+        if let Some(d) = tick.decision {
+            if self.support.is_some_and(|s| s != d.support) && tick.step.is_none() {
+                self.exchange = Some((time, self.last.map_or(f64::NAN, |l| l.commanded)));
+            }
+            self.support = Some(d.support);
         }
         let generator = tick.command.step_x;
         self.last = tick.decision.map(|d| Landing {
@@ -139,6 +162,8 @@ impl Observer for Recorder {
         self.last = None;
         self.start = None;
         self.path.clear();
+        self.exchange = None;
+        self.support = None;
     }
 }
 
@@ -205,7 +230,7 @@ fn run(
                 Some(s) => {
                     write!(
                         csv,
-                        ",{:.3},{:.4},{:.4},{:.4},{:.3},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
+                        ",{:.3},{:.4},{:.4},{:.4},{:.3},{:.4},{:.4},{:.3},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
                         s.time,
                         s.first_commanded,
                         s.half_commanded,
@@ -213,6 +238,8 @@ fn run(
                         s.flip,
                         s.commanded,
                         s.generator,
+                        s.lead,
+                        s.released,
                         s.analytic,
                         s.df,
                         s.dt,
@@ -224,7 +251,7 @@ fn run(
                     )?;
                     before = Some(s.time);
                 }
-                None => write!(csv, "{}", ",".repeat(15))?,
+                None => write!(csv, "{}", ",".repeat(17))?,
             }
         }
         writeln!(csv)?;
@@ -283,6 +310,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "flip",
             "commanded",
             "generator",
+            "lead",
+            "released",
             "analytic",
             "df",
             "dt",
@@ -304,6 +333,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     model?;
     learned?;
+    let o = settings
+        .learner
+        .offset(steplearn::control::step_parameter::StepParameter::StepTime);
+    println!(
+        "learner {}: dead zone {} (step-time {}), eta {}",
+        args.learn, settings.learner.dead_zone, o.dead_zone, settings.learner.eta
+    );
     print!("{sa}{sb}");
     csv.push_str(&a);
     csv.push_str(&b);
