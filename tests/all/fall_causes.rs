@@ -3,6 +3,7 @@
 //! summaries carry their new fields with consistent sizes.
 
 use steplearn::bench::Registry;
+use steplearn::control::walker::Tick;
 use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::fall_causes::{
@@ -17,7 +18,8 @@ use steplearn::experiments::stability::StabilityProtocol;
 use steplearn::experiments::stability::StabilitySummary;
 use steplearn::experiments::summary::TypedResult;
 use steplearn::experiments::sweep::RunSpec;
-use steplearn::experiments::trial::run_trial;
+use steplearn::experiments::trial::{Observer, run_trial};
+use steplearn::robot::Side;
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("steplearn-{name}-{}", std::process::id()))
@@ -81,6 +83,78 @@ fn the_observer_sees_every_fall_and_touch_down_of_a_trial() {
         c.iter().filter(|f| f.push.is_some()).count(),
         log.pushes.iter().filter(|p| p.fell).count()
     );
+}
+
+/// Every tick's controller support and command, and the estimator's support.
+#[derive(Default)]
+struct Ticks(Vec<(f64, Option<(Side, f64)>, Side, bool)>);
+
+impl Observer for Ticks {
+    fn on_tick(&mut self, time: f64, tick: &Tick) {
+        self.0.push((
+            time,
+            tick.decision.map(|d| (d.support, d.step[0])),
+            tick.estimate.support,
+            tick.step.is_some(),
+        ));
+    }
+}
+
+/// A touch-down's `step_x` is the command of the step that ended: the last one the controller
+/// gave standing on that step's support foot, also where the generator exchanged its legs
+/// before the estimator saw the touch-down (the controller then decides the next step, from
+/// the other foot, and its command is not this step's).
+#[test]
+fn a_touch_down_records_the_command_of_the_step_that_ended() {
+    let settings = Settings::default();
+    let plan = PushPlan {
+        count: 6,
+        impulse: (6.0, 14.0),
+        settle: 3.0,
+        gap: (3.0, 4.0),
+    };
+    let setup = settings.push_trial(WalkerMode::CaptureStep, 0.0, &plan, 3, [1.0, 0.0, 0.0]);
+    let (mut observer, mut ticks) = (FallCauseObserver::new(), Ticks::default());
+    run_trial(&setup, None, &mut [&mut observer, &mut ticks]).unwrap();
+    let touch_downs: Vec<(f64, Option<f64>)> = observer
+        .events()
+        .iter()
+        .filter_map(|e| match *e {
+            FallEvent::TouchDown { time, step_x, .. } => Some((time, step_x)),
+            FallEvent::Fall { .. } => None,
+        })
+        .collect();
+    let ticks = &ticks.0;
+    let (mut checked, mut early) = (0, 0);
+    for &(time, step_x) in &touch_downs {
+        let i = ticks.iter().position(|t| t.0 == time && t.3).unwrap();
+        if i == 0 {
+            continue;
+        }
+        // The ending step's support foot: the estimator's, the tick before its touch-down.
+        let stance = ticks[i - 1].2;
+        // The ticks since the previous touch-down.
+        let start = ticks[..i].iter().rposition(|t| t.3).map_or(0, |j| j + 1);
+        let own = ticks[start..i]
+            .iter()
+            .rev()
+            .find_map(|t| t.1.filter(|d| d.0 == stance).map(|d| d.1));
+        let Some(own) = own else { continue };
+        let last = ticks[i - 1].1.map(|d| d.1);
+        if ticks[i - 1].1.is_some_and(|d| d.0 != stance) {
+            early += 1;
+            assert_ne!(
+                last,
+                Some(own),
+                "an early exchange must change the command here"
+            );
+        }
+        assert_eq!(step_x, Some(own), "touch-down at {time} s");
+        checked += 1;
+    }
+    assert!(checked >= 20, "{checked} touch-downs checked");
+    // The case that matters happens in this trial: the generator exchanged first.
+    assert!(early >= 1, "no early exchange among {checked} touch-downs");
 }
 
 #[test]

@@ -31,6 +31,7 @@ use crate::experiments::trial::{
     FallRecord, Observer, PushRecord, StepRecord, TrialError, TrialLog, TrialSetup, run_trial,
 };
 use crate::report::Fixed;
+use crate::robot::Side;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -131,14 +132,17 @@ pub enum FallEvent {
     TouchDown {
         /// Trial time (s).
         time: f64,
-        /// `decision.step[0]` of the step's last tick (m).
+        /// The step's command `decision.step[0]` (m): of its last tick, or of the tick before
+        /// the generator exchanged its legs where it did so ahead of the estimator's
+        /// touch-down (then the controller already decided the next step).
         step_x: Option<f64>,
         /// The realised sagittal step, foot to foot, as the estimator measured it (m).
         realised: f64,
         /// The reference step F_R at the touch-down (m).
         f_r: f64,
     },
-    /// A fall at `time`; `step_x` is the last command of the step in progress.
+    /// A fall at `time`; `step_x` is the command of the step in progress (as for a
+    /// touch-down).
     Fall {
         /// Trial time (s).
         time: f64,
@@ -152,6 +156,11 @@ pub enum FallEvent {
 pub struct FallCauseObserver {
     events: Vec<FallEvent>,
     last_step_x: Option<f64>,
+    /// The controller's support foot at the last tick with a decision.
+    support: Option<Side>,
+    /// The command the swing foot was let go at, when the generator exchanged its legs before
+    /// the estimator saw the touch-down (from then on the controller decides the next step).
+    released: Option<Option<f64>>,
 }
 
 impl FallCauseObserver {
@@ -168,14 +177,27 @@ impl FallCauseObserver {
 
 impl Observer for FallCauseObserver {
     fn on_tick(&mut self, time: f64, tick: &Tick) {
-        // The decision of a touch-down tick is already for the next step.
+        // The decision of a touch-down tick is already for the next step; so is every
+        // decision after the generator exchanged its legs ahead of the estimator's touch-down
+        // (a step whose time ran out first): the step's command is the one its swing foot was
+        // let go at.
         if let Some(step) = &tick.step {
             self.events.push(FallEvent::TouchDown {
                 time,
-                step_x: self.last_step_x,
+                step_x: self.released.take().unwrap_or(self.last_step_x),
                 realised: step.f_e + step.f_r,
                 f_r: step.f_r,
             });
+        }
+        if let Some(d) = tick.decision {
+            // The controller changed feet while the estimator still stands on the old one.
+            let ahead = self
+                .support
+                .is_some_and(|s| s != d.support && tick.estimate.support == s);
+            if ahead && tick.step.is_none() && self.released.is_none() {
+                self.released = Some(self.last_step_x);
+            }
+            self.support = Some(d.support);
         }
         self.last_step_x = tick.decision.map(|d| d.step[0]);
     }
@@ -185,9 +207,10 @@ impl Observer for FallCauseObserver {
     fn on_fall(&mut self, fall: &FallRecord) {
         self.events.push(FallEvent::Fall {
             time: fall.time,
-            step_x: self.last_step_x,
+            step_x: self.released.take().unwrap_or(self.last_step_x),
         });
         self.last_step_x = None;
+        self.support = None;
     }
 }
 

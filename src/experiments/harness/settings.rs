@@ -17,7 +17,9 @@ pub struct Settings {
     pub sim: SimConfig,
     /// The walker (its mode is set by each experiment).
     pub walker: WalkerConfig,
-    /// The learner.
+    /// The learner. A `[settings.learner]` table that leaves keys out keeps these settings'
+    /// values for them (the experiments' dead zone included), not [`LearnerConfig::default`]'s.
+    #[serde(deserialize_with = "learner_over_default")]
     pub learner: LearnerConfig,
     /// Scale of every experiment's length in (0, 1]: 1 is the paper's protocol; `--quick`
     /// uses a fraction for a fast look.
@@ -157,6 +159,11 @@ impl LwprSettings {
     }
 }
 
+/// A `[settings.learner]` table over the default settings' learner.
+fn learner_over_default<'de, D: serde::Deserializer<'de>>(d: D) -> Result<LearnerConfig, D::Error> {
+    config::patch(&Settings::default().learner, d)
+}
+
 /// The experiments' dead zone on the sagittal G (`[settings.learner] dead_zone`): about the
 /// model's median |G| stepping undisturbed with the tracking swing, so the learner leaves the
 /// step-to-step spread alone (chosen in docs/learner.md, "The dead zone").
@@ -283,5 +290,50 @@ where
     type Policy = P;
     fn make(&self) -> Result<P, LearnerError> {
         self()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every table path of `v` (dotted, from the top).
+    fn tables(v: &toml::Value, at: &str, out: &mut Vec<String>) {
+        if let toml::Value::Table(t) = v {
+            for (k, child) in t {
+                if child.is_table() {
+                    let path = if at.is_empty() {
+                        format!("\"{k}\"")
+                    } else {
+                        format!("{at}.\"{k}\"")
+                    };
+                    out.push(path.clone());
+                    tables(child, &path, out);
+                }
+            }
+        }
+    }
+
+    /// A table that a config file gives but leaves empty changes nothing, at any depth: each
+    /// key left out keeps the settings' own default, never the nested type's (a partial
+    /// `[settings.learner]` once ran with the learner's dead zone 0 instead of the settings'
+    /// 0.06).
+    #[test]
+    fn an_empty_or_partial_table_keeps_the_settings_defaults() {
+        let defaults = Settings::default();
+        let value = toml::Value::try_from(&defaults).unwrap();
+        let mut paths = Vec::new();
+        tables(&value, "", &mut paths);
+        assert!(paths.iter().any(|p| p == "\"learner\""), "{paths:?}");
+        assert!(paths.len() >= 6, "{paths:?}");
+        for path in &paths {
+            let parsed: Settings =
+                toml::from_str(&format!("[{path}]\n")).unwrap_or_else(|e| panic!("[{path}]: {e}"));
+            assert_eq!(parsed, defaults, "an empty [{path}] changed the settings");
+        }
+        let partial: Settings =
+            toml::from_str("[learner]\nlearn = [\"step-x\", \"step-time\"]\n").unwrap();
+        assert_eq!(partial.learner.dead_zone, DEFAULT_DEAD_ZONE);
+        assert_eq!(partial.learner.learn.iter().count(), 2);
     }
 }
