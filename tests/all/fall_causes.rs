@@ -85,9 +85,13 @@ fn the_observer_sees_every_fall_and_touch_down_of_a_trial() {
     );
 }
 
-/// Every tick's controller support and command, and the estimator's support.
+/// One tick: its time, the controller's support and command, the estimator's support, and
+/// whether the estimator saw a touch-down.
+type TickRow = (f64, Option<(Side, f64)>, Side, bool);
+
+/// Every tick of a trial.
 #[derive(Default)]
-struct Ticks(Vec<(f64, Option<(Side, f64)>, Side, bool)>);
+struct Ticks(Vec<TickRow>);
 
 impl Observer for Ticks {
     fn on_tick(&mut self, time: f64, tick: &Tick) {
