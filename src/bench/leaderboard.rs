@@ -13,7 +13,7 @@ use crate::experiments::experiment::{Experiment, Headline};
 use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;
-use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
+use crate::experiments::sweep::{RunSpec, Runner, SweepGrid, read_current};
 use crate::report::forest::{ForestPanel, ForestRow, forest_plot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, Shortest, write_file, write_rows};
@@ -211,16 +211,9 @@ impl Leaderboard {
                     seed,
                     learn: Some(learn),
                 };
-                let path = out.join(spec.id()).join(SUMMARY_FILE);
-                if is_current(runner, &spec, out) {
-                    let summary = Summary::read(&path)?;
-                    runner.check(&summary).map_err(|e| ReportError::Parse {
-                        path: path.clone(),
-                        message: e.to_string(),
-                    })?;
-                    runs.push(summary);
-                } else {
-                    missing.push(spec.id());
+                match read_current(runner, &spec, out)? {
+                    Some(summary) => runs.push(summary),
+                    None => missing.push(spec.id()),
                 }
             }
             Ok::<_, ReportError>(runs)

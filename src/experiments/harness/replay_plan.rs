@@ -137,6 +137,13 @@ pub fn differing_push_moment(
     )
 }
 
+/// The [`differing_push_moment`] of the `learned` and `model` walkers in the pushes table at
+/// `path` (columns `controller`, `impulse_ns`, `fell`).
+pub fn learned_versus_model_moment(path: &Path) -> Result<(Moment, String), ReportError> {
+    let (l, m) = (pushes_of(path, "learned")?, pushes_of(path, "model")?);
+    Ok(differing_push_moment(&l, &m, "learned", "model"))
+}
+
 /// Decimals a replay keeps of every recorded number.
 pub const DECIMALS: i32 = 4;
 

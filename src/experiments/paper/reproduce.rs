@@ -11,7 +11,7 @@ use crate::experiments::ExperimentKind;
 use crate::experiments::error::ExperimentError;
 use crate::experiments::paired::Verdict;
 use crate::experiments::summary::Summary;
-use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, is_current};
+use crate::experiments::sweep::{RunSpec, Runner, SUMMARY_FILE, SweepGrid, read_current};
 use crate::experiments::{disturbance, robustness, stability, tracking};
 use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Serialize};
@@ -312,16 +312,9 @@ pub fn read_summaries(
     let mut summaries = Vec::new();
     let mut missing = Vec::new();
     for spec in runs {
-        let path = out.join(spec.id()).join(SUMMARY_FILE);
-        if is_current(runner, &spec, out) {
-            let summary = Summary::read(&path)?;
-            runner.check(&summary).map_err(|e| ReportError::Parse {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
-            summaries.push(summary);
-        } else {
-            missing.push(spec.id());
+        match read_current(runner, &spec, out)? {
+            Some(summary) => summaries.push(summary),
+            None => missing.push(spec.id()),
         }
     }
     Ok((summaries, missing))

@@ -444,6 +444,26 @@ pub fn is_current(runner: &dyn Runner, spec: &RunSpec, out: &Path) -> bool {
         }
 }
 
+/// The summary of the finished run of `spec` under `out` if it is current
+/// ([`is_current`]), read and checked by `runner` ([`Runner::check`]); `None` if it is not
+/// current; an error if it cannot be read or fails the check.
+pub fn read_current(
+    runner: &dyn Runner,
+    spec: &RunSpec,
+    out: &Path,
+) -> Result<Option<Summary>, ReportError> {
+    if !is_current(runner, spec, out) {
+        return Ok(None);
+    }
+    let path = out.join(spec.id()).join(SUMMARY_FILE);
+    let summary = Summary::read(&path)?;
+    runner.check(&summary).map_err(|e| ReportError::Parse {
+        path,
+        message: e.to_string(),
+    })?;
+    Ok(Some(summary))
+}
+
 /// The file in a run's directory that a worker holds locked while it computes the run (an
 /// advisory lock of the operating system, released when the worker ends or dies), so that
 /// workers sharing a directory compute each run once.

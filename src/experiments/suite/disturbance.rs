@@ -18,7 +18,7 @@ use crate::experiments::experiment::{
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::replay_plan::{
-    Moment, ReplayPlan, ReplayWalker, differing_push_moment, pushes_of,
+    Moment, ReplayPlan, ReplayWalker, learned_versus_model_moment,
 };
 use crate::experiments::schedule::PushPlan;
 use crate::experiments::settings::{LearnerFactory, Settings};
@@ -697,9 +697,9 @@ impl Replayable for Disturbance {
         _seed: u64,
         dir: &Path,
     ) -> Result<(Moment, String), ExperimentError> {
-        let path = dir.join("disturbance_pushes.csv");
-        let (l, m) = (pushes_of(&path, "learned")?, pushes_of(&path, "model")?);
-        Ok(differing_push_moment(&l, &m, "learned", "model"))
+        Ok(learned_versus_model_moment(
+            &dir.join("disturbance_pushes.csv"),
+        )?)
     }
 }
 
