@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-pub use crate::experiments::replay_plan::{Moment, ReplayPlan};
+pub use crate::experiments::replay_plan::{Moment, ReplayPlan, ReplayWalker};
 pub use page::{embedded_replay, page};
 pub use record::{Frame, Recorder, Touchdown, Walk};
 
@@ -271,35 +271,44 @@ pub fn record_moment(
         rule: &config.rule,
         components: &components,
     };
-    let settings = &config.settings;
-    // The walkers' trials, as the experiment builds them, and the push's direction.
-    let (walkers, direction, after, pushes) =
-        match replayable.replay_plan(settings, &protocols, config.seed)? {
-            ReplayPlan::Episodes {
-                episodes,
-                learner,
-                impulse,
-                direction,
-            } => {
-                let Moment::Push(push) = moment else {
-                    return Err(ReplayError::NoSpan(config.experiment));
-                };
-                return replay_episodes(
-                    &ctx, &config, &episodes, *learner, impulse, direction, push,
-                );
+    match replayable.replay_plan(&config.settings, &protocols, config.seed)? {
+        ReplayPlan::Episodes {
+            episodes,
+            learner,
+            impulse,
+            direction,
+        } => {
+            let Moment::Push(push) = moment else {
+                return Err(ReplayError::NoSpan(config.experiment));
+            };
+            replay_episodes(&ctx, &config, &episodes, *learner, impulse, direction, push)
+        }
+        ReplayPlan::Trials {
+            walkers,
+            direction,
+            after_push_s,
+            pushes,
+        } => {
+            if matches!(moment, Moment::Push(_)) && !pushes {
+                return Err(ReplayError::NoPushes(config.experiment));
             }
-            ReplayPlan::Trials {
-                walkers,
-                direction,
-                after_push_s,
-                pushes,
-            } => (walkers, direction, after_push_s, pushes),
-        };
-    if matches!(moment, Moment::Push(_)) && !pushes {
-        return Err(ReplayError::NoPushes(config.experiment));
+            replay_trials(&ctx, &config, walkers, direction, after_push_s, moment)
+        }
     }
+}
+
+/// `moment` of a run of one long trial per walker (`walkers`, the experiment's plan): every
+/// walker walks its trial from the start to the moment's end, recorded over the moment.
+fn replay_trials(
+    ctx: &RunContext<'_>,
+    config: &RunConfig,
+    walkers: Vec<ReplayWalker>,
+    direction: [f64; 3],
+    after: f64,
+    moment: Moment,
+) -> Result<Replay, ReplayError> {
     if walkers.is_empty() {
-        return Err(ReplayError::Unsupported(config.experiment));
+        return Err(ReplayError::Unsupported(config.experiment.clone()));
     }
     let trials: Vec<Walker> = walkers
         .into_iter()
@@ -346,7 +355,7 @@ pub fn record_moment(
                 .collect()
         }
     };
-    let walks = walk_all(&ctx, trials)?;
+    let walks = walk_all(ctx, trials)?;
     Ok(Replay {
         experiment: config.experiment.clone(),
         approx: config.approx.clone(),
@@ -355,7 +364,7 @@ pub fn record_moment(
         push: push_no,
         impulse,
         direction,
-        window_s: settings.push_window_s,
+        window_s: ctx.settings.push_window_s,
         span,
         changes,
         walks,
