@@ -3,7 +3,9 @@
 //! For each push, the step under way when it hits ends at the first touch-down after it; the
 //! *catch step* is the step after that, the first step the controller commands wholly after the
 //! push. Its reach is the realised step length (foot to foot, measured at its touch-down) over
-//! the length commanded at its last tick before touch-down. A push counts only if its catch
+//! the length commanded for it ([`FallEvent::TouchDown`]'s `step_x`: at its last tick before
+//! touch-down, or before the generator exchanged its legs where it did so ahead of the
+//! estimator's touch-down). A push counts only if its catch
 //! step touched down before the next push with no fall in between, and was commanded at least
 //! [`MIN_CATCH_BEYOND_REFERENCE`] beyond the reference step (a real catch step, not a step in
 //! the gait). [`catch_step_reach`] is the mean over the counted pushes.

@@ -11,7 +11,7 @@
 //! included) and writes only its own directory.
 //!
 //! On a cluster, run shard `I` of `N` as one task (`--shard I/N`, 0-based, e.g. a Slurm array
-//! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call [`merge`] when all are done.
+//! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call `steplearn merge` ([`crate::experiments::ablation::merge`]) when all are done.
 
 use crate::config::limits::MAX_SEEDS;
 use crate::control::step_parameter::LearnSet;
