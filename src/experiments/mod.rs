@@ -1,11 +1,12 @@
 //! The experiments, generic over approximator and learning rule, in three parts: the
 //! [`harness`] every experiment shares, the [`records`] and reports of runs, and the
-//! experiments themselves, one file each in [`suite`], collected with the paper's claims and
-//! its ablation table in [`paper`]; [`experiment`] is the contract between them (the [`Experiment`] trait and the [`RunContext`] that builds a run's learners).
+//! experiments themselves, one file each in [`suite`], which also holds the paper's
+//! reproduction (its claims and its ablation table, [`suite::reproduction`]); [`experiment`] is
+//! the contract between them (the [`Experiment`] trait and the [`RunContext`] that builds a
+//! run's learners).
 
 pub mod experiment;
 pub mod harness;
-pub mod paper;
 pub mod records;
 pub mod suite;
 
@@ -13,8 +14,8 @@ pub mod suite;
 pub use harness::{
     aligned, catch_step, compare, fall_causes, protocol, replay_plan, schedule, settings, trial,
 };
-pub use paper::{ablation, reproduce};
 pub use records::{claim, config_file, index_page, paired, summary, sweep};
+pub use suite::reproduction::{ablation, reproduce};
 pub use suite::{disturbance, omnidirectional, robustness, stability, tracking};
 
 pub(crate) use harness::push_options;
@@ -24,8 +25,8 @@ pub use config_file::{ConfigFile, ConfigFileError};
 pub use error::ExperimentError;
 pub use experiment::{Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext};
 pub use paired::{Paired, Verdict};
-pub use paper::ExperimentKind;
 pub use protocol::{Protocol, ProtocolTables};
 pub use settings::Settings;
+pub use suite::reproduction::ExperimentKind;
 pub use summary::{CustomResult, ExperimentResult, Summary, TypedResult};
 pub use trial::{Observer, TrialError, TrialLog, TrialSetup, run_trial};

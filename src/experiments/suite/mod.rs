@@ -1,9 +1,11 @@
 //! The experiments, one file each: the paper's four, A-D in the paper's order, and those
-//! beyond the paper. The suite only collects them; adding one is a file here, its `mod` line
-//! and one line in [`paper`] or [`beyond`].
+//! beyond the paper. The suite collects them; adding one is a file here, its `mod` line and
+//! one line in [`paper()`] or [`beyond`]. [`reproduction`] is the paper's reproduction over its
+//! four: their names, the main job's claims and the ablation table.
 
 pub mod disturbance;
 pub mod omnidirectional;
+pub mod reproduction;
 pub mod robustness;
 pub mod stability;
 pub mod tracking;
