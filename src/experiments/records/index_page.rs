@@ -10,14 +10,14 @@ use std::path::{Path, PathBuf};
 pub const INDEX_FILE: &str = "index.html";
 
 /// Inlined figures beyond this many bytes in all are linked instead, keeping the page small.
-pub const INLINE_BUDGET_BYTES: usize = 1_500_000;
+pub(crate) const INLINE_BUDGET_BYTES: usize = 1_500_000;
 
 /// A single figure larger than this is linked, not inlined.
 pub const INLINE_MAX_BYTES: usize = 300_000;
 
 /// A one-line caption for a figure file written by this crate, citing the paper's figure and,
 /// where the paper states them, its values.
-pub fn caption(file_name: &str) -> &'static str {
+pub(crate) fn caption(file_name: &str) -> &'static str {
     match file_name {
         "tracking_std_over_seeds.svg" => {
             "Experiment A (paper Fig. 4, left), claim 1: std of the step size error F_E after a reference change, mean over seeds with its 95% band (clipped at 0; model vs learned). The paper: lower with learning at all times (1000 steps, F_R drawn from [-10, 20] cm)."
@@ -131,7 +131,7 @@ pub struct ReplayLink {
 /// `claims.md` and `ablation.md` rendered, others such as `summary.json` shown as text), the
 /// figures in `dir` (across seeds), then each run directory's figures, experiments in the
 /// paper's order A-D, each figure with its caption, and the `command` and `config` (TOML)
-/// that produced them. Figures are inlined while they fit [`INLINE_BUDGET_BYTES`] (the top
+/// that produced them. Figures are inlined while they fit a budget of 1.5 MB (the top
 /// level ones always), the others linked by relative path.
 pub fn write_index(
     dir: &Path,

@@ -272,7 +272,7 @@ impl StabilityResult {
 
 /// `forward`, `backward`, `left` or `right` for the unit axes of the horizontal plane, else the
 /// vector itself.
-pub fn direction_name(d: [f64; 3]) -> String {
+pub(crate) fn direction_name(d: [f64; 3]) -> String {
     match d {
         [1.0, 0.0, 0.0] => "forward".into(),
         [-1.0, 0.0, 0.0] => "backward".into(),
