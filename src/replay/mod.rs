@@ -199,9 +199,6 @@ pub struct Replay {
     pub walks: Vec<Walk>,
 }
 
-/// One walker of a replay: its name, its trial, whether it has the run's learner.
-type Walker = (String, TrialSetup, bool);
-
 /// Re-simulates push `push` (1-based) of the run in `dir` with `registry`.
 pub fn record(registry: &Registry, dir: &Path, push: usize) -> Result<Replay, ReplayError> {
     record_moment(registry, dir, Moment::Push(push))
@@ -307,31 +304,29 @@ fn replay_trials(
     after: f64,
     moment: Moment,
 ) -> Result<Replay, ReplayError> {
-    if walkers.is_empty() {
+    let Some(first) = walkers.first() else {
         return Err(ReplayError::Unsupported(config.experiment.clone()));
-    }
-    let trials: Vec<Walker> = walkers
-        .into_iter()
-        .map(|w| (w.name, w.setup, w.learns))
-        .collect();
-    let reference = trials[0].1.reference.clone();
+    };
+    let reference = first.setup.reference.clone();
     let (mut push_no, mut impulse, mut span, mut changes) = (0, 0.0, None, Vec::new());
-    let trials: Vec<(String, TrialSetup, Recorder, bool)> = match moment {
+    let trials: Vec<(ReplayWalker, Recorder)> = match moment {
         Moment::Push(push) => {
-            check_push(push, trials[0].1.pushes.len())?;
-            (push_no, impulse) = (push, trials[0].1.pushes[push - 1].impulse);
-            trials
+            check_push(push, first.setup.pushes.len())?;
+            (push_no, impulse) = (push, first.setup.pushes[push - 1].impulse);
+            walkers
                 .into_iter()
-                .map(|(n, mut setup, learns)| {
+                .map(|mut w| {
                     // The pushes after K cannot change what comes before them.
-                    setup.pushes.truncate(push);
-                    let r = Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S);
-                    (n, setup, r, learns)
+                    w.setup.pushes.truncate(push);
+                    (
+                        w,
+                        Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S),
+                    )
                 })
                 .collect()
         }
         Moment::Span(from, to) => {
-            let length = trials[0].1.duration_s;
+            let length = first.setup.duration_s;
             if to > length {
                 return Err(ReplayError::SpanOutOfRange { to, length });
             }
@@ -345,12 +340,12 @@ fn replay_trials(
                 )
                 .map(|t| [record::round(t), record::round(reference.at(t))])
                 .collect();
-            trials
+            walkers
                 .into_iter()
-                .map(|(n, mut setup, learns)| {
+                .map(|mut w| {
                     // Nothing after `to` can change what comes before it.
-                    setup.duration_s = to;
-                    (n, setup, Recorder::new(from, to, FRAME_S), learns)
+                    w.setup.duration_s = to;
+                    (w, Recorder::new(from, to, FRAME_S))
                 })
                 .collect()
         }
@@ -375,19 +370,19 @@ fn replay_trials(
 /// learner), on the rayon pool, and returns their recordings in order.
 fn walk_all(
     ctx: &RunContext<'_>,
-    trials: Vec<(String, TrialSetup, Recorder, bool)>,
+    trials: Vec<(ReplayWalker, Recorder)>,
 ) -> Result<Vec<Walk>, ReplayError> {
     use rayon::prelude::*;
     trials
         .into_par_iter()
-        .map(|(name, setup, mut recorder, learns)| {
-            if learns {
+        .map(|(walker, mut recorder)| {
+            if walker.learns {
                 let mut learner = ctx.make_step_learner()?;
-                run_trial(&setup, Some(&mut learner), &mut [&mut recorder])?;
+                run_trial(&walker.setup, Some(&mut learner), &mut [&mut recorder])?;
             } else {
-                run_trial(&setup, None, &mut [&mut recorder])?;
+                run_trial(&walker.setup, None, &mut [&mut recorder])?;
             }
-            Ok(recorder.finish(&name))
+            Ok(recorder.finish(&walker.name))
         })
         .collect()
 }

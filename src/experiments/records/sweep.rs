@@ -455,13 +455,18 @@ pub fn read_current(
     if !is_current(runner, spec, out) {
         return Ok(None);
     }
-    let path = out.join(spec.id()).join(SUMMARY_FILE);
-    let summary = Summary::read(&path)?;
+    read_checked(runner, &out.join(spec.id()).join(SUMMARY_FILE)).map(Some)
+}
+
+/// The summary at `path`, read and checked by `runner` ([`Runner::check`]); a summary the
+/// runner refuses is a [`ReportError::Parse`] naming the file.
+fn read_checked(runner: &dyn Runner, path: &Path) -> Result<Summary, ReportError> {
+    let summary = Summary::read(path)?;
     runner.check(&summary).map_err(|e| ReportError::Parse {
-        path,
+        path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    Ok(Some(summary))
+    Ok(summary)
 }
 
 /// The file in a run's directory that a worker holds locked while it computes the run (an
@@ -471,13 +476,7 @@ pub const CLAIM_FILE: &str = "claim.lock";
 
 /// The status of a run whose `summary.json` exists: reused, or why not.
 fn existing(dir: &Path, identity: Option<&str>, runner: &dyn Runner) -> RunStatus {
-    let path = dir.join(SUMMARY_FILE);
-    if let Err(e) = Summary::read(&path).and_then(|s| {
-        runner.check(&s).map_err(|e| ReportError::Parse {
-            path: path.clone(),
-            message: e.to_string(),
-        })
-    }) {
+    if let Err(e) = read_checked(runner, &dir.join(SUMMARY_FILE)) {
         return RunStatus::Failed(format!(
             "existing result is unreadable and was left untouched (delete it to re-run): {e}"
         ));
