@@ -142,6 +142,10 @@ pub struct StepCommand {
     /// the [`Swing::Tracking`] swing. `None`: the trunk is assumed to hold the lean the
     /// generator commands (the paper's swing never reads it).
     pub tilt: Option<[[f64; 2]; 2]>,
+    /// Whether the swing foot has landed (the state estimator stands on it), for
+    /// [`MotionConfig::landing_wait_s`]. `None`: unknown, the step ends on time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub swing_landed: Option<bool>,
 }
 
 /// How the swing leg reaches its placement.
@@ -232,11 +236,40 @@ pub struct MotionConfig {
     /// are those of the generator without it.
     #[serde(skip_serializing_if = "is_zero")]
     pub hip_gain: f64,
+    /// The longest the generator holds a step whose time ran out while its swing foot is
+    /// still in the air (s, in [0, 1]; default 0: off, the step ends on time as in the paper).
+    /// While it holds, the swing leg keeps tracking its placement and straightens from the
+    /// halt extension towards a straight leg over this time, so that the foot reaches the
+    /// ground where it was sent; the legs are exchanged at the touch-down (or when the time
+    /// is up). Needs the walker's [`StepCommand::swing_landed`]; without it the step ends on
+    /// time. Left out of written configs at 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub landing_wait_s: f64,
+    /// The earliest phase of a step at which its swing foot's landing ends it (in [0, 1];
+    /// default 1: off, the step ends on time as in the paper). A swing foot that lands early
+    /// (the state estimator stands on it, having changed to it during this step) bears the
+    /// body; ending the step there lets the controller plan the next step from it instead of
+    /// sweeping a loaded foot on to its placement. Needs the walker's
+    /// [`StepCommand::swing_landed`]. Left out of written configs at 1.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub early_landing_phase: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(v: &f64) -> bool {
+    *v == 1.0
 }
 
 fn is_zero(v: &f64) -> bool {
     *v == 0.0
 }
+
+/// The phase a step is held at while its swing foot is still in the air (just below the
+/// exchange at 1).
+const HELD_PHASE: f64 = 1.0 - 1e-8;
 
 /// The largest extra trunk pitch of the hip strategy ([`MotionConfig::hip_gain`], rad).
 pub const HIP_PITCH_LIMIT: f64 = 0.5;
@@ -266,6 +299,8 @@ impl Default for MotionConfig {
             tilt_settle_s: 3.0,
             tilt_dead_band: 0.01,
             hip_gain: 0.0,
+            landing_wait_s: 0.0,
+            early_landing_phase: 1.0,
         }
     }
 }
@@ -277,7 +312,9 @@ impl MotionConfig {
         config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)?;
         config::positive("tilt_settle_s", self.tilt_settle_s)?;
         config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
-        config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)
+        config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)?;
+        config::in_range("landing_wait_s", self.landing_wait_s, 0.0, 1.0)?;
+        config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)
     }
 
     /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
@@ -334,6 +371,13 @@ pub struct MotionGenerator {
     /// The hip strategy's extra trunk pitch (rad, [`MotionConfig::hip_gain`]).
     #[serde(default)]
     hip: f64,
+    /// How long the current step has been held past its time, waiting for the swing foot to
+    /// land (s, [`MotionConfig::landing_wait_s`]).
+    #[serde(default)]
+    waited: f64,
+    /// Time since the last exchange of legs (or the start) (s).
+    #[serde(default)]
+    step_elapsed: f64,
 }
 
 /// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
@@ -364,6 +408,8 @@ impl MotionGenerator {
             tilt: None,
             tilt_settled: None,
             hip: 0.0,
+            waited: 0.0,
+            step_elapsed: 0.0,
         };
         g.legs = [g.halt_pose(); 2];
         g
@@ -410,6 +456,11 @@ impl MotionGenerator {
         self.support
     }
 
+    /// Time since the legs were last exchanged (or since the start) (s).
+    pub fn step_elapsed(&self) -> f64 {
+        self.step_elapsed
+    }
+
     /// The swinging leg of the current step.
     pub fn swing(&self) -> Side {
         self.support.other()
@@ -454,6 +505,7 @@ impl MotionGenerator {
             step_time: (1.0 - self.phase) * self.config.period,
             gait_x: step_x,
             tilt: None,
+            swing_landed: None,
         }
     }
 
@@ -521,8 +573,24 @@ impl MotionGenerator {
             let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
             self.hip = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
         }
+        self.step_elapsed += dt;
+        let landed_early = c.early_landing_phase < 1.0
+            && command.swing_landed == Some(true)
+            && self.phase >= c.early_landing_phase;
+        if landed_early {
+            self.phase = 1.0;
+        }
         if self.phase >= 1.0 - 1e-9 {
-            self.exchange();
+            // A swing foot still in the air is held at its placement until it lands.
+            let hold = c.landing_wait_s > 0.0
+                && command.swing_landed == Some(false)
+                && self.waited < c.landing_wait_s;
+            if hold {
+                self.phase = HELD_PHASE;
+                self.waited += dt;
+            } else {
+                self.exchange();
+            }
         }
         let (placement, legs) = self.poses();
         self.placement = placement;
@@ -532,6 +600,8 @@ impl MotionGenerator {
 
     fn exchange(&mut self) {
         self.phase = 0.0;
+        self.waited = 0.0;
+        self.step_elapsed = 0.0;
         self.steps += 1;
         self.support = self.support.other();
         self.start = self.placement;
@@ -601,7 +671,13 @@ impl MotionGenerator {
             let i = side.index();
             let start = self.start[i];
             let (end, s, ext) = if side == swing {
-                (end_swing, s_swing, c.lift_extension * lift * fade)
+                // Held past its time: straighten towards the ground.
+                let reach = if c.landing_wait_s > 0.0 {
+                    c.halt_extension * (self.waited / c.landing_wait_s).min(1.0)
+                } else {
+                    0.0
+                };
+                (end_swing, s_swing, c.lift_extension * lift * fade - reach)
             } else {
                 (end_support, p, -c.push_extension * lift * fade)
             };

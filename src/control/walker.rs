@@ -467,6 +467,11 @@ impl Walker {
                 [estimate.roll, estimate.pitch],
                 [estimate.roll_rate, estimate.theta_e_rate],
             ]),
+            // The estimator changed to the swing foot since this step began.
+            swing_landed: Some(
+                estimate.support == support.other()
+                    && estimate.time_on_support < self.generator.step_elapsed(),
+            ),
         };
         Ok((command, d))
     }

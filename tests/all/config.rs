@@ -155,6 +155,14 @@ fn out_of_range_protocol_values_are_errors_naming_the_field() {
             "[settings.walker.motion]\nhip_gain = 5.0\n",
             "settings.walker.motion.hip_gain",
         ),
+        (
+            "[settings.walker.motion]\nlanding_wait_s = -0.1\n",
+            "settings.walker.motion.landing_wait_s",
+        ),
+        (
+            "[settings.walker.motion]\nearly_landing_phase = 1.5\n",
+            "settings.walker.motion.early_landing_phase",
+        ),
     ] {
         let (ok, _, err) = check(text);
         assert!(!ok, "{text:?} accepted");
@@ -357,6 +365,16 @@ fn the_shipped_configs_pass_the_check() {
         config.settings.walker.offset_target = OffsetTarget::Footstep;
         assert_eq!(config, base, "{file}");
     }
+
+    // Steps that end at the landing: the defaults but for the early landing and tilt gain.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/landing.toml");
+    let o = steplearn(&["config", "--check", path]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut config = ConfigFile::load(Path::new(path)).unwrap();
+    let motion = &mut config.settings.walker.motion;
+    assert_eq!((motion.early_landing_phase, motion.tilt_gain), (0.5, 1.3));
+    (motion.early_landing_phase, motion.tilt_gain) = (1.0, 1.0);
+    assert_eq!(config, ConfigFile::default());
 }
 
 #[test]

@@ -25,6 +25,7 @@ mod grid_properties;
 mod index_page;
 mod kernel_ridge_properties;
 mod kinematics_round_trip;
+mod landing;
 mod lateral;
 mod learner;
 mod learner_checkpoint;

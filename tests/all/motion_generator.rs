@@ -59,6 +59,7 @@ fn steps_take_the_commanded_time_and_alternate() {
             step_time: (1.0 - g.phase()) * 0.5,
             gait_x: 0.0,
             tilt: None,
+            swing_landed: None,
         };
         g.update(&cmd, dt);
         t += dt;
@@ -138,10 +139,136 @@ fn bad_command_values_are_ignored() {
         step_time: f64::NAN,
         gait_x: f64::NAN,
         tilt: Some([[f64::NAN, 0.0], [0.0, f64::INFINITY]]),
+        swing_landed: None,
     };
     for _ in 0..100 {
         let t = g.update(&cmd, 0.01);
         assert!(t.pos.iter().all(|v| v.is_finite()));
     }
     assert!(g.steps() >= 1);
+}
+
+fn generator_with(config: MotionConfig) -> MotionGenerator {
+    MotionGenerator::new(config, &BodyConfig::default().leg_geometry())
+}
+
+/// Runs `g` with steps of `step_time` left at every tick, the swing foot reported landed from
+/// `landed_at` on (s after the last exchange; `None`: unknown), and returns the time of the
+/// first exchange.
+fn first_exchange(g: &mut MotionGenerator, step_time: f64, landed_at: Option<f64>) -> f64 {
+    let dt = 0.01;
+    let mut t = 0.0;
+    let start = g.steps();
+    while g.steps() == start {
+        let cmd = StepCommand {
+            step_x: 0.2,
+            step_y: g.swing().sign() * g.nominal_width(),
+            turn: 0.0,
+            step_time: (step_time - t).max(0.0),
+            gait_x: 0.0,
+            tilt: None,
+            swing_landed: landed_at.map(|at| t >= at - 1e-9),
+        };
+        g.update(&cmd, dt);
+        t += dt;
+        assert!(t < 5.0, "no exchange");
+    }
+    t
+}
+
+#[test]
+fn a_swing_foot_still_in_the_air_is_held_until_it_lands_or_the_wait_is_up() {
+    let wait = MotionConfig {
+        landing_wait_s: 0.2,
+        ..MotionConfig::default()
+    };
+    // On time without the setting, or without knowing whether the foot landed.
+    let on_time = first_exchange(&mut generator(), 0.4, Some(0.55));
+    assert!((on_time - 0.4).abs() < 0.015, "{on_time}");
+    let unknown = first_exchange(&mut generator_with(wait), 0.4, None);
+    assert!((unknown - 0.4).abs() < 0.015, "{unknown}");
+    // Held until the landing 0.15 s late, at most the wait.
+    let held = first_exchange(&mut generator_with(wait), 0.4, Some(0.55));
+    assert!((held - 0.56).abs() < 0.015, "{held}");
+    let capped = first_exchange(&mut generator_with(wait), 0.4, Some(2.0));
+    assert!((capped - 0.61).abs() < 0.025, "{capped}");
+}
+
+#[test]
+fn a_held_swing_leg_straightens_towards_the_ground() {
+    let config = MotionConfig {
+        landing_wait_s: 0.2,
+        ..MotionConfig::default()
+    };
+    let mut g = generator_with(config);
+    let swing = g.swing();
+    let dt = 0.01;
+    let mut extensions = Vec::new();
+    for k in 0..55 {
+        let t = k as f64 * dt;
+        let cmd = StepCommand {
+            step_x: 0.2,
+            step_y: swing.sign() * g.nominal_width(),
+            turn: 0.0,
+            step_time: (0.4 - t).max(0.0),
+            gait_x: 0.0,
+            tilt: None,
+            swing_landed: Some(false),
+        };
+        g.update(&cmd, dt);
+        extensions.push(g.legs()[swing.index()].extension);
+    }
+    assert_eq!(g.swing(), swing, "still held");
+    let at_end = extensions[38];
+    let held = *extensions.last().unwrap();
+    // The halt extension at the swing's end; 0.16 s into a 0.2 s wait, a fifth of it left.
+    assert!((at_end - config.halt_extension).abs() < 1e-9, "{at_end}");
+    assert!(
+        (held - 0.2 * config.halt_extension).abs() < 0.06 * config.halt_extension,
+        "{held}"
+    );
+}
+
+#[test]
+fn an_early_landing_ends_the_step_only_past_the_set_phase() {
+    let early = MotionConfig {
+        early_landing_phase: 0.5,
+        ..MotionConfig::default()
+    };
+    // Off by default: the landing at 0.3 s of a 0.4 s step changes nothing.
+    let on_time = first_exchange(&mut generator(), 0.4, Some(0.3));
+    assert!((on_time - 0.4).abs() < 0.015, "{on_time}");
+    // With it, the step ends at the landing; before half the step a landing waits for it.
+    let ended = first_exchange(&mut generator_with(early), 0.4, Some(0.3));
+    assert!((ended - 0.31).abs() < 0.015, "{ended}");
+    let at_half = first_exchange(&mut generator_with(early), 0.4, Some(0.05));
+    assert!(at_half > 0.15 && at_half < 0.25, "{at_half}");
+}
+
+#[test]
+fn landing_settings_out_of_range_are_refused() {
+    for config in [
+        MotionConfig {
+            landing_wait_s: -0.1,
+            ..MotionConfig::default()
+        },
+        MotionConfig {
+            landing_wait_s: 1.5,
+            ..MotionConfig::default()
+        },
+        MotionConfig {
+            early_landing_phase: 1.2,
+            ..MotionConfig::default()
+        },
+        MotionConfig {
+            early_landing_phase: f64::NAN,
+            ..MotionConfig::default()
+        },
+    ] {
+        let err = config.validate().unwrap_err().to_string();
+        assert!(
+            err.contains("landing_wait_s") || err.contains("early_landing_phase"),
+            "{err}"
+        );
+    }
 }

@@ -22,7 +22,7 @@ use steplearn::bench::Registry;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::{Tick, WalkerMode};
 use steplearn::experiments::catch_step::{MIN_CATCH_BEYOND_REFERENCE, catch_step_reach};
-use steplearn::experiments::fall_causes::FallCauseObserver;
+use steplearn::experiments::fall_causes::{FallCauseObserver, FallEvent};
 use steplearn::experiments::stability::{self, StabilityProtocol};
 use steplearn::experiments::trial::{FallRecord, Observer, TrialSetup, run_trial};
 use steplearn::experiments::{ConfigFile, RunContext};
@@ -47,6 +47,10 @@ struct Args {
     /// Where to write the per-push CSV (default: stdout after the summary).
     #[arg(long)]
     csv: Option<PathBuf>,
+    /// Print the model walker's ticks between these two times (s): estimator support, the
+    /// generator's support, feet x relative to the CoM, CoM x and velocity, pitch, command.
+    #[arg(long, num_args = 2)]
+    trace: Option<Vec<f64>>,
 }
 
 /// One step, at its touch-down.
@@ -93,6 +97,9 @@ struct Recorder {
     /// the current step: (time, command the tick before).
     support: Option<steplearn::control::Side>,
     exchange: Option<(f64, f64)>,
+    /// The window to trace and the traced lines.
+    trace: Option<(f64, f64)>,
+    lines: String,
 }
 
 /// The command at `time` along `path` (the last tick at or before it).
@@ -103,6 +110,27 @@ fn command_at(path: &[(f64, f64)], time: f64) -> f64 {
 
 impl Observer for Recorder {
     fn on_tick(&mut self, time: f64, tick: &Tick) {
+        if let Some((t0, t1)) = self.trace
+            && time >= t0
+            && time <= t1
+        {
+            let e = &tick.estimate;
+            let _ = writeln!(
+                self.lines,
+                "t {time:.3} est {:?} gen {:?} feetx L {:+.3} R {:+.3} comx {:+.3} v {:+.3} pitch {:+.3} cmd {:+.3} T {:.3} td {}",
+                e.support,
+                tick.decision.map(|d| d.support),
+                e.feet[0][0],
+                e.feet[1][0],
+                e.com[0].pos,
+                e.com[0].vel,
+                e.pitch,
+                tick.command.step_x,
+                tick.command.step_time,
+                tick.step
+                    .map_or(String::new(), |s| format!("realised {:+.3}", s.f_e + s.f_r)),
+            );
+        }
         if let Some(step) = &tick.step {
             let mut l = self.last.unwrap_or_default();
             l.decided = self.last.is_some();
@@ -173,11 +201,37 @@ fn run(
     name: &str,
     csv: &mut String,
     out: &mut String,
+    trace: Option<(f64, f64)>,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let mut rec = Recorder::default();
+    let mut rec = Recorder {
+        trace: trace.filter(|_| name == "model"),
+        ..Recorder::default()
+    };
     let mut causes = FallCauseObserver::new();
     let log = run_trial(setup, policy, &mut [&mut rec, &mut causes])?;
     let library = catch_step_reach(causes.events(), &log.pushes);
+    // The library's touch-downs (time, command, realised, F_R) and falls, for its per-push row.
+    let lib_landings: Vec<(f64, Option<f64>, f64, f64)> = causes
+        .events()
+        .iter()
+        .filter_map(|e| match *e {
+            FallEvent::TouchDown {
+                time,
+                step_x,
+                realised,
+                f_r,
+            } => Some((time, step_x, realised, f_r)),
+            FallEvent::Fall { .. } => None,
+        })
+        .collect();
+    let lib_falls: Vec<f64> = causes
+        .events()
+        .iter()
+        .filter_map(|e| match *e {
+            FallEvent::Fall { time, .. } => Some(time),
+            FallEvent::TouchDown { .. } => None,
+        })
+        .collect();
     let l = &rec.landings;
     let mut sum = 0.0;
     let mut n = 0;
@@ -224,6 +278,26 @@ fn run(
             "{name},{k},{:.3},{:.3},{},{},{:.4}",
             p.time, p.impulse, p.fell, counted, ratio
         )?;
+        // As the library counts it: the second touch-down after the push, its command (at
+        // release where the generator exchanged first), realised, the time since the touch-down
+        // before it.
+        let first = lib_landings.partition_point(|x| x.0 <= p.time);
+        match lib_landings.get(first + 1) {
+            Some(&(time, Some(c), realised, f_r)) => {
+                let fell = lib_falls.iter().any(|&t| t > p.time && t <= time);
+                let counted = !fell
+                    && time < next_push
+                    && (c - f_r).abs() >= MIN_CATCH_BEYOND_REFERENCE
+                    && c != 0.0;
+                write!(
+                    csv,
+                    ",{counted},{:.4},{c:.4},{realised:.4},{:.3}",
+                    realised / c,
+                    time - lib_landings[first].0
+                )?;
+            }
+            _ => write!(csv, ",false,,,,")?,
+        }
         let mut before = prev.map(|x| x.time);
         for s in [under, catch, after] {
             match s {
@@ -256,6 +330,7 @@ fn run(
         }
         writeln!(csv)?;
     }
+    out.push_str(&rec.lines);
     let reach = sum / n.max(1) as f64;
     writeln!(
         out,
@@ -300,7 +375,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         components: &components,
     };
     let mut learner = ctx.make_learner_of(args.learn)?;
-    let mut csv = String::from("walker,push,time,impulse,fell,counted,ratio");
+    let mut csv = String::from(
+        "walker,push,time,impulse,fell,counted,ratio,lib_counted,lib_ratio,lib_commanded,lib_realised,lib_duration",
+    );
     for s in ["under", "catch", "after"] {
         for c in [
             "time",
@@ -325,11 +402,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     csv.push('\n');
+    let trace = args.trace.as_ref().map(|t| (t[0], t[1]));
     let (mut a, mut b) = (String::new(), String::new());
     let (mut sa, mut sb) = (String::new(), String::new());
     let (model, learned) = rayon::join(
-        || run(&setup, None, "model", &mut a, &mut sa).map_err(|e| e.to_string()),
-        || run(&setup, Some(&mut learner), "learned", &mut b, &mut sb).map_err(|e| e.to_string()),
+        || run(&setup, None, "model", &mut a, &mut sa, trace).map_err(|e| e.to_string()),
+        || {
+            run(
+                &setup,
+                Some(&mut learner),
+                "learned",
+                &mut b,
+                &mut sb,
+                trace,
+            )
+            .map_err(|e| e.to_string())
+        },
     );
     model?;
     learned?;
