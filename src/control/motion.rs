@@ -243,7 +243,7 @@ pub struct MotionConfig {
     /// ground where it was sent; the legs are exchanged at the touch-down (or when the time
     /// is up). Needs the walker's [`StepCommand::swing_landed`]; without it the step ends on
     /// time. Left out of written configs at 0.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(skip_serializing_if = "is_zero")]
     pub landing_wait_s: f64,
     /// The earliest phase of a step at which its swing foot's landing ends it (in [0, 1];
     /// default 1: off, the step ends on time as in the paper). A swing foot that lands early
@@ -251,12 +251,8 @@ pub struct MotionConfig {
     /// body; ending the step there lets the controller plan the next step from it instead of
     /// sweeping a loaded foot on to its placement. Needs the walker's
     /// [`StepCommand::swing_landed`]. Left out of written configs at 1.
-    #[serde(default = "one", skip_serializing_if = "is_one")]
+    #[serde(skip_serializing_if = "is_one")]
     pub early_landing_phase: f64,
-}
-
-fn one() -> f64 {
-    1.0
 }
 
 fn is_one(v: &f64) -> bool {
