@@ -57,8 +57,9 @@ fn exchanges(settings: &Settings) -> (usize, usize) {
 
 #[test]
 fn with_steps_ending_at_the_landing_the_controller_changes_feet_only_on_the_new_foot() {
-    let default = Settings::default();
-    let (all, ahead) = exchanges(&default);
+    let mut on_time = Settings::default();
+    on_time.walker.motion.early_landing_phase = 1.0;
+    let (all, ahead) = exchanges(&on_time);
     assert!(all >= 40, "{all} exchanges");
     // On time, the generator lets some swing feet go before they land.
     assert!(ahead >= 1, "none of {all} exchanges ahead of the landing");

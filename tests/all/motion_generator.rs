@@ -235,8 +235,12 @@ fn an_early_landing_ends_the_step_only_past_the_set_phase() {
         early_landing_phase: 0.5,
         ..MotionConfig::default()
     };
-    // Off by default: the landing at 0.3 s of a 0.4 s step changes nothing.
-    let on_time = first_exchange(&mut generator(), 0.4, Some(0.3));
+    // Off (1): the landing at 0.3 s of a 0.4 s step changes nothing.
+    let off = MotionConfig {
+        early_landing_phase: 1.0,
+        ..MotionConfig::default()
+    };
+    let on_time = first_exchange(&mut generator_with(off), 0.4, Some(0.3));
     assert!((on_time - 0.4).abs() < 0.015, "{on_time}");
     // With it, the step ends at the landing; before half the step a landing waits for it.
     let ended = first_exchange(&mut generator_with(early), 0.4, Some(0.3));
