@@ -29,3 +29,8 @@ python3 judge.py > judge.txt
 (cd ../.. && cargo run --release -p steplearn-probes --bin catch_anatomy -- --seed 0 --backward \
   --learn step-x --csv results-archive/landing-levers/anatomy-backward-s0.csv) > /dev/null
 python3 anatomy.py anatomy-backward-s0.csv > anatomy.txt
+# The same with configs/landing.toml:
+(cd ../.. && cargo run --release -p steplearn-probes --bin catch_anatomy -- --seed 0 --backward \
+  --learn step-x --config configs/landing.toml \
+  --csv results-archive/landing-levers/anatomy-backward-s0-landing.csv) > /dev/null
+python3 anatomy.py anatomy-backward-s0-landing.csv > anatomy-landing.txt
