@@ -10,10 +10,13 @@
 //! touch-down the generator exchanged its legs and the command it released the swing foot at),
 //! the last tick's analytic part and learned dF and dT, the step time planned and the dT
 //! at the first tick, the
-//! duration, the realised length and F_R. Prints each walker's reach (checked against the
-//! library's) and the counted pushes' reach split by the catch step's realised length.
+//! duration, the realised length and F_R. The `lib_` columns are the catch step as the library
+//! counts it (`catch_step_reach`: the command at release where the generator exchanged its legs
+//! first, the realised length, the time since the touch-down before). Prints each walker's reach
+//! against the last tick's command beside the library's and the counted pushes split by their
+//! ratio; `--trace T0 T1` prints the model walker's ticks between two times.
 //!
-//! `cargo run --release -p steplearn-probes --bin catch_anatomy -- --seed 0 --learn step-x,step-time [--backward] [--pushes 400] [--config FILE] [--csv FILE]`
+//! `cargo run --release -p steplearn-probes --bin catch_anatomy -- --seed 0 --learn step-x,step-time [--backward] [--pushes 400] [--config FILE] [--csv FILE] [--trace T0 T1]`
 
 use clap::Parser;
 use std::fmt::Write as _;
