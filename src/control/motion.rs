@@ -253,6 +253,13 @@ pub struct MotionConfig {
     /// [`StepCommand::swing_landed`]. Left out of written configs at 1.
     #[serde(skip_serializing_if = "is_one")]
     pub early_landing_phase: f64,
+    /// [`Swing::Tracking`]: extra lift of the swing foot per radian of the trunk's tilt
+    /// deviation (as the tracking swing measures it, beyond its dead band), in leg lengths
+    /// (in [0, 1]; default 0: off). A body tilted towards the swing foot brings the ground up
+    /// to it; the extra lift follows the lift's own profile, so the foot still lands at the
+    /// step's end. Left out of written configs at 0.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tilt_lift: f64,
 }
 
 fn is_one(v: &f64) -> bool {
@@ -297,6 +304,7 @@ impl Default for MotionConfig {
             hip_gain: 0.0,
             landing_wait_s: 0.0,
             early_landing_phase: 1.0,
+            tilt_lift: 0.0,
         }
     }
 }
@@ -310,7 +318,8 @@ impl MotionConfig {
         config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
         config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)?;
         config::in_range("landing_wait_s", self.landing_wait_s, 0.0, 1.0)?;
-        config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)
+        config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)?;
+        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)
     }
 
     /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
@@ -673,7 +682,10 @@ impl MotionGenerator {
                 } else {
                     0.0
                 };
-                (end_swing, s_swing, c.lift_extension * lift * fade - reach)
+                // A tilted body brings the ground up to the swing foot: lift it the more.
+                let tilted = self.tilt.map_or(0.0, |[roll, pitch]| roll.hypot(pitch));
+                let height = c.lift_extension + c.tilt_lift * tilted;
+                (end_swing, s_swing, height * lift * fade - reach)
             } else {
                 (end_support, p, -c.push_extension * lift * fade)
             };

@@ -268,11 +268,71 @@ fn landing_settings_out_of_range_are_refused() {
             early_landing_phase: f64::NAN,
             ..MotionConfig::default()
         },
+        MotionConfig {
+            tilt_lift: -0.1,
+            ..MotionConfig::default()
+        },
     ] {
         let err = config.validate().unwrap_err().to_string();
         assert!(
-            err.contains("landing_wait_s") || err.contains("early_landing_phase"),
+            err.contains("landing_wait_s")
+                || err.contains("early_landing_phase")
+                || err.contains("tilt_lift"),
             "{err}"
         );
     }
+}
+
+/// The swing leg's extension over a 0.4 s step with the trunk tilted by `tilt` (rad of pitch,
+/// beyond the dead band from the first tick on: the settled tilt starts upright).
+fn swing_extensions(config: MotionConfig, tilt: f64) -> Vec<f64> {
+    let mut g = generator_with(config);
+    // Fade in first, stepping in place upright.
+    let dt = 0.01;
+    let upright = |g: &MotionGenerator, left: f64| StepCommand {
+        step_x: 0.0,
+        step_y: g.swing().sign() * g.nominal_width(),
+        turn: 0.0,
+        step_time: left,
+        gait_x: 0.0,
+        tilt: Some([[0.0, 0.0], [0.0, 0.0]]),
+        swing_landed: None,
+    };
+    while g.time_since_start() < 2.0 || g.phase() > 0.0 {
+        let left = (1.0 - g.phase()) * 0.4;
+        g.update(&upright(&g, left), dt);
+    }
+    let swing = g.swing();
+    let mut out = Vec::new();
+    for k in 0..40 {
+        let mut cmd = upright(&g, 0.4 - k as f64 * dt);
+        cmd.tilt = Some([[0.0, tilt], [0.0, 0.0]]);
+        g.update(&cmd, dt);
+        if g.swing() != swing {
+            break;
+        }
+        out.push(g.legs()[swing.index()].extension);
+    }
+    out
+}
+
+#[test]
+fn tilt_lift_lifts_a_tilted_swing_higher_and_lands_it_as_before() {
+    let plain = MotionConfig::default();
+    let lifted = MotionConfig {
+        tilt_lift: 0.5,
+        ..MotionConfig::default()
+    };
+    let upright = swing_extensions(lifted, 0.0);
+    let without = swing_extensions(plain, -0.11);
+    let with = swing_extensions(lifted, -0.11);
+    // Upright it changes nothing.
+    assert_eq!(upright, swing_extensions(plain, 0.0));
+    // Mid-swing 0.5 x 0.1 rad of tilt beyond the band lifts by up to 0.05 leg lengths.
+    let mid = with.len() / 2;
+    let extra = with[mid] - without[mid];
+    assert!((extra - 0.05).abs() < 0.01, "{extra}");
+    // At the end of the lift both are back at the halt extension.
+    let (a, b) = (with.last().unwrap(), without.last().unwrap());
+    assert!((a - b).abs() < 1e-6, "{a} {b}");
 }
