@@ -1,7 +1,9 @@
-# Judge, seeds 5-9, C (400 pushes), --learn step-x,step-time, configs/landing.toml against the default (results-archive/catch-step-reach): python3 judge.py
-import json,os,statistics as st,math
+# Judge, seeds 5-9, C (400 pushes), --learn step-x,step-time, against the default (results-archive/catch-step-reach):
+# python3 judge.py (configs/landing.toml, dirs judge-*) or python3 judge.py judge-lift0.3 (lift0.3.toml)
+import json,os,sys,statistics as st,math
 HERE=os.path.dirname(os.path.abspath(__file__))
 A=os.path.join(HERE,'..','catch-step-reach')
+PREFIX=sys.argv[1] if len(sys.argv)>1 else 'judge'
 def get(d):
     f=json.load(open(os.path.join(d,'summary.json')))
     c=f['controllers']; r=f['catch_step_reach']
@@ -14,7 +16,7 @@ def ci(xs):
 for dir in ['forward','backward']:
     rows=[]
     for s in range(5,10):
-        d=os.path.join(HERE,f'judge-{dir}-s{s}'); b=f'{A}/C-step-x_step-time-{dir}-s{s}'; bx=f'{A}/C-step-x-{dir}-s{s}'
+        d=os.path.join(HERE,f'{PREFIX}-{dir}-s{s}'); b=f'{A}/C-step-x_step-time-{dir}-s{s}'; bx=f'{A}/C-step-x-{dir}-s{s}'
         if not os.path.exists(d+'/summary.json'): continue
         rows.append((s,get(d),get(b),get(bx)))
     if not rows: continue

@@ -6,7 +6,7 @@ def get(d):
     f=json.load(open(os.path.join(d,'summary.json')))
     c=f['controllers']; r=f['catch_step_reach']
     return r['model'], c['model']['impulse_at_50pct_fall_ns'], r['learned'], c['learned']['impulse_at_50pct_fall_ns']
-levers=sys.argv[1:] or ['default','wait0.1','early0.5','early0.2','early0.5wait0.1','gain1.3early0.5']
+levers=sys.argv[1:] or ['default','wait0.1','early0.5','early0.2','early0.5wait0.1','gain1.3early0.5','lift0.3','lift0.6']
 for dir in ['forward','backward']:
     base={}
     for lever in levers:

@@ -16,12 +16,22 @@ for s in 0 1 2; do
   $bin experiment stability --seed $s --push-direction backward --pushes 200 \
     --learn step-x,step-time --config early0.2.toml --out xt-early0.2-backward-s$s
 done
+# The tilted swing lifted higher, with the landing config.
+for lever in lift0.3 lift0.6; do for dir in backward forward; do for s in 0 1 2; do
+  $bin experiment stability --seed $s --push-direction $dir --pushes 200 \
+    --learn step-x,step-time --config $lever.toml --out xt-$lever-$dir-s$s
+done; done; done
 for dir in backward forward; do for s in 5 6 7 8 9; do
   $bin experiment stability --seed $s --push-direction $dir --learn step-x,step-time \
     --config ../../configs/landing.toml --out judge-$dir-s$s
 done; done
+for dir in backward forward; do for s in 5 6 7 8 9; do
+  $bin experiment stability --seed $s --push-direction $dir --learn step-x,step-time \
+    --config lift0.3.toml --out judge-lift0.3-$dir-s$s
+done; done
 python3 levers.py > levers.txt
 python3 judge.py > judge.txt
+python3 judge.py judge-lift0.3 > judge-lift0.3.txt
 # The trace of one backward push on seed 0 (push 67 at 245.27 s), model walker, defaults:
 (cd ../.. && cargo run --release -p steplearn-probes --bin catch_anatomy -- --seed 0 --backward \
   --learn step-x --csv /dev/null --trace 245.20 245.60) | grep '^t ' > trace-backward-s0.txt

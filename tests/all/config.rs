@@ -366,15 +366,35 @@ fn the_shipped_configs_pass_the_check() {
         assert_eq!(config, base, "{file}");
     }
 
-    // Steps that end at the landing: the defaults but for the early landing and tilt gain.
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/landing.toml");
-    let o = steplearn(&["config", "--check", path]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let mut config = ConfigFile::load(Path::new(path)).unwrap();
-    let motion = &mut config.settings.walker.motion;
-    assert_eq!((motion.early_landing_phase, motion.tilt_gain), (0.5, 1.3));
-    (motion.early_landing_phase, motion.tilt_gain) = (1.0, 1.0);
-    assert_eq!(config, ConfigFile::default());
+    // Steps that end at the landing, and with the tilted swing lifted: the defaults but for
+    // the generator's settings they name.
+    for (file, tilt_lift) in [("landing.toml", 0.0), ("landing_lift.toml", 0.3)] {
+        let path = format!("{}/configs/{file}", env!("CARGO_MANIFEST_DIR"));
+        let o = steplearn(&["config", "--check", &path]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut config = ConfigFile::load(Path::new(&path)).unwrap();
+        let motion = &mut config.settings.walker.motion;
+        assert_eq!(
+            (
+                motion.early_landing_phase,
+                motion.tilt_gain,
+                motion.tilt_lift
+            ),
+            (0.5, 1.3, tilt_lift),
+            "{file}"
+        );
+        let default = steplearn::control::motion::MotionConfig::default();
+        (
+            motion.early_landing_phase,
+            motion.tilt_gain,
+            motion.tilt_lift,
+        ) = (
+            default.early_landing_phase,
+            default.tilt_gain,
+            default.tilt_lift,
+        );
+        assert_eq!(config, ConfigFile::default(), "{file}");
+    }
 }
 
 #[test]
