@@ -24,8 +24,10 @@ use std::path::PathBuf;
 use steplearn::bench::Registry;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::{Tick, WalkerMode};
-use steplearn::experiments::catch_step::{MIN_CATCH_BEYOND_REFERENCE, catch_step_reach};
-use steplearn::experiments::fall_causes::{FallCauseObserver, FallEvent};
+use steplearn::experiments::catch_step::{
+    MIN_CATCH_BEYOND_REFERENCE, catch_step_reach, catch_steps,
+};
+use steplearn::experiments::fall_causes::FallCauseObserver;
 use steplearn::experiments::stability::{self, StabilityProtocol};
 use steplearn::experiments::trial::{FallRecord, Observer, TrialSetup, run_trial};
 use steplearn::experiments::{ConfigFile, RunContext};
@@ -213,28 +215,8 @@ fn run(
     let mut causes = FallCauseObserver::new();
     let log = run_trial(setup, policy, &mut [&mut rec, &mut causes])?;
     let library = catch_step_reach(causes.events(), &log.pushes);
-    // The library's touch-downs (time, command, realised, F_R) and falls, for its per-push row.
-    let lib_landings: Vec<(f64, Option<f64>, f64, f64)> = causes
-        .events()
-        .iter()
-        .filter_map(|e| match *e {
-            FallEvent::TouchDown {
-                time,
-                step_x,
-                realised,
-                f_r,
-            } => Some((time, step_x, realised, f_r)),
-            FallEvent::Fall { .. } => None,
-        })
-        .collect();
-    let lib_falls: Vec<f64> = causes
-        .events()
-        .iter()
-        .filter_map(|e| match *e {
-            FallEvent::Fall { time, .. } => Some(time),
-            FallEvent::TouchDown { .. } => None,
-        })
-        .collect();
+    // The library's catch step of each push, for its per-push row.
+    let lib = catch_steps(causes.events(), &log.pushes);
     let l = &rec.landings;
     let mut sum = 0.0;
     let mut n = 0;
@@ -281,25 +263,19 @@ fn run(
             "{name},{k},{:.3},{:.3},{},{},{:.4}",
             p.time, p.impulse, p.fell, counted, ratio
         )?;
-        // As the library counts it: the second touch-down after the push, its command (at
-        // release where the generator exchanged first), realised, the time since the touch-down
-        // before it.
-        let first = lib_landings.partition_point(|x| x.0 <= p.time);
-        match lib_landings.get(first + 1) {
-            Some(&(time, Some(c), realised, f_r)) => {
-                let fell = lib_falls.iter().any(|&t| t > p.time && t <= time);
-                let counted = !fell
-                    && time < next_push
-                    && (c - f_r).abs() >= MIN_CATCH_BEYOND_REFERENCE
-                    && c != 0.0;
-                write!(
-                    csv,
-                    ",{counted},{:.4},{c:.4},{realised:.4},{:.3}",
-                    realised / c,
-                    time - lib_landings[first].0
-                )?;
-            }
-            _ => write!(csv, ",false,,,,")?,
+        // As the library counts it: its command (at release where the generator exchanged
+        // first), realised, the time since the touch-down before it.
+        match lib[k] {
+            Some(c) => write!(
+                csv,
+                ",{},{:.4},{:.4},{:.4},{:.3}",
+                c.counted,
+                c.realised / c.commanded,
+                c.commanded,
+                c.realised,
+                c.duration
+            )?,
+            None => write!(csv, ",false,,,,")?,
         }
         let mut before = prev.map(|x| x.time);
         for s in [under, catch, after] {

@@ -26,11 +26,26 @@ pub struct CatchStepReach {
     pub pushes: usize,
 }
 
-/// The catch step's reach over a trial's delivered `pushes` (time order), from the touch-downs
-/// and falls a [`crate::experiments::fall_causes::FallCauseObserver`] recorded (`events`, time
-/// order). Works with any walker mode: the open-loop walker has no commanded footstep, so none
-/// of its pushes counts.
-pub fn catch_step_reach(events: &[FallEvent], pushes: &[PushRecord]) -> CatchStepReach {
+/// One push's catch step, as [`catch_step_reach`] takes it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CatchStep {
+    /// Its touch-down time (s).
+    pub time: f64,
+    /// The length commanded for it (m).
+    pub commanded: f64,
+    /// The realised length, foot to foot (m).
+    pub realised: f64,
+    /// The reference step at its touch-down (m).
+    pub f_r: f64,
+    /// Time since the touch-down before it, which ended the step under way at the push (s).
+    pub duration: f64,
+    /// Whether the push counts for the reach.
+    pub counted: bool,
+}
+
+/// Each push's catch step (in the order of `pushes`): `None` where no second touch-down
+/// followed the push or it had no commanded footstep. Inputs as [`catch_step_reach`].
+pub fn catch_steps(events: &[FallEvent], pushes: &[PushRecord]) -> Vec<Option<CatchStep>> {
     let landings: Vec<(f64, Option<f64>, f64, f64)> = events
         .iter()
         .filter_map(|e| match *e {
@@ -50,27 +65,43 @@ pub fn catch_step_reach(events: &[FallEvent], pushes: &[PushRecord]) -> CatchSte
             FallEvent::TouchDown { .. } => None,
         })
         .collect();
+    pushes
+        .iter()
+        .enumerate()
+        .map(|(k, push)| {
+            let next_push = pushes.get(k + 1).map_or(f64::INFINITY, |p| p.time);
+            let first = landings.partition_point(|l| l.0 <= push.time);
+            let &(time, commanded, realised, f_r) = landings.get(first + 1)?;
+            let commanded = commanded?;
+            let fell = falls.iter().any(|&t| t > push.time && t <= time);
+            let counted = !fell
+                && time < next_push
+                && (commanded - f_r).abs() >= MIN_CATCH_BEYOND_REFERENCE
+                && commanded != 0.0;
+            Some(CatchStep {
+                time,
+                commanded,
+                realised,
+                f_r,
+                duration: time - landings[first].0,
+                counted,
+            })
+        })
+        .collect()
+}
+
+/// The catch step's reach over a trial's delivered `pushes` (time order), from the touch-downs
+/// and falls a [`crate::experiments::fall_causes::FallCauseObserver`] recorded (`events`, time
+/// order). Works with any walker mode: the open-loop walker has no commanded footstep, so none
+/// of its pushes counts.
+pub fn catch_step_reach(events: &[FallEvent], pushes: &[PushRecord]) -> CatchStepReach {
     let mut sum = 0.0;
     let mut n = 0;
-    for (k, push) in pushes.iter().enumerate() {
-        let next_push = pushes.get(k + 1).map_or(f64::INFINITY, |p| p.time);
-        let first = landings.partition_point(|l| l.0 <= push.time);
-        let Some(&(time, commanded, realised, f_r)) = landings.get(first + 1) else {
-            continue;
-        };
-        let fell = falls.iter().any(|&t| t > push.time && t <= time);
-        let Some(commanded) = commanded else {
-            continue;
-        };
-        if fell
-            || time >= next_push
-            || (commanded - f_r).abs() < MIN_CATCH_BEYOND_REFERENCE
-            || commanded == 0.0
-        {
-            continue;
+    for c in catch_steps(events, pushes).into_iter().flatten() {
+        if c.counted {
+            sum += c.realised / c.commanded;
+            n += 1;
         }
-        sum += realised / commanded;
-        n += 1;
     }
     CatchStepReach {
         reach: (n > 0).then(|| sum / n as f64),
