@@ -29,6 +29,20 @@ for dir in backward forward; do for s in 5 6 7 8 9; do
   $bin experiment stability --seed $s --push-direction $dir --learn step-x,step-time \
     --config lift0.3.toml --out judge-lift0.3-$dir-s$s
 done; done
+# 2026-11-28: the tilt gain 1.3 biases undisturbed walking (undisturbed.txt); the tilt gain
+# beyond a band (tilt_gain_band), and early landing with the lift at gain 1, seeds 0-2, then the
+# band's candidates and the reference on seeds 3-4 as well.
+for lever in early0.5lift0.3 band0.02 band0.05; do for dir in backward forward; do for s in 0 1 2; do
+  $bin experiment stability --seed $s --push-direction $dir --pushes 200 \
+    --learn step-x,step-time --config $lever.toml --out xt-$lever-$dir-s$s
+done; done; done
+for lever in default band0.02 band0.05; do for dir in backward forward; do for s in 3 4; do
+  $bin experiment stability --seed $s --push-direction $dir --pushes 200 \
+    --learn step-x,step-time --config $lever.toml --out xt-$lever-$dir-s$s
+done; done; done
+(cd ../.. && cargo run --release -p steplearn-probes --bin undisturbed_steps -- 1,1,0,0 \
+  0.5,1.0,0.3,0 0.5,1.3,0.3,0 0.5,1.3,0.3,0.02 0.5,1.3,0.3,0.05 1,1.3,0,0) > undisturbed.txt
+SEEDS=0,1,2,3,4 python3 levers.py default band0.02 band0.05 > levers-band.txt
 python3 levers.py > levers.txt
 python3 judge.py > judge.txt
 python3 judge.py judge-lift0.3 > judge-lift0.3.txt

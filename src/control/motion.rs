@@ -213,8 +213,17 @@ pub struct MotionConfig {
     /// (s; at most the time left in the step).
     pub tilt_lead: f64,
     /// [`Swing::Tracking`]: the share of the trunk's tilt deviation the swing compensates
-    /// (1: all of it; 0: none, the end angle only from the support leg's geometry).
+    /// (default 1.3: a little more than all of it, which lands a pushed body's catch step
+    /// nearer its command; 1: all of it; 0: none, the end angle only from the support leg's
+    /// geometry).
     pub tilt_gain: f64,
+    /// [`Swing::Tracking`]: tilt deviations within this band are compensated once and only the
+    /// part beyond it by [`MotionConfig::tilt_gain`] (rad, in [0, 1]; default 0.05; 0: all of
+    /// it by the gain). The
+    /// trunk's pitch and roll in undisturbed walking stay within a few hundredths of a radian,
+    /// a push tilts it by tenths: with a band, a gain above 1 lands a pushed body's catch step
+    /// without biasing the undisturbed gait.
+    pub tilt_gain_band: f64,
     /// [`Swing::Tracking`]: time constant of the trunk's settled tilt (s, > 0): the swing
     /// compensates the measured tilt's deviation from its low-pass filtered value, so a
     /// steady lean (the trunk's sag on its hips, a lean the gait settles into) is left to the
@@ -246,24 +255,18 @@ pub struct MotionConfig {
     #[serde(skip_serializing_if = "is_zero")]
     pub landing_wait_s: f64,
     /// The earliest phase of a step at which its swing foot's landing ends it (in [0, 1];
-    /// default 1: off, the step ends on time as in the paper). A swing foot that lands early
-    /// (the state estimator stands on it, having changed to it during this step) bears the
-    /// body; ending the step there lets the controller plan the next step from it instead of
-    /// sweeping a loaded foot on to its placement. Needs the walker's
-    /// [`StepCommand::swing_landed`]. Left out of written configs at 1.
-    #[serde(skip_serializing_if = "is_one")]
+    /// default 0.5; 1: off, the step ends on time as in the paper). A swing foot that lands
+    /// early (the state estimator stands on it, having changed to it during this step) bears
+    /// the body; ending the step there lets the controller plan the next step from it instead
+    /// of sweeping a loaded foot on to its placement. Needs the walker's
+    /// [`StepCommand::swing_landed`]; without it the step ends on time.
     pub early_landing_phase: f64,
     /// [`Swing::Tracking`]: extra lift of the swing foot per radian of the trunk's tilt
     /// deviation (as the tracking swing measures it, beyond its dead band), in leg lengths
-    /// (in [0, 1]; default 0: off). A body tilted towards the swing foot brings the ground up
-    /// to it; the extra lift follows the lift's own profile, so the foot still lands at the
-    /// step's end. Left out of written configs at 0.
-    #[serde(skip_serializing_if = "is_zero")]
+    /// (in [0, 1]; default 0.3; 0: off). A body tilted towards the swing foot brings the
+    /// ground up to it; the extra lift follows the lift's own profile, so the foot still
+    /// lands at the step's end.
     pub tilt_lift: f64,
-}
-
-fn is_one(v: &f64) -> bool {
-    *v == 1.0
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -298,13 +301,14 @@ impl Default for MotionConfig {
             swing_step_scale: 1.0,
             swing: Swing::Tracking,
             tilt_lead: 0.0,
-            tilt_gain: 1.0,
+            tilt_gain: 1.3,
+            tilt_gain_band: 0.05,
             tilt_settle_s: 3.0,
             tilt_dead_band: 0.01,
             hip_gain: 0.0,
             landing_wait_s: 0.0,
-            early_landing_phase: 1.0,
-            tilt_lift: 0.0,
+            early_landing_phase: 0.5,
+            tilt_lift: 0.3,
         }
     }
 }
@@ -314,6 +318,7 @@ impl MotionConfig {
     pub fn validate(&self) -> Result<(), ConfigError> {
         config::non_negative("tilt_lead", self.tilt_lead)?;
         config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)?;
+        config::in_range("tilt_gain_band", self.tilt_gain_band, 0.0, 1.0)?;
         config::positive("tilt_settle_s", self.tilt_settle_s)?;
         config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
         config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)?;
@@ -340,8 +345,10 @@ impl MotionConfig {
             lift_window: [0.0874, 0.982],
             swing_window: [0.103, 0.8739],
             lean_per_step: -0.0582,
-            // Walking without feedback: the swing never reads the trunk's tilt.
+            // Walking without feedback: the swing never reads the trunk's tilt, and every
+            // step ends on time.
             swing: Swing::Paper,
+            early_landing_phase: 1.0,
             ..MotionConfig::default()
         }
     }
@@ -649,14 +656,22 @@ impl MotionGenerator {
         // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
         // support sole on the ground, for the trunk's predicted tilt.
         let tracking = self.tilt.map(|[roll, pitch]| {
-            let roll = c.tilt_gain * roll;
+            // Within the band once, beyond it by the gain (without a band, all by the gain).
+            let gained = |x: f64| {
+                if c.tilt_gain_band == 0.0 {
+                    c.tilt_gain * x
+                } else {
+                    x + (c.tilt_gain - 1.0) * x.signum() * (x.abs() - c.tilt_gain_band).max(0.0)
+                }
+            };
+            let roll = gained(roll);
             // The legs' tilt: the hip strategy's extra pitch is in the lean already.
             let pitch = if c.hip_gain != 0.0 {
                 pitch - self.hip
             } else {
                 pitch
             };
-            let pitch = lean + c.tilt_gain * pitch;
+            let pitch = lean + gained(pitch);
             // The hip over the support sole at the end of the step, with the support leg
             // tilted by the trunk's tilt beyond its settled value.
             let support_world = end_support_pitch - lean + pitch;

@@ -366,33 +366,50 @@ fn the_shipped_configs_pass_the_check() {
         assert_eq!(config, base, "{file}");
     }
 
-    // Steps that end at the landing, and with the tilted swing lifted: the defaults but for
-    // the generator's settings they name.
-    for (file, tilt_lift) in [("landing.toml", 0.0), ("landing_lift.toml", 0.3)] {
+    // The swing's step ends: the defaults (landing_lift.toml writes them out), without the
+    // extra lift (landing.toml), the previous default with every step on time (on_time.toml),
+    // and the paper's (paper_swing.toml): each the defaults but for the settings it names.
+    const DEFAULT_BAND: f64 = 0.05;
+    let default = steplearn::control::motion::MotionConfig::default();
+    let named = |m: &steplearn::control::motion::MotionConfig| {
+        (
+            m.early_landing_phase,
+            m.tilt_gain,
+            m.tilt_gain_band,
+            m.tilt_lift,
+        )
+    };
+    assert_eq!(named(&default), (0.5, 1.3, DEFAULT_BAND, 0.3));
+    for (file, expected) in [
+        ("landing_lift.toml", (0.5, 1.3, 0.0, 0.3)),
+        ("landing.toml", (0.5, 1.3, 0.0, 0.0)),
+        ("on_time.toml", (1.0, 1.0, DEFAULT_BAND, 0.0)),
+        ("paper_swing.toml", (1.0, 1.3, DEFAULT_BAND, 0.3)),
+    ] {
         let path = format!("{}/configs/{file}", env!("CARGO_MANIFEST_DIR"));
         let o = steplearn(&["config", "--check", &path]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let mut config = ConfigFile::load(Path::new(&path)).unwrap();
         let motion = &mut config.settings.walker.motion;
-        assert_eq!(
-            (
-                motion.early_landing_phase,
-                motion.tilt_gain,
-                motion.tilt_lift
-            ),
-            (0.5, 1.3, tilt_lift),
-            "{file}"
-        );
-        let default = steplearn::control::motion::MotionConfig::default();
+        assert_eq!(named(motion), expected, "{file}");
         (
             motion.early_landing_phase,
             motion.tilt_gain,
+            motion.tilt_gain_band,
             motion.tilt_lift,
-        ) = (
-            default.early_landing_phase,
-            default.tilt_gain,
-            default.tilt_lift,
-        );
+        ) = named(&default);
+        if file == "paper_swing.toml" {
+            use steplearn::control::motion::Swing;
+            assert_eq!(
+                (motion.swing, motion.step_x_range),
+                (Swing::Paper, [-0.15, 0.45])
+            );
+            (motion.swing, motion.step_x_range) = (default.swing, default.step_x_range);
+            assert_eq!(config.settings.learner.dead_zone, 0.0);
+            config.settings.learner.dead_zone = ConfigFile::default().settings.learner.dead_zone;
+            assert_eq!(config, ConfigFile::default(), "{file}");
+            continue;
+        }
         assert_eq!(config, ConfigFile::default(), "{file}");
     }
 }

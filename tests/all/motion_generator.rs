@@ -286,11 +286,20 @@ fn landing_settings_out_of_range_are_refused() {
 /// The swing leg's extension over a 0.4 s step with the trunk tilted by `tilt` (rad of pitch,
 /// beyond the dead band from the first tick on: the settled tilt starts upright).
 fn swing_extensions(config: MotionConfig, tilt: f64) -> Vec<f64> {
+    swing_poses(config, tilt, 0.0)
+        .iter()
+        .map(|pose| pose.extension)
+        .collect()
+}
+
+/// The swing leg's pose at every tick of a 0.4 s step of `step_x` with the trunk tilted by
+/// `tilt`, as [`swing_extensions`].
+fn swing_poses(config: MotionConfig, tilt: f64, step_x: f64) -> Vec<LegPose> {
     let mut g = generator_with(config);
     // Fade in first, stepping in place upright.
     let dt = 0.01;
     let upright = |g: &MotionGenerator, left: f64| StepCommand {
-        step_x: 0.0,
+        step_x,
         step_y: g.swing().sign() * g.nominal_width(),
         turn: 0.0,
         step_time: left,
@@ -311,14 +320,56 @@ fn swing_extensions(config: MotionConfig, tilt: f64) -> Vec<f64> {
         if g.swing() != swing {
             break;
         }
-        out.push(g.legs()[swing.index()].extension);
+        out.push(g.legs()[swing.index()]);
     }
     out
 }
 
 #[test]
+fn the_tilt_gain_acts_only_beyond_its_band() {
+    let once = MotionConfig {
+        tilt_gain: 1.0,
+        tilt_gain_band: 0.0,
+        ..MotionConfig::default()
+    };
+    let gained = MotionConfig {
+        tilt_gain: 1.3,
+        tilt_gain_band: 0.0,
+        ..MotionConfig::default()
+    };
+    let banded = MotionConfig {
+        tilt_gain: 1.3,
+        tilt_gain_band: 0.05,
+        ..MotionConfig::default()
+    };
+    let pitch = |config: MotionConfig, tilt: f64| -> Vec<f64> {
+        // Stepping in place the tracked swing leg stays parallel to the support leg whatever
+        // the gain: a step forward shows it.
+        swing_poses(config, tilt, 0.2)
+            .iter()
+            .map(|pose| pose.angle[1])
+            .collect()
+    };
+    // A tilt within the band (0.03 rad beyond the dead band, settling towards it) is
+    // compensated once: tick for tick the swing of the gain 1 generator.
+    assert_eq!(pitch(banded, -0.04), pitch(once, -0.04));
+    assert_ne!(pitch(gained, -0.04), pitch(once, -0.04));
+    // A push's tilt: beyond the band the gain adds to the compensation, less than without a
+    // band by about the gain's share of the band.
+    let (a, b, c) = (pitch(once, -0.2), pitch(banded, -0.2), pitch(gained, -0.2));
+    let end = a.len() * 3 / 4;
+    let (a, b, c) = (a[end], b[end], c[end]);
+    assert!((a - b) * (b - c) > 0.0, "once {a}, banded {b}, gained {c}");
+    let share = (b - a) / (c - a);
+    assert!((0.6..0.85).contains(&share), "share {share}");
+}
+
+#[test]
 fn tilt_lift_lifts_a_tilted_swing_higher_and_lands_it_as_before() {
-    let plain = MotionConfig::default();
+    let plain = MotionConfig {
+        tilt_lift: 0.0,
+        ..MotionConfig::default()
+    };
     let lifted = MotionConfig {
         tilt_lift: 0.5,
         ..MotionConfig::default()
