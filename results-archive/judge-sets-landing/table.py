@@ -1,0 +1,42 @@
+# Experiment C on seeds 5-9 with the default swing (run.sh): per learned set and direction, the
+# model's I50 and catch step reach, and the learned walker's I50 over the model's on the same
+# pushes, paired by seed (mean and 95% Student-t interval).
+import json, math, os, statistics as st
+HERE = os.path.dirname(os.path.abspath(__file__))
+T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
+SETS = [(name, os.path.join(HERE, "C-" + name + "-{d}-s{s}"))
+        for name in ["step-x,step-time", "step-x,step-y,step-time"]]
+# The defaults until 2026-11-28 (steps on time), on the same seeds and pushes.
+BEFORE = {"step-x,step-time": os.path.join(HERE, "..", "judge-sets", "C-step-x,step-time-{d}-s{s}"),
+          "step-x,step-y,step-time": os.path.join(HERE, "..", "judge-sets", "C-step-x,step-y,step-time-{d}-s{s}")}
+
+def ci(xs):
+    m = st.mean(xs)
+    h = T[len(xs)] * st.stdev(xs) / math.sqrt(len(xs)) if len(xs) > 1 else float("nan")
+    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
+
+def runs(pattern, d):
+    out = {}
+    for s in range(5, 10):
+        f = pattern.format(d=d, s=s) + "/summary.json"
+        if os.path.exists(f):
+            j = json.load(open(f))
+            c, r = j["controllers"], j["catch_step_reach"]
+            out[s] = (c["model"]["impulse_at_50pct_fall_ns"], c["learned"]["impulse_at_50pct_fall_ns"],
+                      r["model"], r["learned"])
+    return out
+
+print("| learned set | pushes | seeds | model I50 (Ns) | reach, model | reach, learned | learned / model I50 "
+      "| model / model on time | learned / learned on time | learned / model on time |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for name, pattern in SETS:
+    for d in ["forward", "backward"]:
+        now, before = runs(pattern, d), runs(BEFORE[name], d)
+        if not now:
+            continue
+        rows = list(now.values())
+        paired = [(now[s], before[s]) for s in now if s in before]
+        print(f"| `{name}` | {d} | {len(rows)} | {st.mean(m for m, _, _, _ in rows):.2f} | "
+              f"{st.mean(a for _, _, a, _ in rows):.3f} | {st.mean(b for _, _, _, b in rows):.3f} | "
+              f"{ci([l / m for m, l, _, _ in rows])} | {ci([n[0] / b[0] for n, b in paired])} | "
+              f"{ci([n[1] / b[1] for n, b in paired])} | {ci([n[1] / b[0] for n, b in paired])} |")
