@@ -40,3 +40,27 @@ for name, pattern in SETS:
               f"{st.mean(a for _, _, a, _ in rows):.3f} | {st.mean(b for _, _, _, b in rows):.3f} | "
               f"{ci([l / m for m, l, _, _ in rows])} | {ci([n[0] / b[0] for n, b in paired])} | "
               f"{ci([n[1] / b[1] for n, b in paired])} | {ci([n[1] / b[0] for n, b in paired])} |")
+
+# Fall causes (summed over the seeds), per walker, with the default and with steps on time.
+print()
+print("| learned set | pushes | swing | walker | falls | tipped after the catch step | catch step clamped | later step clamped | before touch-down | other |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for name, pattern in SETS:
+    for d in ["forward", "backward"]:
+        for label, pat in [("default", pattern), ("on time", BEFORE[name])]:
+            tot = {"model": {}, "learned": {}}
+            for s in range(5, 10):
+                f = pat.format(d=d, s=s) + "/summary.json"
+                if not os.path.exists(f):
+                    continue
+                causes = json.load(open(f))["fall_causes"]
+                for w in tot:
+                    for k, v in causes[w].items():
+                        tot[w][k] = tot[w].get(k, 0) + v
+            for w, c in tot.items():
+                if not c:
+                    continue
+                main = ["tipped_after_catch_step", "catch_step_clamped", "later_step_clamped", "before_touch_down"]
+                print(f"| `{name}` | {d} | {label} | {w} | {sum(c.values())} | "
+                      + " | ".join(str(c.get(k, 0)) for k in main)
+                      + f" | {sum(v for k, v in c.items() if k not in main)} |")
