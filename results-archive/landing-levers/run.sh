@@ -43,6 +43,12 @@ done; done; done
 (cd ../.. && cargo run --release -p steplearn-probes --bin undisturbed_steps -- 1,1,0,0 \
   0.5,1.0,0.3,0 0.5,1.3,0.3,0 0.5,1.3,0.3,0.02 0.5,1.3,0.3,0.05 1,1.3,0,0) > undisturbed.txt
 SEEDS=0,1,2,3,4 python3 levers.py default band0.02 band0.05 > levers-band.txt
+# The default (band0.05.toml) with a wider step range for both walkers, seeds 0-4.
+for dir in backward forward; do for s in 0 1 2 3 4; do
+  $bin experiment stability --seed $s --push-direction $dir --pushes 200 \
+    --learn step-x,step-time --config wide0.6.toml --out xt-wide0.6-$dir-s$s
+done; done
+SEEDS=0,1,2,3,4 python3 levers.py band0.05 wide0.6 > levers-wide.txt
 python3 levers.py > levers.txt
 python3 judge.py > judge.txt
 python3 judge.py judge-lift0.3 > judge-lift0.3.txt
