@@ -4,11 +4,10 @@
 import json, math, os, statistics as st
 HERE = os.path.dirname(os.path.abspath(__file__))
 T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
-SETS = [(name, os.path.join(HERE, "C-" + name + "-{d}-s{s}"))
-        for name in ["step-x,step-time", "step-x,step-y,step-time"]]
+NAMES = ["step-x,step-time", "step-x,step-y,step-time"]
+SETS = [(name, os.path.join(HERE, "C-" + name + "-{d}-s{s}")) for name in NAMES]
 # The defaults until 2026-11-28 (steps on time), on the same seeds and pushes.
-BEFORE = {"step-x,step-time": os.path.join(HERE, "..", "judge-sets", "C-step-x,step-time-{d}-s{s}"),
-          "step-x,step-y,step-time": os.path.join(HERE, "..", "judge-sets", "C-step-x,step-y,step-time-{d}-s{s}")}
+BEFORE = {name: os.path.join(HERE, "..", "judge-sets", "C-" + name + "-{d}-s{s}") for name in NAMES}
 
 def ci(xs):
     m = st.mean(xs)

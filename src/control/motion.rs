@@ -219,10 +219,9 @@ pub struct MotionConfig {
     pub tilt_gain: f64,
     /// [`Swing::Tracking`]: tilt deviations within this band are compensated once and only the
     /// part beyond it by [`MotionConfig::tilt_gain`] (rad, in [0, 1]; default 0.05; 0: all of
-    /// it by the gain). The
-    /// trunk's pitch and roll in undisturbed walking stay within a few hundredths of a radian,
-    /// a push tilts it by tenths: with a band, a gain above 1 lands a pushed body's catch step
-    /// without biasing the undisturbed gait.
+    /// it by the gain). The trunk's pitch and roll in undisturbed walking stay within a few
+    /// hundredths of a radian, a push tilts it by tenths: with a band, a gain above 1 lands a
+    /// pushed body's catch step without biasing the undisturbed gait.
     pub tilt_gain_band: f64,
     /// [`Swing::Tracking`]: time constant of the trunk's settled tilt (s, > 0): the swing
     /// compensates the measured tilt's deviation from its low-pass filtered value, so a
@@ -656,7 +655,8 @@ impl MotionGenerator {
         // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
         // support sole on the ground, for the trunk's predicted tilt.
         let tracking = self.tilt.map(|[roll, pitch]| {
-            // Within the band once, beyond it by the gain (without a band, all by the gain).
+            // Within the band once, beyond it by the gain. Without a band all of it by the
+            // gain, computed as before the band existed, so such runs stay bit for bit.
             let gained = |x: f64| {
                 if c.tilt_gain_band == 0.0 {
                     c.tilt_gain * x
