@@ -8,11 +8,10 @@ use crate::approx::{
 };
 use crate::config::ConfigError;
 use crate::control::learner::{LearnerConfig, LearnerError};
-use crate::control::step_parameter::StepParameter;
 use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::experiment::{
-    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, parameter_learner,
+    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, step_x_learner,
 };
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::{LwprSettings, Settings};
@@ -337,9 +336,7 @@ impl Registry {
     ) -> Result<impl Fn(LearnerConfig) -> Result<RunLearner, LearnerError> + Sync + '_, BenchError>
     {
         let components = self.components(approx, rule, lwpr)?;
-        Ok(move |config: LearnerConfig| {
-            parameter_learner(&components, StepParameter::StepX, config)
-        })
+        Ok(move |config: LearnerConfig| step_x_learner(&components, config))
     }
 
     /// Runs `spec` with `settings` and the protocol tables `protocols`: writes its figures and

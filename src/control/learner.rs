@@ -66,7 +66,7 @@ pub use super::learner_config::{
     ParameterSettings, Prior, TrustFallback, TrustSettings,
 };
 pub use super::learner_error::LearnerError;
-use super::step_parameter::StepParameter;
+use super::step_parameter::{Plane, StepParameter};
 use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, StepOutcome};
@@ -1080,6 +1080,11 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
     /// The step parameter this learner learns.
     pub fn parameter(&self) -> StepParameter {
         self.parameters[0]
+    }
+
+    /// The plane it reads and is taught in (its settings' for its parameter).
+    pub fn plane(&self) -> Plane {
+        self.settings.plane(self.parameter())
     }
 
     /// The same learner (approximator, prior, trust-region statistics, step in progress),

@@ -4,7 +4,7 @@
 //! grouped by the safeguard they belong to. A learner holds only checked settings.
 
 use super::learner_error::LearnerError;
-use super::step_parameter::{LearnSet, StepParameter};
+use super::step_parameter::{LearnSet, Plane, StepParameter};
 use serde::{Deserialize, Serialize};
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
@@ -156,6 +156,11 @@ pub struct ParameterSettings {
     /// The clamp on the offset's query.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_offset: Option<f64>,
+    /// The plane whose state the offset's learner reads and whose outcome teaches it
+    /// (default: [`StepParameter::default_plane`]). Only `step-time` may name another: `plane =
+    /// "frontal"` learns the step time from the lean sideways (docs/lateral.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plane: Option<Plane>,
 }
 
 impl ParameterSettings {
@@ -242,12 +247,18 @@ pub struct CheckedLearnerConfig {
     pub(crate) memory: MemorySettings,
     pub(crate) prior: Prior,
     pub(crate) learn: LearnSet,
+    pub(crate) planes: [Plane; StepParameter::ALL.len()],
 }
 
 impl CheckedLearnerConfig {
     /// The settings of `parameter`'s offset.
     pub fn offset(&self, parameter: StepParameter) -> OffsetSettings {
         self.offsets[parameter.index()]
+    }
+
+    /// The plane `parameter`'s learner reads and is taught in.
+    pub fn plane(&self, parameter: StepParameter) -> Plane {
+        self.planes[parameter.index()]
     }
 
     /// The gain guard and anti-windup.
@@ -436,6 +447,14 @@ impl LearnerConfig {
         }
     }
 
+    /// The plane `parameter`'s learner reads and is taught in: its table's `plane`, else
+    /// [`StepParameter::default_plane`] (not checked; see [`Self::check`]).
+    pub fn plane(&self, parameter: StepParameter) -> Plane {
+        self.parameter_settings(parameter)
+            .plane
+            .unwrap_or(parameter.default_plane())
+    }
+
     /// Checks every setting, each parameter's table included, once, and groups them into the
     /// values a learner holds.
     pub fn check(&self) -> Result<CheckedLearnerConfig, LearnerError> {
@@ -448,10 +467,22 @@ impl LearnerConfig {
         check_offset(SHARED_OFFSET_KEYS, &shared)?;
         self.check_shared()?;
         let mut offsets = [shared; StepParameter::ALL.len()];
+        let mut planes = [Plane::Sagittal; StepParameter::ALL.len()];
         for p in StepParameter::ALL {
             let o = self.offset(p);
             check_offset(PARAMETER_OFFSET_KEYS[p.index()], &o)?;
             offsets[p.index()] = o;
+            let plane = self.plane(p);
+            if !p.allows(plane) {
+                return Err(LearnerError::config(
+                    PLANE_KEYS[p.index()],
+                    format!(
+                        "{p} is learned in the {} plane only, got {plane}",
+                        p.default_plane()
+                    ),
+                ));
+            }
+            planes[p.index()] = plane;
         }
         Ok(CheckedLearnerConfig {
             offsets,
@@ -474,6 +505,7 @@ impl LearnerConfig {
             },
             prior: self.prior,
             learn: self.learn,
+            planes,
         })
     }
 
@@ -583,6 +615,9 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
         "step-time.max_offset",
     ],
 ];
+
+/// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
+const PLANE_KEYS: [&str; 3] = ["step-x.plane", "step-y.plane", "step-time.plane"];
 
 /// Checks one offset's settings; an error names the value by its key in `keys` (eta, dead
 /// zone, leakage, clamp), so a value from a parameter's table is named with its table.

@@ -12,6 +12,10 @@
 //! - `step-y`: the frontal plane mirrored to the swing leg's side, input
 //!   `(lean, lean rate, W_R - 2 delta)`, outcome the lean, its rate and the width error
 //!   `W - W_R` (see [`Walker`](super::walker::Walker)).
+//!
+//! A learner whose settings name another plane for its parameter (`step-time` in the frontal
+//! plane) reads that plane's input and outcome, those of the footstep offset learned there
+//! ([`PerParameter::in_plane`]).
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
 use super::step_parameter::{LearnSet, PerParameter};
@@ -62,7 +66,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for Footst
     ) -> Result<PerParameter<f64>, LearnerError> {
         let p = self.parameter();
         let mut out = PerParameter::default();
-        out[p] = self.query(inputs[p])?;
+        out[p] = self.query(*inputs.in_plane(p, self.plane()))?;
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
@@ -75,13 +79,16 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for Footst
     ) -> Result<StepReports, LearnerError> {
         let p = self.parameter();
         let mut out = StepReports::default();
-        out[p] = Some(FootstepLearner::touch_down(self, &outcomes[p])?);
+        out[p] = Some(FootstepLearner::touch_down(
+            self,
+            outcomes.in_plane(p, self.plane()),
+        )?);
         Ok(out)
     }
     fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         let p = self.parameter();
         let mut out = StepReports::default();
-        out[p] = FootstepLearner::fall(self, &outcomes[p])?;
+        out[p] = FootstepLearner::fall(self, outcomes.in_plane(p, self.plane()))?;
         Ok(out)
     }
     fn discard_step(&mut self) {

@@ -9,6 +9,12 @@
 //! plugs in as the learner's rule does. The built-in rules per parameter: the run's rule for
 //! `step-x` and `step-y` (the lateral learner sees the mirrored frontal plane, see
 //! [`super::policy`]), [`StepTime`](crate::rules::StepTime) for `step-time`.
+//!
+//! Each parameter's learner reads the plane its settings name
+//! ([`CheckedLearnerConfig::plane`](super::learner_config::CheckedLearnerConfig::plane)):
+//! `step-x` the sagittal, `step-y` the frontal, `step-time` the sagittal unless
+//! `[settings.learner.step-time] plane = "frontal"`, which learns the step time from the lean
+//! sideways and its outcome.
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner};
 use super::policy::{FootstepPolicy, StepReports};
@@ -114,7 +120,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
     ) -> Result<PerParameter<f64>, LearnerError> {
         let mut out = PerParameter::default();
         for (p, l) in &mut self.learners {
-            out[*p] = l.query(inputs[*p])?;
+            let input = *inputs.in_plane(*p, l.settings().plane(*p));
+            out[*p] = l.query(input)?;
         }
         Ok(out)
     }
@@ -131,14 +138,16 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
     ) -> Result<StepReports, LearnerError> {
         let mut out = StepReports::default();
         for (p, l) in &mut self.learners {
-            out[*p] = Some(l.touch_down(&outcomes[*p])?);
+            let outcome = *outcomes.in_plane(*p, l.settings().plane(*p));
+            out[*p] = Some(l.touch_down(&outcome)?);
         }
         Ok(out)
     }
     fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         let mut out = StepReports::default();
         for (p, l) in &mut self.learners {
-            out[*p] = l.fall(&outcomes[*p])?;
+            let outcome = *outcomes.in_plane(*p, l.settings().plane(*p));
+            out[*p] = l.fall(&outcome)?;
         }
         Ok(out)
     }
@@ -212,6 +221,55 @@ mod tests {
             o[StepParameter::StepX] > 0.0 && o[StepParameter::StepTime] < 0.0,
             "{o:?}"
         );
+    }
+
+    #[test]
+    fn a_frontal_step_time_reads_and_learns_the_frontal_plane() {
+        use crate::control::learner_config::ParameterSettings;
+        use crate::control::step_parameter::Plane;
+        let frontal = LearnerConfig {
+            step_time: ParameterSettings {
+                plane: Some(Plane::Frontal),
+                ..ParameterSettings::default()
+            },
+            ..LearnerConfig::default()
+        };
+        let bounds = InputGrid::default().input_box().unwrap();
+        let time = FootstepLearner::for_parameters(
+            ApproxKind::Grid.build(&bounds).unwrap(),
+            [rule(StepParameter::StepTime)],
+            [StepParameter::StepTime],
+            frontal,
+        )
+        .unwrap();
+        let mut l = StepLearner::new(vec![
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+            (StepParameter::StepTime, time),
+        ])
+        .unwrap();
+        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        for k in 0..3 {
+            l.offsets(&inputs(k)).unwrap();
+            l.set_reach(&reach).unwrap();
+        }
+        let lateral = inputs(0)[StepParameter::StepY];
+        let time = l.learner(StepParameter::StepTime).unwrap();
+        assert!(time.recorded_inputs().all(|x| x == lateral));
+        let sagittal = l.learner(StepParameter::StepX).unwrap();
+        assert!(sagittal.recorded_inputs().any(|x| x != lateral));
+        // Taught by the frontal outcome: a lean towards the swing leg, where the sagittal one
+        // leans back.
+        let mut o = outcome(-0.1);
+        o[StepParameter::StepY] = StepOutcome {
+            theta_e: 0.1,
+            theta_e_dot: 0.0,
+            f_e: 0.0,
+            f_r: 0.0,
+        };
+        let r = l.touch_down(&o).unwrap();
+        let want = StepTime::default().gradient(&o[StepParameter::StepY]);
+        assert_eq!(r[StepParameter::StepTime].unwrap().gradient, want);
+        assert!(r[StepParameter::StepX].unwrap().gradient < 0.0);
     }
 
     #[test]

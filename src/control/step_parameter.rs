@@ -4,7 +4,8 @@
 //! sagittally (`F`), laterally (`W`), and when (`T`). A learner adds an offset to any set of
 //! them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
 //! [`StepParameter::StepTime`] a step-time offset dT. [`PerParameter`] holds one value per
-//! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns.
+//! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns;
+//! [`Plane`] is the plane whose state and outcome a parameter's learner reads.
 
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -55,6 +56,46 @@ impl StepParameter {
     pub fn name(self) -> &'static str {
         self.into()
     }
+
+    /// The plane this parameter is learned in unless its settings name another: `step-x` and
+    /// `step-time` the sagittal, `step-y` the frontal.
+    pub fn default_plane(self) -> Plane {
+        match self {
+            StepParameter::StepX | StepParameter::StepTime => Plane::Sagittal,
+            StepParameter::StepY => Plane::Frontal,
+        }
+    }
+
+    /// Whether this parameter may be learned in `plane`: a footstep offset only in its own
+    /// plane, the step time (which moves the capture point in both) in either.
+    pub fn allows(self, plane: Plane) -> bool {
+        self == StepParameter::StepTime || plane == self.default_plane()
+    }
+}
+
+/// The plane whose state (theta_E, its rate, the reference) a learner reads and whose
+/// touch-down outcome teaches it: the sagittal plane of the paper, or the frontal plane
+/// mirrored to the swing leg's side (the lateral learner's, docs/lateral.md).
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    Serialize,
+    Deserialize,
+    strum::EnumString,
+    strum::Display,
+)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum Plane {
+    /// Forward and backward.
+    #[default]
+    Sagittal,
+    /// Sideways, mirrored to the swing leg's side.
+    Frontal,
 }
 
 /// One value per step parameter, indexed by [`StepParameter`].
@@ -75,6 +116,18 @@ impl<T> PerParameter<T> {
     /// Each value transformed.
     pub fn map<U>(self, f: impl FnMut(T) -> U) -> PerParameter<U> {
         PerParameter(self.0.map(f))
+    }
+
+    /// `p`'s value read in `plane`: its own in its default plane
+    /// ([`StepParameter::default_plane`]), else the value of the footstep offset learned in
+    /// `plane` (the walker's inputs and outcomes hold the sagittal plane at `step-x`, the
+    /// frontal at `step-y`).
+    pub fn in_plane(&self, p: StepParameter, plane: Plane) -> &T {
+        match plane {
+            _ if plane == p.default_plane() => &self[p],
+            Plane::Sagittal => &self[StepParameter::StepX],
+            Plane::Frontal => &self[StepParameter::StepY],
+        }
     }
 }
 

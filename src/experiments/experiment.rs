@@ -16,7 +16,8 @@ use crate::config::ConfigError;
 use crate::control::coupled::{CoupledLearner, coupled_bounds};
 use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
 use crate::control::step_learner::StepLearner;
-use crate::control::step_parameter::{LearnSet, StepParameter};
+use crate::control::step_parameter::{LearnSet, Plane, StepParameter};
+use crate::control::walker::WalkerConfig;
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::ReportError;
 use crate::rules::{LearningRule, StepTime};
@@ -71,21 +72,43 @@ pub fn learner_bounds() -> Result<InputBox, ApproxError> {
 
 /// A fresh, untrained learner of `parameter` with `config` from `components`: an approximator
 /// over [`learner_bounds`], the components' rule for `step-x` and `step-y` and the LIPM
-/// step-time rule ([`StepTime`]) for `step-time`. Its rule is not reseeded
+/// step-time rule ([`StepTime`]) for `step-time`, in the plane `config` names for it (the
+/// frontal one for the stance width of `walker`). Its rule is not reseeded
 /// ([`RunContext::make_parameter_learner`] reseeds it with the run's seed).
 pub fn parameter_learner(
     components: &dyn RunComponents,
     parameter: StepParameter,
     config: LearnerConfig,
+    walker: &WalkerConfig,
+) -> Result<RunLearner, LearnerError> {
+    let rule: Box<dyn LearningRule> = match parameter {
+        StepParameter::StepX | StepParameter::StepY => components.rule(),
+        StepParameter::StepTime => match config.plane(parameter) {
+            Plane::Sagittal => Box::new(StepTime::default()),
+            Plane::Frontal => Box::new(StepTime::frontal(2.0 * walker.capture_step.delta)),
+        },
+    };
+    learner_with_rule(components, parameter, config, rule)
+}
+
+/// A fresh, untrained `step-x` learner with `config` from `components` (the paper's learner).
+pub fn step_x_learner(
+    components: &dyn RunComponents,
+    config: LearnerConfig,
+) -> Result<RunLearner, LearnerError> {
+    learner_with_rule(components, StepParameter::StepX, config, components.rule())
+}
+
+fn learner_with_rule(
+    components: &dyn RunComponents,
+    parameter: StepParameter,
+    config: LearnerConfig,
+    rule: Box<dyn LearningRule>,
 ) -> Result<RunLearner, LearnerError> {
     let bounds = learner_bounds().map_err(LearnerError::approx)?;
     let approx = components
         .approximator(&bounds)
         .map_err(LearnerError::approx)?;
-    let rule: Box<dyn LearningRule> = match parameter {
-        StepParameter::StepX | StepParameter::StepY => components.rule(),
-        StepParameter::StepTime => Box::new(StepTime::default()),
-    };
     FootstepLearner::for_parameters(approx, [rule], [parameter], config)
 }
 
@@ -102,14 +125,15 @@ impl RunContext<'_> {
 
     /// A fresh learner of one step parameter with `config`: the run's approximator over the
     /// learner's inputs, the run's rule for `step-x` and `step-y` and the LIPM step-time rule
-    /// ([`StepTime`]) for `step-time`, the parameter's own settings
+    /// ([`StepTime`]) for `step-time` in its plane, the parameter's own settings
     /// ([`LearnerConfig::offset`]).
     pub fn make_parameter_learner(
         &self,
         parameter: StepParameter,
         config: LearnerConfig,
     ) -> Result<RunLearner, LearnerError> {
-        let mut learner = parameter_learner(self.components, parameter, config)?;
+        let mut learner =
+            parameter_learner(self.components, parameter, config, &self.settings.walker)?;
         learner.reseed(self.seed);
         Ok(learner)
     }

@@ -18,6 +18,15 @@
 //! step that stopped the trunk short (`G` and `F_hat` of opposite sign, `|e| < |F_hat|`) asks
 //! to step later. Stepping in place `F_hat` and `e` are small and `G_T` is second order in
 //! them, so the nominal gait's timing is left alone.
+//!
+//! The frontal plane (the step time learned from the lean sideways, mirrored to the swing
+//! leg's side) is the same pendulum with the width for the step: `F_hat` is the realised width
+//! `W = 2 delta + F_E + F_R` (the outcome's `F_E + F_R` is the width beyond the stance in
+//! place, `2 delta`), so `G_T = -C h G (W + h G)` with the frontal G. Stepping in place the
+//! frontal G is about 0 and so is `G_T`; pushed towards the swing leg (`G > 0`) it asks to
+//! step sooner; pushed a little towards the support leg (`-W < h G < 0`) to step later, the
+//! capture point coming back inside; pushed beyond the support foot (`h G < -W`) sooner
+//! again.
 
 use super::{LearningRule, PendulumCart, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -39,6 +48,9 @@ pub struct StepTime {
     /// Scale of `G_T` (1: the LIPM's derivative as written); with the learner's eta, the
     /// learning rate of the step time.
     pub scale: f64,
+    /// The realised step where the outcome's `F_E + F_R` is 0 (m): 0 in the sagittal plane,
+    /// the stance width in place `2 delta` in the frontal plane ([`Self::frontal`]).
+    pub stance: f64,
 }
 
 impl Default for StepTime {
@@ -50,11 +62,21 @@ impl Default for StepTime {
             p_theta: pc.p_theta,
             p_f: pc.p_f,
             scale: 1.0,
+            stance: 0.0,
         }
     }
 }
 
 impl StepTime {
+    /// The rule in the frontal plane, for a gait whose feet stand `stance` apart in place
+    /// (m, the Capture Step controller's `2 delta`).
+    pub fn frontal(stance: f64) -> Self {
+        StepTime {
+            stance,
+            ..StepTime::default()
+        }
+    }
+
     /// The pendulum height `h = g / C^2` (m).
     pub fn height(&self) -> f64 {
         G0 / (self.c * self.c)
@@ -69,7 +91,7 @@ impl LearningRule for StepTime {
         }
         .gradient(step);
         let e = self.height() * g;
-        let realised = step.f_e + step.f_r;
+        let realised = self.stance + step.f_e + step.f_r;
         -self.scale * self.c * e * (realised + e)
     }
 }
@@ -109,6 +131,24 @@ mod tests {
         let small = r.gradient(&outcome(0.001, 0.0)).abs();
         let big = r.gradient(&outcome(0.01, 0.0)).abs();
         assert!((big / small - 100.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn in_the_frontal_plane_the_width_is_the_step() {
+        let r = StepTime::frontal(0.24);
+        // In place: nothing to learn.
+        assert_eq!(r.gradient(&outcome(0.0, 0.0)), 0.0);
+        // Pushed towards the swing leg: sooner, more than the sagittal rule at the same error.
+        let out = outcome(0.05, 0.0);
+        assert!(r.gradient(&out) < StepTime::default().gradient(&out));
+        assert!(r.gradient(&out) < 0.0);
+        // The formula with the width for the step.
+        let g = 0.05;
+        let e = r.height() * g;
+        assert!((r.gradient(&out) + 2.95 * e * (0.24 + e)).abs() < 1e-12);
+        // Pushed a little towards the support leg: later; beyond the support foot: sooner.
+        assert!(r.gradient(&outcome(-0.05, 0.0)) > 0.0);
+        assert!(r.gradient(&outcome(-0.5, 0.0)) < 0.0);
     }
 
     #[test]

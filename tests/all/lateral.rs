@@ -32,6 +32,9 @@ pub(crate) struct Run {
     /// Every tick's commanded width towards the swing side, `(with the learned offset,
     /// without it)` (m): what the motion generator clamps into its step-width range.
     pub(crate) widths: Vec<(f64, f64)>,
+    /// Every touch-down's step-time gradient G_T with its time, where the policy learns the
+    /// step time.
+    pub(crate) time_gradients: Vec<(f64, f64)>,
     pub(crate) falls: usize,
 }
 
@@ -80,6 +83,9 @@ pub(crate) fn step_in_place(
             run.steps.push((td.support, robot.time(), o));
         }
         run.offsets.push(tick.lateral_offset);
+        if let Some(r) = &tick.time_learning {
+            run.time_gradients.push((robot.time(), r.gradient));
+        }
         if !pushed
             && robot.time() >= 4.0
             && tick.estimate.support == stance_for_push
@@ -223,6 +229,60 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
         err(&learned),
         err(&model)
     );
+}
+
+/// The step time learned in the frontal plane is taught by a sideways push: in the second after
+/// a side push its G_T is several times what it was stepping in place before, and well above
+/// what the sagittal step-time rule takes from the same push (a side push moves the trunk a
+/// little sagittally too).
+#[test]
+fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
+    use steplearn::control::Plane;
+    use steplearn::control::learner::ParameterSettings;
+    use steplearn::rules::StepTime;
+    let time_learner = |plane: Plane| {
+        let bounds = InputGrid::default().input_box().unwrap();
+        let config = LearnerConfig {
+            step_time: ParameterSettings {
+                plane: Some(plane),
+                ..ParameterSettings::default()
+            },
+            ..LearnerConfig::default()
+        };
+        let rule = match plane {
+            Plane::Sagittal => StepTime::default(),
+            Plane::Frontal => StepTime::frontal(2.0 * WalkerConfig::default().capture_step.delta),
+        };
+        let l = FootstepLearner::for_parameters(
+            ApproxKind::Lwpr.build(&bounds).unwrap(),
+            [rule],
+            [StepParameter::StepTime],
+            config,
+        )
+        .unwrap();
+        StepLearner::new(vec![(StepParameter::StepTime, l)]).unwrap()
+    };
+    let mut frontal = time_learner(Plane::Frontal);
+    let mut sagittal = time_learner(Plane::Sagittal);
+    let push = [0.0, 5.0, 0.0];
+    let f = step_in_place(8.0, push, Swing::Tracking, Some(&mut frontal));
+    let s = step_in_place(8.0, push, Swing::Tracking, Some(&mut sagittal));
+    assert_eq!(f.falls + s.falls, 0);
+    // The strongest G_T between `from` and `to` seconds (the push comes just after 4 s).
+    let strongest = |r: &Run, from: f64, to: f64| {
+        r.time_gradients
+            .iter()
+            .filter(|(t, _)| (from..to).contains(t))
+            .fold(0.0f64, |m, (_, g)| m.max(g.abs()))
+    };
+    let (before, gf, gs) = (
+        strongest(&f, 2.0, 4.0),
+        strongest(&f, 4.0, 5.0),
+        strongest(&s, 4.0, 5.0),
+    );
+    eprintln!("|G_T|: frontal {before:.4} before the push, {gf:.4} after; sagittal {gs:.4} after");
+    assert!(gf > 2.5 * before, "frontal {gf} after, {before} before");
+    assert!(gf > 1.5 * gs, "frontal {gf}, sagittal {gs}");
 }
 
 /// The loop gain of the frontal-plane rule near the reference: a sustained width offset dW

@@ -1120,6 +1120,27 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
                 ..LearnerConfig::default()
             },
         ),
+        // A footstep offset is learned in its own plane only; the step time in either.
+        (
+            "step-x.plane",
+            LearnerConfig {
+                step_x: ParameterSettings {
+                    plane: Some(steplearn::control::Plane::Frontal),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+        (
+            "step-y.plane",
+            LearnerConfig {
+                step_y: ParameterSettings {
+                    plane: Some(steplearn::control::Plane::Sagittal),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
     ];
     for (key, cfg) in cases {
         match cfg.check() {
@@ -1151,6 +1172,24 @@ fn parameter_tables_read_from_toml_and_a_default_config_writes_none() {
         unknown.unwrap_err().to_string().contains("max_gain"),
         "a learner-wide key in a parameter's table is refused"
     );
+}
+
+#[test]
+fn the_step_time_may_be_learned_in_the_frontal_plane() {
+    use steplearn::control::Plane;
+    use steplearn::control::step_parameter::StepParameter;
+    let cfg: LearnerConfig = toml::from_str("[step-time]\nplane = \"frontal\"\n").unwrap();
+    let checked = cfg.check().unwrap();
+    assert_eq!(checked.plane(StepParameter::StepTime), Plane::Frontal);
+    assert_eq!(checked.plane(StepParameter::StepX), Plane::Sagittal);
+    assert_eq!(checked.plane(StepParameter::StepY), Plane::Frontal);
+    let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
+    assert_eq!(back, cfg);
+    // The default plane is left out of written configs, and an unknown plane is refused.
+    let default = LearnerConfig::default().check().unwrap();
+    assert_eq!(default.plane(StepParameter::StepTime), Plane::Sagittal);
+    let bad = toml::from_str::<LearnerConfig>("[step-time]\nplane = \"diagonal\"\n");
+    assert!(bad.unwrap_err().to_string().contains("diagonal"));
 }
 
 #[test]
