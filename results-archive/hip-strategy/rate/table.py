@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Prints the model I50 table (Markdown) from the run outputs in this folder."""
-import glob, os, re, statistics
+import glob, os, re, statistics, sys
+# "model" (default) or "learned step-x"
+WHICH = re.escape(sys.argv[1] if len(sys.argv) > 1 else "model")
 here = os.path.dirname(os.path.abspath(__file__))
 runs = {}
 for f in glob.glob(os.path.join(here, "*_s*_*.txt")):
     m = re.match(r"(.+)_s(\d+)_(forward|backward)\.txt$", os.path.basename(f))
-    i50 = re.search(r"^model: I50 ([\d.]+) Ns", open(f).read(), re.M)
+    i50 = re.search(r"^" + WHICH + r": I50 ([\d.]+) Ns", open(f).read(), re.M)
     if m and i50:
         runs[(m[1], int(m[2]), m[3])] = float(i50[1])
 settings = sorted({k[0] for k in runs}, key=lambda s: (s != "base", s))
