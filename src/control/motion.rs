@@ -244,6 +244,31 @@ pub struct MotionConfig {
     /// are those of the generator without it.
     #[serde(skip_serializing_if = "is_zero")]
     pub hip_gain: f64,
+    /// [`Swing::Tracking`]: the hip strategy's rate law (rad of extra trunk pitch per rad/s of
+    /// the trunk's pitch rate, in [-2, 2]; default 0: off, and every result is as without it).
+    /// While the legs' pitch tilt deviation (the tracking swing's, beyond its dead band, less
+    /// the extra pitch) has the sign of the measured pitch rate (a fall under way), the target
+    /// is `hip_rate_gain` times that rate, clamped to +-[`HIP_PITCH_LIMIT`] (otherwise 0); a
+    /// target larger in magnitude than the rate law's extra pitch is taken at once, otherwise
+    /// the extra pitch decays to 0 with [`MotionConfig::hip_return_s`]. Positive: a forward fall
+    /// pitches the trunk forward quickly and returns it slowly. Adds to the position law's
+    /// pitch when both are on. Left out of written configs at 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub hip_rate_gain: f64,
+    /// The time constant with which the rate law's extra pitch returns to 0 (s, in [0.01, 10];
+    /// default 0.5). Only read with [`MotionConfig::hip_rate_gain`] on; left out of written
+    /// configs at its default.
+    #[serde(
+        default = "default_hip_return_s",
+        skip_serializing_if = "is_default_hip_return_s"
+    )]
+    pub hip_return_s: f64,
+    /// Whether the walker tells its estimator and controller of the hip strategy's extra
+    /// trunk pitch (default false: it does not): the desired trunk pitch theta_R it hands the
+    /// estimator includes the extra pitch, so theta_E does not read the trunk's deliberate
+    /// lean. Left out of written configs when false.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub hip_to_estimator: bool,
     /// The longest the generator holds a step whose time ran out while its swing foot is
     /// still in the air (s, in [0, 1]; default 0: off, the step ends on time as in the paper).
     /// While it holds, the swing leg keeps tracking its placement and straightens from the
@@ -270,6 +295,21 @@ pub struct MotionConfig {
 
 fn is_zero(v: &f64) -> bool {
     *v == 0.0
+}
+
+fn is_false(v: &bool) -> bool {
+    !*v
+}
+
+/// [`MotionConfig::hip_return_s`]'s default (s).
+const DEFAULT_HIP_RETURN_S: f64 = 0.5;
+
+fn default_hip_return_s() -> f64 {
+    DEFAULT_HIP_RETURN_S
+}
+
+fn is_default_hip_return_s(v: &f64) -> bool {
+    *v == DEFAULT_HIP_RETURN_S
 }
 
 /// The phase a step is held at while its swing foot is still in the air (just below the
@@ -305,6 +345,9 @@ impl Default for MotionConfig {
             tilt_settle_s: 3.0,
             tilt_dead_band: 0.01,
             hip_gain: 0.0,
+            hip_rate_gain: 0.0,
+            hip_return_s: DEFAULT_HIP_RETURN_S,
+            hip_to_estimator: false,
             landing_wait_s: 0.0,
             early_landing_phase: 0.5,
             tilt_lift: 0.3,
@@ -321,6 +364,8 @@ impl MotionConfig {
         config::positive("tilt_settle_s", self.tilt_settle_s)?;
         config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
         config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)?;
+        config::in_range("hip_rate_gain", self.hip_rate_gain, -2.0, 2.0)?;
+        config::in_range("hip_return_s", self.hip_return_s, 0.01, 10.0)?;
         config::in_range("landing_wait_s", self.landing_wait_s, 0.0, 1.0)?;
         config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)?;
         config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)
@@ -382,6 +427,12 @@ pub struct MotionGenerator {
     /// The hip strategy's extra trunk pitch (rad, [`MotionConfig::hip_gain`]).
     #[serde(default)]
     hip: f64,
+    /// The position law's share of [`Self::hip`] (rad).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    hip_position: f64,
+    /// The rate law's share of [`Self::hip`] (rad, [`MotionConfig::hip_rate_gain`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    hip_rate: f64,
     /// How long the current step has been held past its time, waiting for the swing foot to
     /// land (s, [`MotionConfig::landing_wait_s`]).
     #[serde(default)]
@@ -419,6 +470,8 @@ impl MotionGenerator {
             tilt: None,
             tilt_settled: None,
             hip: 0.0,
+            hip_position: 0.0,
+            hip_rate: 0.0,
             waited: 0.0,
             step_elapsed: 0.0,
         };
@@ -465,6 +518,11 @@ impl MotionGenerator {
     /// The supporting leg of the current step.
     pub fn support(&self) -> Side {
         self.support
+    }
+
+    /// The hip strategy's extra trunk pitch last commanded (rad; 0 with it off).
+    pub fn hip_pitch(&self) -> f64 {
+        self.hip
     }
 
     /// Time since the legs were last exchanged (or since the start) (s).
@@ -582,7 +640,29 @@ impl MotionGenerator {
         if c.hip_gain != 0.0 {
             // The legs' tilt: the trunk's less the extra pitch the hips gave it.
             let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
-            self.hip = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
+            self.hip_position = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
+        }
+        if c.hip_rate_gain != 0.0 {
+            let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
+            let rate = match command.tilt {
+                Some([_, [_, r]]) if r.is_finite() && self.tilt.is_some() => r,
+                _ => 0.0,
+            };
+            // A fall under way: the legs tilt beyond the dead band the way the trunk turns.
+            let target = if legs != 0.0 && legs.signum() == rate.signum() {
+                (c.hip_rate_gain * rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT)
+            } else {
+                0.0
+            };
+            let r = self.hip_rate;
+            if target.abs() > r.abs() {
+                self.hip_rate = target;
+            } else {
+                self.hip_rate -= r * (dt / c.hip_return_s).min(1.0);
+            }
+        }
+        if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
+            self.hip = (self.hip_position + self.hip_rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
         }
         self.step_elapsed += dt;
         let landed_early = c.early_landing_phase < 1.0
@@ -649,7 +729,7 @@ impl MotionGenerator {
         let s_swing = smooth(window(p, c.swing_window));
         let lift = (std::f64::consts::PI * window(p, c.lift_window)).sin();
         let mut lean = c.halt_lean + c.lean_per_step * gx;
-        if c.hip_gain != 0.0 {
+        if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
             lean += self.hip;
         }
         // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
@@ -666,7 +746,7 @@ impl MotionGenerator {
             };
             let roll = gained(roll);
             // The legs' tilt: the hip strategy's extra pitch is in the lean already.
-            let pitch = if c.hip_gain != 0.0 {
+            let pitch = if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
                 pitch - self.hip
             } else {
                 pitch

@@ -304,8 +304,12 @@ impl Walker {
         // The desired trunk pitch theta_R: the lean the generator gives the trunk for the
         // reference gait (its halt lean plus the lean with the nominal step, which follows F_R).
         let m = &self.config.motion;
-        let theta_r =
+        let mut theta_r =
             m.halt_lean + m.lean_per_step * f_r.clamp(m.step_x_range[0], m.step_x_range[1]);
+        if m.hip_to_estimator {
+            // The hip strategy's deliberate extra pitch is no fall of the body.
+            theta_r += self.generator.hip_pitch();
+        }
         let estimate = self.estimator.update(sensors, theta_r)?;
         let dt = self.last_time.map_or(0.0, |t| (sensors.time - t).max(0.0));
         self.last_time = Some(sensors.time);

@@ -156,6 +156,14 @@ fn out_of_range_protocol_values_are_errors_naming_the_field() {
             "settings.walker.motion.hip_gain",
         ),
         (
+            "[settings.walker.motion]\nhip_rate_gain = -3.0\n",
+            "settings.walker.motion.hip_rate_gain",
+        ),
+        (
+            "[settings.walker.motion]\nhip_return_s = 0.0\n",
+            "settings.walker.motion.hip_return_s",
+        ),
+        (
             "[settings.walker.motion]\nlanding_wait_s = -0.1\n",
             "settings.walker.motion.landing_wait_s",
         ),

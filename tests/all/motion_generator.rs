@@ -387,3 +387,120 @@ fn tilt_lift_lifts_a_tilted_swing_higher_and_lands_it_as_before() {
     let (a, b) = (with.last().unwrap(), without.last().unwrap());
     assert!((a - b).abs() < 1e-6, "{a} {b}");
 }
+
+/// A generator faded in stepping in place upright (tilt measured, all zero), then ticked
+/// `ticks` times with the trunk's pitch `tilt` (rad) and pitch rate `rate` (rad/s); returns
+/// the generator.
+fn tilted_ticks(g: &mut MotionGenerator, tilt: f64, rate: f64, ticks: usize) {
+    let dt = 0.01;
+    for _ in 0..ticks {
+        let cmd = StepCommand {
+            step_x: 0.0,
+            step_y: g.swing().sign() * g.nominal_width(),
+            turn: 0.0,
+            step_time: (1.0 - g.phase()) * 0.4,
+            gait_x: 0.0,
+            tilt: Some([[0.0, tilt], [0.0, rate]]),
+            swing_landed: None,
+        };
+        g.update(&cmd, dt);
+    }
+}
+
+#[test]
+fn the_hip_rate_law_jumps_with_a_tilt_rate_pulse_and_returns_with_its_time_constant() {
+    let config = MotionConfig {
+        hip_rate_gain: 0.2,
+        hip_return_s: 0.5,
+        ..MotionConfig::default()
+    };
+    let mut g = generator_with(config);
+    tilted_ticks(&mut g, 0.0, 0.0, 200);
+    assert_eq!(g.hip_pitch(), 0.0, "upright: no extra pitch");
+    // A forward fall: the trunk tilts forward and turns forward at 1 rad/s for one tick.
+    tilted_ticks(&mut g, 0.1, 1.0, 1);
+    assert!((g.hip_pitch() - 0.2).abs() < 1e-12, "{}", g.hip_pitch());
+    // The rate gone, the extra pitch decays with 0.5 s: about 1/e of it after 0.5 s.
+    tilted_ticks(&mut g, 0.1, 0.0, 50);
+    let ratio = g.hip_pitch() / 0.2;
+    assert!((ratio - (-1.0f64).exp()).abs() < 0.01, "{ratio}");
+    tilted_ticks(&mut g, 0.1, 0.0, 500);
+    assert!(g.hip_pitch().abs() < 1e-4, "{}", g.hip_pitch());
+    // A backward fall pitches it backward, and clamped to the limit.
+    tilted_ticks(&mut g, -0.1, -5.0, 1);
+    assert_eq!(g.hip_pitch(), -steplearn::control::motion::HIP_PITCH_LIMIT);
+    // A rate against the tilt (a fall being caught) does not pitch the trunk.
+    let mut g = generator_with(config);
+    tilted_ticks(&mut g, 0.0, 0.0, 200);
+    tilted_ticks(&mut g, 0.1, -1.0, 1);
+    assert_eq!(g.hip_pitch(), 0.0);
+    // The extra pitch leans the legs: the joint targets differ from the law's off.
+    let mut off = generator_with(MotionConfig::default());
+    let mut on = generator_with(config);
+    tilted_ticks(&mut off, 0.0, 0.0, 200);
+    tilted_ticks(&mut on, 0.0, 0.0, 200);
+    assert_eq!(off.legs(), on.legs());
+    tilted_ticks(&mut off, 0.1, 1.0, 1);
+    tilted_ticks(&mut on, 0.1, 1.0, 1);
+    assert_ne!(off.legs(), on.legs());
+}
+
+#[test]
+fn with_the_hip_rate_law_off_its_other_settings_change_nothing() {
+    let mut plain = generator_with(MotionConfig::default());
+    let other = MotionConfig {
+        hip_return_s: 2.0,
+        hip_to_estimator: true,
+        ..MotionConfig::default()
+    };
+    let mut set = generator_with(other);
+    for (tilt, rate, ticks) in [
+        (0.0, 0.0, 150),
+        (0.1, 1.0, 3),
+        (0.2, 0.5, 30),
+        (-0.1, -2.0, 40),
+    ] {
+        tilted_ticks(&mut plain, tilt, rate, ticks);
+        tilted_ticks(&mut set, tilt, rate, ticks);
+        assert_eq!(plain.legs(), set.legs());
+        assert_eq!(set.hip_pitch(), 0.0);
+    }
+    // The default settings are left out of written configs.
+    let text = toml::to_string(&MotionConfig::default()).unwrap();
+    assert!(!text.contains("hip_"), "{text}");
+    let text = toml::to_string(&other).unwrap();
+    assert!(
+        text.contains("hip_return_s") && text.contains("hip_to_estimator"),
+        "{text}"
+    );
+}
+
+#[test]
+fn hip_rate_settings_out_of_range_are_refused() {
+    for (config, key) in [
+        (
+            MotionConfig {
+                hip_rate_gain: 2.5,
+                ..MotionConfig::default()
+            },
+            "hip_rate_gain",
+        ),
+        (
+            MotionConfig {
+                hip_rate_gain: f64::NAN,
+                ..MotionConfig::default()
+            },
+            "hip_rate_gain",
+        ),
+        (
+            MotionConfig {
+                hip_return_s: 0.0,
+                ..MotionConfig::default()
+            },
+            "hip_return_s",
+        ),
+    ] {
+        let err = config.validate().unwrap_err().to_string();
+        assert!(err.contains(key), "{err}");
+    }
+}
