@@ -9,12 +9,12 @@
 //! Prints, per reference F_R and offset dT: the touch-downs counted, falls, mean G_T and its
 //! standard error; then the least-squares slope per F_R and the limits it implies.
 //!
-//! `cargo run --release -p steplearn-probes --bin step_time_gain -- --seconds 40`
+//! `cargo run --release -p steplearn-probes --bin step_time_gain -- --seconds 40 [--plane frontal]`
 
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::control::learner::{LearnerError, LearnerInput, TouchDownReport};
-use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
+use steplearn::control::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::run_trial;
@@ -48,12 +48,17 @@ struct Args {
     /// Settings file (`steplearn config` format) for the robot and walker.
     #[arg(long)]
     config: Option<PathBuf>,
+    /// The plane whose outcome G_T is measured in (`sagittal` or `frontal`, the rule of
+    /// `[settings.learner.step-time] plane`).
+    #[arg(long, default_value = "sagittal")]
+    plane: Plane,
 }
 
 /// A fixed step-time offset that records G_T at every touch-down after `settle`.
 struct FixedTime {
     offset: f64,
     rule: StepTime,
+    plane: Plane,
     gradients: Vec<f64>,
 }
 
@@ -76,8 +81,8 @@ impl FootstepPolicy for FixedTime {
         &mut self,
         outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
-        self.gradients
-            .push(self.rule.gradient(&outcomes[StepParameter::StepTime]));
+        let outcome = outcomes.in_plane(StepParameter::StepTime, self.plane);
+        self.gradients.push(self.rule.gradient(outcome));
         let mut out = StepReports::default();
         out[StepParameter::StepTime] = Some(TouchDownReport::default());
         Ok(out)
@@ -108,9 +113,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 [1.0, 0.0, 0.0],
                 args.seconds,
             );
+            let rule = match args.plane {
+                Plane::Sagittal => StepTime::default(),
+                Plane::Frontal => StepTime::frontal(2.0 * settings.walker.capture_step.delta),
+            };
             let mut policy = FixedTime {
                 offset,
-                rule: StepTime::default(),
+                rule,
+                plane: args.plane,
                 gradients: Vec::new(),
             };
             let log = run_trial(&setup, Some(&mut policy), &mut [])?;
