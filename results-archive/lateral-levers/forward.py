@@ -1,0 +1,29 @@
+# The walker learning step-x,step-y,step-time pushed forward (C, 400 pushes, seeds 0-4): its I50
+# over the model's with the step time learned sideways (C-forward-frontal-dz0-s*, forward.sh) and
+# sagittally (../leaderboard-sets-default, the same seeds and protocol), and the frontal learner
+# over the default one, paired by seed (mean and 95% Student-t interval). python3 forward.py
+import json, math, os, statistics as st
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
+
+def i50(d):
+    c = json.load(open(os.path.join(d, "summary.json")))["controllers"]
+    return c["model"]["impulse_at_50pct_fall_ns"], c["learned"]["impulse_at_50pct_fall_ns"]
+
+def interval(v):
+    m = st.mean(v); h = T[len(v)] * st.stdev(v) / math.sqrt(len(v))
+    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
+
+rows = []
+for s in range(5):
+    f = os.path.join(HERE, f"C-forward-frontal-dz0-s{s}")
+    d = os.path.join(HERE, "..", "leaderboard-sets-default",
+                     f"stability__lwpr__pendulum-cart__s{s}__step-x+step-y+step-time")
+    if os.path.exists(os.path.join(f, "summary.json")):
+        rows.append((i50(f), i50(d)))
+assert all(abs(a[0] - b[0]) < 1e-12 for a, b in rows), "the model differs between the runs"
+print(f"seeds {len(rows)}, model {st.mean(a[0] for a, _ in rows):.2f} Ns")
+print("frontal step time: learned / model", interval([a[1] / a[0] for a, _ in rows]))
+print("sagittal step time: learned / model", interval([b[1] / b[0] for _, b in rows]))
+print("frontal / sagittal learner", interval([a[1] / b[1] for a, b in rows]))
