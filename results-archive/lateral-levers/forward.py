@@ -2,18 +2,13 @@
 # over the model's with the step time learned sideways (C-forward-frontal-dz0-s*, forward.sh) and
 # sagittally (../leaderboard-sets-default, the same seeds and protocol), and the frontal learner
 # over the default one, paired by seed (mean and 95% Student-t interval). python3 forward.py
-import json, math, os, statistics as st
+import json, os, statistics as st
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
+from levers import HERE, interval
 
 def i50(d):
     c = json.load(open(os.path.join(d, "summary.json")))["controllers"]
     return c["model"]["impulse_at_50pct_fall_ns"], c["learned"]["impulse_at_50pct_fall_ns"]
-
-def interval(v):
-    m = st.mean(v); h = T[len(v)] * st.stdev(v) / math.sqrt(len(v))
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
 
 rows = []
 for s in range(5):

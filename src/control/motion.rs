@@ -427,9 +427,6 @@ pub struct MotionGenerator {
     /// The hip strategy's extra trunk pitch (rad, [`MotionConfig::hip_gain`]).
     #[serde(default)]
     hip: f64,
-    /// The position law's share of [`Self::hip`] (rad).
-    #[serde(default, skip_serializing_if = "is_zero")]
-    hip_position: f64,
     /// The rate law's share of [`Self::hip`] (rad, [`MotionConfig::hip_rate_gain`]).
     #[serde(default, skip_serializing_if = "is_zero")]
     hip_rate: f64,
@@ -470,7 +467,6 @@ impl MotionGenerator {
             tilt: None,
             tilt_settled: None,
             hip: 0.0,
-            hip_position: 0.0,
             hip_rate: 0.0,
             waited: 0.0,
             step_elapsed: 0.0,
@@ -637,32 +633,29 @@ impl MotionGenerator {
             }
             _ => None,
         };
-        if c.hip_gain != 0.0 {
+        if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
             // The legs' tilt: the trunk's less the extra pitch the hips gave it.
             let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
-            self.hip_position = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
-        }
-        if c.hip_rate_gain != 0.0 {
-            let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
-            let rate = match command.tilt {
-                Some([_, [_, r]]) if r.is_finite() && self.tilt.is_some() => r,
-                _ => 0.0,
-            };
-            // A fall under way: the legs tilt beyond the dead band the way the trunk turns.
-            let target = if legs != 0.0 && legs.signum() == rate.signum() {
-                (c.hip_rate_gain * rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT)
-            } else {
-                0.0
-            };
-            let r = self.hip_rate;
-            if target.abs() > r.abs() {
-                self.hip_rate = target;
-            } else {
-                self.hip_rate -= r * (dt / c.hip_return_s).min(1.0);
+            let position = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
+            if c.hip_rate_gain != 0.0 {
+                let rate = match command.tilt {
+                    Some([_, [_, r]]) if r.is_finite() && self.tilt.is_some() => r,
+                    _ => 0.0,
+                };
+                // A fall under way: the legs tilt beyond the dead band the way the trunk turns.
+                let target = if legs != 0.0 && legs.signum() == rate.signum() {
+                    (c.hip_rate_gain * rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT)
+                } else {
+                    0.0
+                };
+                let r = self.hip_rate;
+                if target.abs() > r.abs() {
+                    self.hip_rate = target;
+                } else {
+                    self.hip_rate -= r * (dt / c.hip_return_s).min(1.0);
+                }
             }
-        }
-        if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
-            self.hip = (self.hip_position + self.hip_rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
+            self.hip = (position + self.hip_rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
         }
         self.step_elapsed += dt;
         let landed_early = c.early_landing_phase < 1.0

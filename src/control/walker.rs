@@ -121,6 +121,12 @@ impl WalkerConfig {
         }
     }
 
+    /// The reference step width in place (m): the Capture Step controller's stance, the feet
+    /// `2 delta` apart.
+    pub fn stance_width(&self) -> f64 {
+        2.0 * self.capture_step.delta
+    }
+
     /// Checks the walker's own values and its controller's and estimator's; errors name the
     /// field relative to the walker's section.
     pub fn validate(&self) -> Result<(), ConfigError> {
@@ -504,7 +510,7 @@ impl Walker {
     /// The reference step width in place (m): the Capture Step controller's stance, the feet
     /// `2 delta` apart.
     pub fn reference_width(&self) -> f64 {
-        2.0 * self.config.capture_step.delta
+        self.config.stance_width()
     }
 
     /// The largest lateral reference `F_R,y` the controller realises (m per step): a full

@@ -83,12 +83,18 @@ pub fn parameter_learner(
 ) -> Result<RunLearner, LearnerError> {
     let rule: Box<dyn LearningRule> = match parameter {
         StepParameter::StepX | StepParameter::StepY => components.rule(),
-        StepParameter::StepTime => match config.plane(parameter) {
-            Plane::Sagittal => Box::new(StepTime::default()),
-            Plane::Frontal => Box::new(StepTime::frontal(2.0 * walker.capture_step.delta)),
-        },
+        StepParameter::StepTime => Box::new(step_time_rule(config.plane(parameter), walker)),
     };
     learner_with_rule(components, parameter, config, rule)
+}
+
+/// The LIPM step-time rule in `plane`: [`StepTime`]'s sagittal one, or the frontal one for the
+/// stance of `walker` ([`WalkerConfig::stance_width`]).
+pub fn step_time_rule(plane: Plane, walker: &WalkerConfig) -> StepTime {
+    match plane {
+        Plane::Sagittal => StepTime::default(),
+        Plane::Frontal => StepTime::frontal(walker.stance_width()),
+    }
 }
 
 /// A fresh, untrained `step-x` learner with `config` from `components` (the paper's learner).

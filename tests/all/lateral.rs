@@ -239,7 +239,7 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
 fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
     use steplearn::control::Plane;
     use steplearn::control::learner::ParameterSettings;
-    use steplearn::rules::StepTime;
+    use steplearn::experiments::experiment::step_time_rule;
     let time_learner = |plane: Plane| {
         let bounds = InputGrid::default().input_box().unwrap();
         let config = LearnerConfig {
@@ -249,13 +249,9 @@ fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
             },
             ..LearnerConfig::default()
         };
-        let rule = match plane {
-            Plane::Sagittal => StepTime::default(),
-            Plane::Frontal => StepTime::frontal(2.0 * WalkerConfig::default().capture_step.delta),
-        };
         let l = FootstepLearner::for_parameters(
             ApproxKind::Lwpr.build(&bounds).unwrap(),
-            [rule],
+            [step_time_rule(plane, &WalkerConfig::default())],
             [StepParameter::StepTime],
             config,
         )

@@ -16,6 +16,7 @@ use std::path::PathBuf;
 use steplearn::control::learner::{LearnerError, LearnerInput, TouchDownReport};
 use steplearn::control::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
+use steplearn::experiments::experiment::step_time_rule;
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::run_trial;
 use steplearn::rules::{LearningRule, StepOutcome, StepTime};
@@ -113,13 +114,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 [1.0, 0.0, 0.0],
                 args.seconds,
             );
-            let rule = match args.plane {
-                Plane::Sagittal => StepTime::default(),
-                Plane::Frontal => StepTime::frontal(2.0 * settings.walker.capture_step.delta),
-            };
             let mut policy = FixedTime {
                 offset,
-                rule,
+                rule: step_time_rule(args.plane, &settings.walker),
                 plane: args.plane,
                 gradients: Vec::new(),
             };
