@@ -593,6 +593,27 @@ fn input_name(axis: usize) -> &'static str {
     NAMES.get(axis).copied().unwrap_or("learner input")
 }
 
+/// Refuses settings that learn one of `parameters` in both planes: one learner reads one
+/// plane; a [`StepLearner`](super::step_learner::StepLearner) learns both with one each.
+fn single_planes(
+    settings: &CheckedLearnerConfig,
+    parameters: &[StepParameter],
+) -> Result<(), LearnerError> {
+    match parameters
+        .iter()
+        .find(|p| settings.planes(**p).single().is_none())
+    {
+        Some(p) => Err(LearnerError::config(
+            super::learner_config::PLANE_KEYS[p.index()],
+            format!(
+                "a learner of {p} reads one plane; in both planes it is learned by a StepLearner, \
+                 one learner per plane"
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The one learner of step offsets: `O` offsets over `I` inputs (a group of three per plane,
 /// (lean, lean rate, reference), each spread over the prior's box), learned online with one
 /// rule per offset (eq. 6).
@@ -698,6 +719,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
         config: LearnerConfig,
     ) -> Result<Self, LearnerError> {
         let settings = config.check()?;
+        single_planes(&settings, &parameters)?;
         if I == 0 || !I.is_multiple_of(LEARNER_INPUTS) || I > MAX_OFFSET_INPUTS || O == 0 {
             return Err(LearnerError::config(
                 "shape",
@@ -1070,11 +1092,18 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
         self.exploration[0]
     }
 
+    /// The offset the last query returned (0 before any).
+    pub fn last_offset(&self) -> f64 {
+        self.last_offset[0]
+    }
+
     /// The same learner, learning `parameter` from now on (with that parameter's settings,
-    /// [`LearnerConfig::offset`]); the rule is unchanged.
-    pub fn as_parameter(mut self, parameter: StepParameter) -> Self {
+    /// [`LearnerConfig::offset`]); the rule is unchanged. An error if its settings learn
+    /// `parameter` in both planes (a learner reads one).
+    pub fn as_parameter(mut self, parameter: StepParameter) -> Result<Self, LearnerError> {
+        single_planes(&self.settings, &[parameter])?;
         self.parameters = [parameter];
-        self
+        Ok(self)
     }
 
     /// The step parameter this learner learns.
@@ -1084,7 +1113,12 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
 
     /// The plane it reads and is taught in (its settings' for its parameter).
     pub fn plane(&self) -> Plane {
-        self.settings.plane(self.parameter())
+        let p = self.parameter();
+        // A learner is only made with one plane for each of its parameters (`single_planes`).
+        self.settings
+            .planes(p)
+            .single()
+            .unwrap_or(p.default_plane())
     }
 
     /// The same learner (approximator, prior, trust-region statistics, step in progress),

@@ -4,7 +4,7 @@
 //! grouped by the safeguard they belong to. A learner holds only checked settings.
 
 use super::learner_error::LearnerError;
-use super::step_parameter::{LearnSet, Plane, StepParameter};
+use super::step_parameter::{LearnSet, Planes, StepParameter};
 use serde::{Deserialize, Serialize};
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
@@ -158,9 +158,10 @@ pub struct ParameterSettings {
     pub max_offset: Option<f64>,
     /// The plane whose state the offset's learner reads and whose outcome teaches it
     /// (default: [`StepParameter::default_plane`]). Only `step-time` may name another: `plane =
-    /// "frontal"` learns the step time from the lean sideways (docs/lateral.md).
+    /// "frontal"` learns the step time from the lean sideways (docs/lateral.md), `"both"` from
+    /// both planes at once (one learner per plane, their offsets summed).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub plane: Option<Plane>,
+    pub plane: Option<Planes>,
 }
 
 impl ParameterSettings {
@@ -247,7 +248,7 @@ pub struct CheckedLearnerConfig {
     pub(crate) memory: MemorySettings,
     pub(crate) prior: Prior,
     pub(crate) learn: LearnSet,
-    pub(crate) planes: [Plane; StepParameter::ALL.len()],
+    pub(crate) planes: [Planes; StepParameter::ALL.len()],
 }
 
 impl CheckedLearnerConfig {
@@ -256,8 +257,8 @@ impl CheckedLearnerConfig {
         self.offsets[parameter.index()]
     }
 
-    /// The plane `parameter`'s learner reads and is taught in.
-    pub fn plane(&self, parameter: StepParameter) -> Plane {
+    /// The planes `parameter` is learned in.
+    pub fn planes(&self, parameter: StepParameter) -> Planes {
         self.planes[parameter.index()]
     }
 
@@ -435,6 +436,14 @@ impl LearnerConfig {
         }
     }
 
+    fn parameter_settings_mut(&mut self, parameter: StepParameter) -> &mut ParameterSettings {
+        match parameter {
+            StepParameter::StepX => &mut self.step_x,
+            StepParameter::StepY => &mut self.step_y,
+            StepParameter::StepTime => &mut self.step_time,
+        }
+    }
+
     /// The settings of `parameter`'s offset: `[settings.learner]`'s, with what the parameter's
     /// table sets apart (not checked; see [`Self::check`]).
     pub fn offset(&self, parameter: StepParameter) -> OffsetSettings {
@@ -447,12 +456,18 @@ impl LearnerConfig {
         }
     }
 
-    /// The plane `parameter`'s learner reads and is taught in: its table's `plane`, else
+    /// The planes `parameter` is learned in: its table's `plane`, else
     /// [`StepParameter::default_plane`] (not checked; see [`Self::check`]).
-    pub fn plane(&self, parameter: StepParameter) -> Plane {
+    pub fn planes(&self, parameter: StepParameter) -> Planes {
         self.parameter_settings(parameter)
             .plane
-            .unwrap_or(parameter.default_plane())
+            .unwrap_or(parameter.default_plane().into())
+    }
+
+    /// The same settings with `parameter` learned in `planes` alone.
+    pub fn in_planes(mut self, parameter: StepParameter, planes: Planes) -> Self {
+        self.parameter_settings_mut(parameter).plane = Some(planes);
+        self
     }
 
     /// Checks every setting, each parameter's table included, once, and groups them into the
@@ -467,12 +482,12 @@ impl LearnerConfig {
         check_offset(SHARED_OFFSET_KEYS, &shared)?;
         self.check_shared()?;
         let mut offsets = [shared; StepParameter::ALL.len()];
-        let mut planes = [Plane::Sagittal; StepParameter::ALL.len()];
+        let mut planes = [Planes::Sagittal; StepParameter::ALL.len()];
         for p in StepParameter::ALL {
             let o = self.offset(p);
             check_offset(PARAMETER_OFFSET_KEYS[p.index()], &o)?;
             offsets[p.index()] = o;
-            let plane = self.plane(p);
+            let plane = self.planes(p);
             if !p.allows(plane) {
                 return Err(LearnerError::config(
                     PLANE_KEYS[p.index()],
@@ -617,7 +632,7 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
 ];
 
 /// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
-const PLANE_KEYS: [&str; 3] = ["step-x.plane", "step-y.plane", "step-time.plane"];
+pub(crate) const PLANE_KEYS: [&str; 3] = ["step-x.plane", "step-y.plane", "step-time.plane"];
 
 /// Checks one offset's settings; an error names the value by its key in `keys` (eta, dead
 /// zone, leakage, clamp), so a value from a parameter's table is named with its table.

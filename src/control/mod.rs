@@ -30,5 +30,5 @@ pub use learner_config::{LearnerConfig, LearnerInput, ParameterSettings, Prior};
 pub use learner_error::LearnerError;
 pub use policy::FootstepPolicy;
 pub use step_learner::StepLearner;
-pub use step_parameter::{LearnSet, Plane, StepParameter};
+pub use step_parameter::{LearnSet, Plane, Planes, StepParameter};
 pub use walker::{Walker, WalkerConfig, WalkerMode};

@@ -11,21 +11,25 @@
 //! [`super::policy`]), [`StepTime`](crate::rules::StepTime) for `step-time`.
 //!
 //! Each parameter's learner reads the plane its settings name
-//! ([`CheckedLearnerConfig::plane`](super::learner_config::CheckedLearnerConfig::plane)):
+//! ([`CheckedLearnerConfig::planes`](super::learner_config::CheckedLearnerConfig::planes)):
 //! `step-x` the sagittal, `step-y` the frontal, `step-time` the sagittal unless
 //! `[settings.learner.step-time] plane = "frontal"`, which learns the step time from the lean
-//! sideways and its outcome.
+//! sideways and its outcome, or `"both"`: then the step time has two learners, one per plane,
+//! each reading its plane's state and taught by its plane's outcome with its plane's rule, and
+//! the offset is their sum (an additive model, dT = dT_s(sagittal state) + dT_f(frontal
+//! state)). Each part's reach is the parameter's, less the other part's offset.
 
-use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner};
+use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports};
-use super::step_parameter::{LearnSet, PerParameter, StepParameter};
+use super::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 
-/// One [`FootstepLearner`] per learned step parameter (see the module docs).
+/// One [`FootstepLearner`] per learned step parameter and plane (see the module docs).
 pub struct StepLearner<A: FunctionApproximator, R: LearningRule> {
-    /// In the order of [`StepParameter::ALL`], each parameter once.
+    /// In the order of [`StepParameter::ALL`], the sagittal plane first; each parameter and
+    /// plane once.
     learners: Vec<(StepParameter, FootstepLearner<A, R>)>,
     set: LearnSet,
 }
@@ -38,7 +42,7 @@ impl<A: FunctionApproximator, R: LearningRule> std::fmt::Debug for StepLearner<A
     }
 }
 
-/// A [`StepLearner`]'s checkpoint: each parameter's learner's.
+/// A [`StepLearner`]'s checkpoint: each parameter's learner's (per plane).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SavedStepLearner<A> {
@@ -47,21 +51,39 @@ pub struct SavedStepLearner<A> {
 }
 
 impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
-    /// The learner of `learners`, one per parameter (any order; each parameter at most once,
-    /// at least one).
+    /// The learner of `learners`, each the learner of its parameter (any order; at least one;
+    /// a parameter more than once only in different planes).
     pub fn new(
         mut learners: Vec<(StepParameter, FootstepLearner<A, R>)>,
     ) -> Result<Self, LearnerError> {
-        let parameters: Vec<StepParameter> = learners.iter().map(|(p, _)| *p).collect();
-        let set = LearnSet::of(&parameters).map_err(|e| LearnerError::InvalidConfig {
+        let invalid = |reason: String| LearnerError::InvalidConfig {
             param: "learn",
-            reason: e.to_string(),
-        })?;
-        learners.sort_by_key(|(p, _)| p.index());
+            reason,
+        };
+        if let Some((p, l)) = learners.iter().find(|(p, l)| *p != l.parameter()) {
+            return Err(invalid(format!(
+                "the learner given for {p} learns {}",
+                l.parameter()
+            )));
+        }
+        learners.sort_by_key(|(p, l)| (p.index(), l.plane() as usize));
+        if let Some(w) = learners
+            .windows(2)
+            .find(|w| w[0].0 == w[1].0 && w[0].1.plane() == w[1].1.plane())
+        {
+            return Err(invalid(format!(
+                "{} is learned twice in the {} plane",
+                w[0].0,
+                w[0].1.plane()
+            )));
+        }
+        let mut parameters: Vec<StepParameter> = learners.iter().map(|(p, _)| *p).collect();
+        parameters.dedup();
+        let set = LearnSet::of(&parameters).map_err(|e| invalid(e.to_string()))?;
         Ok(StepLearner { learners, set })
     }
 
-    /// The learner of `parameter`, if it is learned.
+    /// The learner of `parameter`, if it is learned (in the sagittal plane if in both).
     pub fn learner(&self, parameter: StepParameter) -> Option<&FootstepLearner<A, R>> {
         self.learners
             .iter()
@@ -69,7 +91,19 @@ impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
             .map(|(_, l)| l)
     }
 
-    /// Every learned parameter with its learner, in order.
+    /// The learner of `parameter` in `plane`, if it is learned there.
+    pub fn learner_in(
+        &self,
+        parameter: StepParameter,
+        plane: Plane,
+    ) -> Option<&FootstepLearner<A, R>> {
+        self.learners
+            .iter()
+            .find(|(p, l)| *p == parameter && l.plane() == plane)
+            .map(|(_, l)| l)
+    }
+
+    /// Every learned parameter with its learner (one per plane it is learned in), in order.
     pub fn learners(&self) -> impl Iterator<Item = (StepParameter, &FootstepLearner<A, R>)> {
         self.learners.iter().map(|(p, l)| (*p, l))
     }
@@ -94,19 +128,58 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> StepLearner<A, 
         }
     }
 
-    /// The learner of a checkpoint, each parameter's rule from `rule`: it continues bit for bit
-    /// as the learner that wrote it. Errors as [`FootstepLearner::from_checkpoint`], or if the
-    /// checkpoint names a parameter twice or none.
+    /// The learner of a checkpoint, each learner's rule from `rule` (given its parameter and
+    /// plane): it continues bit for bit as the learner that wrote it. Errors as
+    /// [`FootstepLearner::from_checkpoint`], or as [`Self::new`].
     pub fn from_checkpoint(
         saved: SavedStepLearner<A>,
-        mut rule: impl FnMut(StepParameter) -> R,
+        mut rule: impl FnMut(StepParameter, Plane) -> R,
     ) -> Result<Self, LearnerError> {
         let learners = saved
             .learners
             .into_iter()
-            .map(|(p, s)| Ok((p, FootstepLearner::from_checkpoint(s, rule(p))?)))
+            .map(|(p, s)| {
+                let plane = s.config.planes(p).single().unwrap_or(p.default_plane());
+                Ok((p, FootstepLearner::from_checkpoint(s, rule(p, plane))?))
+            })
             .collect::<Result<Vec<_>, LearnerError>>()?;
         Self::new(learners)
+    }
+}
+
+/// Two parts of one parameter's offset (two planes) reported as one: their gradients and
+/// samples add, the gain and response are the mean, the guard's scale the smaller.
+fn combined(a: TouchDownReport, b: TouchDownReport) -> TouchDownReport {
+    TouchDownReport {
+        gradient: a.gradient + b.gradient,
+        samples: a.samples + b.samples,
+        response: 0.5 * (a.response + b.response),
+        gain: 0.5 * (a.gain + b.gain),
+        scale: a.scale.min(b.scale),
+    }
+}
+
+impl<A: FunctionApproximator + Clone, R: LearningRule> StepLearner<A, R> {
+    /// Each learner's report of a step, `end` ending it (touch-down or fall), per parameter.
+    fn end_step(
+        &mut self,
+        outcomes: &PerParameter<StepOutcome>,
+        mut end: impl FnMut(
+            &mut FootstepLearner<A, R>,
+            &StepOutcome,
+        ) -> Result<Option<TouchDownReport>, LearnerError>,
+    ) -> Result<StepReports, LearnerError> {
+        let mut out = StepReports::default();
+        for (p, l) in &mut self.learners {
+            let outcome = *outcomes.in_plane(*p, l.plane());
+            if let Some(r) = end(l, &outcome)? {
+                out[*p] = Some(match out[*p] {
+                    Some(first) => combined(first, r),
+                    None => r,
+                });
+            }
+        }
+        Ok(out)
     }
 }
 
@@ -120,15 +193,20 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
     ) -> Result<PerParameter<f64>, LearnerError> {
         let mut out = PerParameter::default();
         for (p, l) in &mut self.learners {
-            let input = *inputs.in_plane(*p, l.settings().plane(*p));
-            out[*p] = l.query(input)?;
+            out[*p] += l.query(*inputs.in_plane(*p, l.plane()))?;
         }
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
+        // Each part's reach is the parameter's less the other parts' offsets.
+        let mut total = PerParameter([0.0; 3]);
+        for (p, l) in &self.learners {
+            total[*p] += l.last_offset();
+        }
         for (p, l) in &mut self.learners {
+            let others = total[*p] - l.last_offset();
             let [lo, hi] = reach[*p];
-            l.set_reach(lo, hi)?;
+            l.set_reach(lo - others, hi - others)?;
         }
         Ok(())
     }
@@ -136,20 +214,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         &mut self,
         outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
-        let mut out = StepReports::default();
-        for (p, l) in &mut self.learners {
-            let outcome = *outcomes.in_plane(*p, l.settings().plane(*p));
-            out[*p] = Some(l.touch_down(&outcome)?);
-        }
-        Ok(out)
+        self.end_step(outcomes, |l, o| l.touch_down(o).map(Some))
     }
     fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
-        let mut out = StepReports::default();
-        for (p, l) in &mut self.learners {
-            let outcome = *outcomes.in_plane(*p, l.settings().plane(*p));
-            out[*p] = l.fall(&outcome)?;
-        }
-        Ok(out)
+        self.end_step(outcomes, |l, o| l.fall(o))
     }
     fn discard_step(&mut self) {
         for (_, l) in &mut self.learners {
@@ -166,20 +234,45 @@ mod tests {
     use crate::rules::{PendulumCart, StepTime};
 
     fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
-        let bounds = InputGrid::default().input_box().unwrap();
-        let rule: Box<dyn LearningRule> = match p {
-            StepParameter::StepTime => Box::new(StepTime::default()),
-            _ => Box::new(PendulumCart::default()),
-        };
-        let approx = ApproxKind::Grid.build(&bounds).unwrap();
-        FootstepLearner::new(approx, rule, LearnerConfig::default()).unwrap()
+        learner_with(p, LearnerConfig::default())
     }
 
-    fn rule(p: StepParameter) -> Box<dyn LearningRule> {
-        match p {
-            StepParameter::StepTime => Box::new(StepTime::default()),
+    fn learner_with(
+        p: StepParameter,
+        config: LearnerConfig,
+    ) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
+        let bounds = InputGrid::default().input_box().unwrap();
+        let approx = ApproxKind::Grid.build(&bounds).unwrap();
+        let plane = config.planes(p).single().unwrap();
+        FootstepLearner::for_parameters(approx, [rule(p, plane)], [p], config).unwrap()
+    }
+
+    fn rule(p: StepParameter, plane: Plane) -> Box<dyn LearningRule> {
+        match (p, plane) {
+            (StepParameter::StepTime, Plane::Sagittal) => Box::new(StepTime::default()),
+            (StepParameter::StepTime, Plane::Frontal) => Box::new(StepTime::frontal(0.2)),
             _ => Box::new(PendulumCart::default()),
         }
+    }
+
+    /// The step time in both planes: the sagittal and the frontal learner.
+    fn both_planes() -> StepLearner<AnyApproximator, Box<dyn LearningRule>> {
+        use crate::control::step_parameter::Planes;
+        let config = LearnerConfig::default();
+        let time = |plane: Plane| {
+            learner_with(
+                StepParameter::StepTime,
+                config.in_planes(StepParameter::StepTime, plane.into()),
+            )
+        };
+        let both = config.in_planes(StepParameter::StepTime, Planes::Both);
+        assert!(both.check().is_ok());
+        StepLearner::new(vec![
+            (StepParameter::StepTime, time(Plane::Frontal)),
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+            (StepParameter::StepTime, time(Plane::Sagittal)),
+        ])
+        .unwrap()
     }
 
     fn inputs(k: usize) -> PerParameter<LearnerInput> {
@@ -226,10 +319,9 @@ mod tests {
     #[test]
     fn a_frontal_step_time_reads_and_learns_the_frontal_plane() {
         use crate::control::learner_config::ParameterSettings;
-        use crate::control::step_parameter::Plane;
         let frontal = LearnerConfig {
             step_time: ParameterSettings {
-                plane: Some(Plane::Frontal),
+                plane: Some(Plane::Frontal.into()),
                 ..ParameterSettings::default()
             },
             ..LearnerConfig::default()
@@ -237,7 +329,7 @@ mod tests {
         let bounds = InputGrid::default().input_box().unwrap();
         let time = FootstepLearner::for_parameters(
             ApproxKind::Grid.build(&bounds).unwrap(),
-            [rule(StepParameter::StepTime)],
+            [rule(StepParameter::StepTime, Plane::Frontal)],
             [StepParameter::StepTime],
             frontal,
         )
@@ -267,9 +359,90 @@ mod tests {
             f_r: 0.0,
         };
         let r = l.touch_down(&o).unwrap();
-        let want = StepTime::default().gradient(&o[StepParameter::StepY]);
+        let want = StepTime::frontal(0.2).gradient(&o[StepParameter::StepY]);
         assert_eq!(r[StepParameter::StepTime].unwrap().gradient, want);
         assert!(r[StepParameter::StepX].unwrap().gradient < 0.0);
+    }
+
+    #[test]
+    fn a_step_time_in_both_planes_sums_one_learner_per_plane() {
+        let mut l = both_planes();
+        assert_eq!(l.learns().to_string(), "step-x,step-time");
+        let planes: Vec<_> = l.learners().map(|(p, l)| (p, l.plane())).collect();
+        assert_eq!(
+            planes,
+            [
+                (StepParameter::StepX, Plane::Sagittal),
+                (StepParameter::StepTime, Plane::Sagittal),
+                (StepParameter::StepTime, Plane::Frontal),
+            ]
+        );
+        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        for k in 0..3 {
+            l.offsets(&inputs(k)).unwrap();
+            l.set_reach(&reach).unwrap();
+        }
+        // Each part reads its own plane.
+        let lateral = inputs(0)[StepParameter::StepY];
+        let frontal = l
+            .learner_in(StepParameter::StepTime, Plane::Frontal)
+            .unwrap();
+        assert!(frontal.recorded_inputs().all(|x| x == lateral));
+        let sagittal = l
+            .learner_in(StepParameter::StepTime, Plane::Sagittal)
+            .unwrap();
+        assert!(sagittal.recorded_inputs().any(|x| x != lateral));
+        // Leaning forward and towards the swing leg: each part is taught by its own plane's
+        // outcome and rule, and the report sums the two gradients.
+        let mut o = outcome(0.2);
+        o[StepParameter::StepY] = StepOutcome {
+            theta_e: 0.1,
+            theta_e_dot: 0.0,
+            f_e: 0.0,
+            f_r: 0.0,
+        };
+        let r = l.touch_down(&o).unwrap();
+        let g_s = StepTime::default().gradient(&o[StepParameter::StepX]);
+        let g_f = StepTime::frontal(0.2).gradient(&o[StepParameter::StepY]);
+        assert!(g_s < 0.0 && g_f < 0.0, "{g_s} {g_f}");
+        let time = r[StepParameter::StepTime].unwrap();
+        assert!((time.gradient - (g_s + g_f)).abs() < 1e-15);
+        // The offset is the sum of the parts at their planes' inputs.
+        let x = inputs(1);
+        let parts = [
+            (Plane::Sagittal, StepParameter::StepX),
+            (Plane::Frontal, StepParameter::StepY),
+        ]
+        .map(|(plane, at)| {
+            let part = l.learner_in(StepParameter::StepTime, plane).unwrap();
+            part.predict(x[at]).unwrap()
+        });
+        assert!(parts[0] < 0.0 && parts[1] < 0.0, "{parts:?}");
+        let o = l.offsets(&x).unwrap();
+        assert!((o[StepParameter::StepTime] - (parts[0] + parts[1])).abs() < 1e-12);
+    }
+
+    #[test]
+    fn each_part_of_a_summed_offset_reaches_what_the_other_leaves() {
+        let mut l = both_planes();
+        // Train both parts to a negative offset, then tell the learner the total may not go
+        // below its sum: neither part may then move further down.
+        let mut o = outcome(0.3);
+        o[StepParameter::StepY].theta_e = 0.2;
+        for _ in 0..3 {
+            l.offsets(&inputs(0)).unwrap();
+            l.touch_down(&o).unwrap();
+        }
+        let total = l.offsets(&inputs(0)).unwrap()[StepParameter::StepTime];
+        assert!(total < 0.0);
+        l.set_reach(&PerParameter([[-1.0, 1.0], [-1.0, 1.0], [total, 1.0]]))
+            .unwrap();
+        let before = l.offsets(&inputs(0)).unwrap()[StepParameter::StepTime];
+        l.set_reach(&PerParameter([[-1.0, 1.0], [-1.0, 1.0], [total, 1.0]]))
+            .unwrap();
+        l.touch_down(&o).unwrap();
+        let after = l.offsets(&inputs(0)).unwrap()[StepParameter::StepTime];
+        assert!(after >= before - 1e-12, "{before} -> {after}");
     }
 
     #[test]
@@ -294,6 +467,27 @@ mod tests {
         )
         .unwrap();
         assert_eq!(b.learns(), a.learns());
+        // The step time in both planes: each part comes back in its plane with its rule.
+        let mut c = both_planes();
+        for k in 0..2 {
+            c.offsets(&inputs(k)).unwrap();
+            c.set_reach(&reach).unwrap();
+        }
+        let json_c = serde_json::to_string(&c.checkpoint()).unwrap();
+        let mut d = StepLearner::from_checkpoint(
+            serde_json::from_str::<SavedStepLearner<AnyApproximator>>(&json_c).unwrap(),
+            rule,
+        )
+        .unwrap();
+        let mut o = outcome(0.2);
+        o[StepParameter::StepY].theta_e = 0.1;
+        let (rc, rd) = (c.touch_down(&o).unwrap(), d.touch_down(&o).unwrap());
+        assert_eq!(format!("{rc:?}"), format!("{rd:?}"));
+        assert_eq!(
+            c.offsets(&inputs(1)).unwrap(),
+            d.offsets(&inputs(1)).unwrap()
+        );
+        assert_eq!(b.learns(), a.learns());
         let (ra, rb) = (
             a.touch_down(&outcome(-0.1)).unwrap(),
             b.touch_down(&outcome(-0.1)).unwrap(),
@@ -316,5 +510,22 @@ mod tests {
             Err(LearnerError::InvalidConfig { param: "learn", .. })
         ));
         assert!(StepLearner::<AnyApproximator, Box<dyn LearningRule>>::new(vec![]).is_err());
+        // A parameter twice in the same plane, or a learner given for another parameter.
+        let same_plane = StepLearner::new(vec![
+            (StepParameter::StepTime, learner(StepParameter::StepTime)),
+            (StepParameter::StepTime, learner(StepParameter::StepTime)),
+        ]);
+        assert!(matches!(
+            same_plane,
+            Err(LearnerError::InvalidConfig { param: "learn", .. })
+        ));
+        let other = StepLearner::new(vec![(
+            StepParameter::StepTime,
+            learner(StepParameter::StepX),
+        )]);
+        assert!(matches!(
+            other,
+            Err(LearnerError::InvalidConfig { param: "learn", .. })
+        ));
     }
 }

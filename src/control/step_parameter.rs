@@ -5,7 +5,8 @@
 //! them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
 //! [`StepParameter::StepTime`] a step-time offset dT. [`PerParameter`] holds one value per
 //! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns;
-//! [`Plane`] is the plane whose state and outcome a parameter's learner reads.
+//! [`Plane`] is the plane whose state and outcome a parameter's learner reads, [`Planes`] the
+//! planes a parameter is learned in (the step time may be learned in both at once).
 
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -66,10 +67,10 @@ impl StepParameter {
         }
     }
 
-    /// Whether this parameter may be learned in `plane`: a footstep offset only in its own
-    /// plane, the step time (which moves the capture point in both) in either.
-    pub fn allows(self, plane: Plane) -> bool {
-        self == StepParameter::StepTime || plane == self.default_plane()
+    /// Whether this parameter may be learned in `planes`: a footstep offset only in its own
+    /// plane, the step time (which moves the capture point in both) in either or both.
+    pub fn allows(self, planes: Planes) -> bool {
+        self == StepParameter::StepTime || planes == Planes::from(self.default_plane())
     }
 }
 
@@ -96,6 +97,55 @@ pub enum Plane {
     Sagittal,
     /// Sideways, mirrored to the swing leg's side.
     Frontal,
+}
+
+/// The planes a parameter is learned in (its table's `plane` key): one, or both at once. In
+/// both, the parameter's offset is the sum of one learner per plane, each reading its plane's
+/// state and taught by its plane's outcome
+/// ([`StepLearner`](super::step_learner::StepLearner)).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, strum::EnumString, strum::Display,
+)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum Planes {
+    /// The sagittal plane alone.
+    Sagittal,
+    /// The frontal plane alone.
+    Frontal,
+    /// Both, one learner each, their offsets summed.
+    Both,
+}
+
+impl Planes {
+    /// The one plane, unless both.
+    pub fn single(self) -> Option<Plane> {
+        match self {
+            Planes::Sagittal => Some(Plane::Sagittal),
+            Planes::Frontal => Some(Plane::Frontal),
+            Planes::Both => None,
+        }
+    }
+
+    /// Each plane, sagittal first.
+    pub fn iter(self) -> impl Iterator<Item = Plane> {
+        const BOTH: [Plane; 2] = [Plane::Sagittal, Plane::Frontal];
+        let planes: &'static [Plane] = match self {
+            Planes::Sagittal => &BOTH[..1],
+            Planes::Frontal => &BOTH[1..],
+            Planes::Both => &BOTH,
+        };
+        planes.iter().copied()
+    }
+}
+
+impl From<Plane> for Planes {
+    fn from(plane: Plane) -> Self {
+        match plane {
+            Plane::Sagittal => Planes::Sagittal,
+            Plane::Frontal => Planes::Frontal,
+        }
+    }
 }
 
 /// One value per step parameter, indexed by [`StepParameter`].
@@ -268,6 +318,20 @@ mod tests {
         );
         assert_eq!(LearnSet::of(&[]), Err(LearnSetError::Empty));
         assert!("".parse::<LearnSet>().is_err());
+    }
+
+    #[test]
+    fn only_the_step_time_is_learned_in_both_planes() {
+        let both: Vec<Plane> = Planes::Both.iter().collect();
+        assert_eq!(both, [Plane::Sagittal, Plane::Frontal]);
+        assert_eq!(Planes::Frontal.iter().collect::<Vec<_>>(), [Plane::Frontal]);
+        assert_eq!(Planes::Both.single(), None);
+        assert_eq!(Planes::Sagittal.single(), Some(Plane::Sagittal));
+        assert!(StepParameter::StepTime.allows(Planes::Both));
+        assert!(!StepParameter::StepX.allows(Planes::Both));
+        assert!(!StepParameter::StepY.allows(Planes::Sagittal));
+        assert!(StepParameter::StepY.allows(Planes::Frontal));
+        assert_eq!("both".parse::<Planes>(), Ok(Planes::Both));
     }
 
     #[test]

@@ -74,7 +74,9 @@ pub fn learner_bounds() -> Result<InputBox, ApproxError> {
 /// over [`learner_bounds`], the components' rule for `step-x` and `step-y` and the LIPM
 /// step-time rule ([`StepTime`]) for `step-time`, in the plane `config` names for it (the
 /// frontal one for the stance width of `walker`). Its rule is not reseeded
-/// ([`RunContext::make_parameter_learner`] reseeds it with the run's seed).
+/// ([`RunContext::make_parameter_learner`] reseeds it with the run's seed). A learner reads
+/// one plane: `config` learning `parameter` in both is an error (see
+/// [`RunContext::make_learner_of`]).
 pub fn parameter_learner(
     components: &dyn RunComponents,
     parameter: StepParameter,
@@ -83,7 +85,11 @@ pub fn parameter_learner(
 ) -> Result<RunLearner, LearnerError> {
     let rule: Box<dyn LearningRule> = match parameter {
         StepParameter::StepX | StepParameter::StepY => components.rule(),
-        StepParameter::StepTime => Box::new(step_time_rule(config.plane(parameter), walker)),
+        StepParameter::StepTime => match config.planes(parameter).single() {
+            Some(plane) => Box::new(step_time_rule(plane, walker)),
+            // Refused with the reason by the learner.
+            None => Box::new(StepTime::default()),
+        },
     };
     learner_with_rule(components, parameter, config, rule)
 }
@@ -145,16 +151,25 @@ impl RunContext<'_> {
     }
 
     /// A fresh learner of `set` with the settings' learner config: one
-    /// [`Self::make_parameter_learner`] per parameter.
+    /// [`Self::make_parameter_learner`] per parameter and plane it is learned in (the step
+    /// time in `both` planes has one per plane).
     pub fn make_learner_of(&self, set: LearnSet) -> Result<RunStepLearner, LearnerError> {
         let config = LearnerConfig {
             learn: set,
             ..self.settings.learner
         };
-        let learners = set
-            .iter()
-            .map(|p| Ok((p, self.make_parameter_learner(p, config)?)))
-            .collect::<Result<Vec<_>, LearnerError>>()?;
+        config.check()?;
+        let mut learners = Vec::new();
+        for p in set.iter() {
+            let planes = config.planes(p);
+            for plane in planes.iter() {
+                let one = match planes.single() {
+                    Some(_) => config,
+                    None => config.in_planes(p, plane.into()),
+                };
+                learners.push((p, self.make_parameter_learner(p, one)?));
+            }
+        }
         StepLearner::new(learners)
     }
 

@@ -420,7 +420,7 @@ fn the_shipped_configs_pass_the_check() {
     }
 
     // The step time learned sideways: the defaults but for the step time's plane and dead zone.
-    use steplearn::control::Plane;
+    use steplearn::control::Planes;
     let path = format!(
         "{}/configs/frontal_step_time.toml",
         env!("CARGO_MANIFEST_DIR")
@@ -431,7 +431,7 @@ fn the_shipped_configs_pass_the_check() {
     let time = &mut config.settings.learner.step_time;
     assert_eq!(
         (time.plane, time.dead_zone),
-        (Some(Plane::Frontal), Some(0.0))
+        (Some(Planes::Frontal), Some(0.0))
     );
     *time = Default::default();
     assert_eq!(config, ConfigFile::default());

@@ -244,7 +244,7 @@ fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
         let bounds = InputGrid::default().input_box().unwrap();
         let config = LearnerConfig {
             step_time: ParameterSettings {
-                plane: Some(plane),
+                plane: Some(plane.into()),
                 ..ParameterSettings::default()
             },
             ..LearnerConfig::default()
@@ -279,6 +279,67 @@ fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
     eprintln!("|G_T|: frontal {before:.4} before the push, {gf:.4} after; sagittal {gs:.4} after");
     assert!(gf > 2.5 * before, "frontal {gf} after, {before} before");
     assert!(gf > 1.5 * gs, "frontal {gf}, sagittal {gs}");
+}
+
+/// The step time learned in both planes at once: a side push teaches its frontal part and a
+/// forward push its sagittal part, each more than the other part (the largest learned |dT| of
+/// each part over the states near walking in place). With the experiments' dead zone, so that
+/// walking alone teaches neither part (without one the step time drifts, docs/learner.md).
+#[test]
+fn a_step_time_in_both_planes_learns_each_push_in_its_own_plane() {
+    use steplearn::control::learner::LearnerInput;
+    use steplearn::control::{Plane, Planes};
+    use steplearn::experiments::experiment::step_time_rule;
+    let both = || {
+        let config = LearnerConfig {
+            dead_zone: steplearn::experiments::settings::DEFAULT_DEAD_ZONE,
+            ..LearnerConfig::default()
+        }
+        .in_planes(StepParameter::StepTime, Planes::Both);
+        let part = |plane: Plane| {
+            let bounds = InputGrid::default().input_box().unwrap();
+            FootstepLearner::for_parameters(
+                ApproxKind::Lwpr.build(&bounds).unwrap(),
+                [step_time_rule(plane, &WalkerConfig::default())],
+                [StepParameter::StepTime],
+                config.in_planes(StepParameter::StepTime, plane.into()),
+            )
+            .unwrap()
+        };
+        StepLearner::new(vec![
+            (StepParameter::StepTime, part(Plane::Sagittal)),
+            (StepParameter::StepTime, part(Plane::Frontal)),
+        ])
+        .unwrap()
+    };
+    // The largest |dT| a part learned over leans of +-0.1 rad and rates of +-0.5 rad/s.
+    let largest = |l: &StepLearner<AnyApproximator, _>, plane: Plane| {
+        let part = l.learner_in(StepParameter::StepTime, plane).unwrap();
+        let mut m = 0.0f64;
+        for i in 0..=10 {
+            for j in 0..=10 {
+                let x = LearnerInput::new(-0.1 + 0.02 * i as f64, -0.5 + 0.1 * j as f64, 0.0);
+                m = m.max(part.predict(x).unwrap().abs());
+            }
+        }
+        m
+    };
+    let (mut side, mut forward) = (both(), both());
+    let s = step_in_place(8.0, [0.0, 5.0, 0.0], Swing::Tracking, Some(&mut side));
+    // The sagittal G_T is of second order near the gait: a forward push needs to be stronger
+    // than the side push to exceed the dead zone.
+    let f = step_in_place(8.0, [12.0, 0.0, 0.0], Swing::Tracking, Some(&mut forward));
+    assert_eq!(s.falls + f.falls, 0);
+    let side_push = [Plane::Sagittal, Plane::Frontal].map(|p| largest(&side, p));
+    let forward_push = [Plane::Sagittal, Plane::Frontal].map(|p| largest(&forward, p));
+    eprintln!(
+        "largest |dT| (sagittal, frontal part): side push {side_push:?}, forward push {forward_push:?}"
+    );
+    assert!(side_push[1] > 1.5 * side_push[0], "side push {side_push:?}");
+    assert!(
+        forward_push[0] > 1.5 * forward_push[1],
+        "forward push {forward_push:?}"
+    );
 }
 
 /// The loop gain of the frontal-plane rule near the reference: a sustained width offset dW

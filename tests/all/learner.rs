@@ -1070,7 +1070,8 @@ fn a_parameter_table_sets_its_offset_apart_from_the_shared_settings() {
         cfg,
     )
     .unwrap()
-    .as_parameter(StepParameter::StepTime);
+    .as_parameter(StepParameter::StepTime)
+    .unwrap();
     switched.query(x).unwrap();
     switched.touch_down(&StepOutcome::default()).unwrap();
     assert!((switched.predict(x).unwrap() - 0.2).abs() < 1e-12);
@@ -1120,12 +1121,12 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
                 ..LearnerConfig::default()
             },
         ),
-        // A footstep offset is learned in its own plane only; the step time in either.
+        // A footstep offset is learned in its own plane only; the step time in either or both.
         (
             "step-x.plane",
             LearnerConfig {
                 step_x: ParameterSettings {
-                    plane: Some(steplearn::control::Plane::Frontal),
+                    plane: Some(steplearn::control::Planes::Frontal),
                     ..ParameterSettings::default()
                 },
                 ..LearnerConfig::default()
@@ -1135,7 +1136,17 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
             "step-y.plane",
             LearnerConfig {
                 step_y: ParameterSettings {
-                    plane: Some(steplearn::control::Plane::Sagittal),
+                    plane: Some(steplearn::control::Planes::Sagittal),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+        (
+            "step-x.plane",
+            LearnerConfig {
+                step_x: ParameterSettings {
+                    plane: Some(steplearn::control::Planes::Both),
                     ..ParameterSettings::default()
                 },
                 ..LearnerConfig::default()
@@ -1176,20 +1187,66 @@ fn parameter_tables_read_from_toml_and_a_default_config_writes_none() {
 
 #[test]
 fn the_step_time_may_be_learned_in_the_frontal_plane() {
-    use steplearn::control::Plane;
+    use steplearn::control::Planes;
     use steplearn::control::step_parameter::StepParameter;
     let cfg: LearnerConfig = toml::from_str("[step-time]\nplane = \"frontal\"\n").unwrap();
     let checked = cfg.check().unwrap();
-    assert_eq!(checked.plane(StepParameter::StepTime), Plane::Frontal);
-    assert_eq!(checked.plane(StepParameter::StepX), Plane::Sagittal);
-    assert_eq!(checked.plane(StepParameter::StepY), Plane::Frontal);
+    assert_eq!(checked.planes(StepParameter::StepTime), Planes::Frontal);
+    assert_eq!(checked.planes(StepParameter::StepX), Planes::Sagittal);
+    assert_eq!(checked.planes(StepParameter::StepY), Planes::Frontal);
     let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
     assert_eq!(back, cfg);
     // The default plane is left out of written configs, and an unknown plane is refused.
     let default = LearnerConfig::default().check().unwrap();
-    assert_eq!(default.plane(StepParameter::StepTime), Plane::Sagittal);
+    assert_eq!(default.planes(StepParameter::StepTime), Planes::Sagittal);
     let bad = toml::from_str::<LearnerConfig>("[step-time]\nplane = \"diagonal\"\n");
     assert!(bad.unwrap_err().to_string().contains("diagonal"));
+}
+
+/// `plane = "both"` is a setting of the step time only, and a learner of one plane refuses it
+/// for its own parameter (naming the key) but not for another's.
+#[test]
+fn the_step_time_may_be_learned_in_both_planes_by_a_step_learner_only() {
+    use steplearn::control::Planes;
+    use steplearn::control::step_parameter::StepParameter;
+    let cfg: LearnerConfig = toml::from_str("[step-time]\nplane = \"both\"\n").unwrap();
+    let checked = cfg.check().unwrap();
+    assert_eq!(checked.planes(StepParameter::StepTime), Planes::Both);
+    let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
+    assert_eq!(back, cfg);
+    let one = |p: StepParameter| {
+        FootstepLearner::for_parameters(
+            BinTable::new([4, 4, 4], 1.0),
+            [PendulumCart::default()],
+            [p],
+            cfg,
+        )
+    };
+    match one(StepParameter::StepTime) {
+        Err(LearnerError::InvalidConfig { param, reason }) => {
+            assert_eq!(param, "step-time.plane");
+            assert!(reason.contains("StepLearner"), "{reason}");
+        }
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+    let step_x = one(StepParameter::StepX).unwrap();
+    assert!(matches!(
+        step_x.as_parameter(StepParameter::StepTime),
+        Err(LearnerError::InvalidConfig {
+            param: "step-time.plane",
+            ..
+        })
+    ));
+    let sagittal = cfg.in_planes(StepParameter::StepTime, Planes::Sagittal);
+    assert!(
+        FootstepLearner::for_parameters(
+            BinTable::new([4, 4, 4], 1.0),
+            [PendulumCart::default()],
+            [StepParameter::StepTime],
+            sagittal,
+        )
+        .is_ok()
+    );
 }
 
 #[test]

@@ -243,7 +243,8 @@ fn a_checkpoint_keeps_the_parameter_its_learner_learns() {
     let path = dir.path().join("learner.json");
     let time = FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default())
         .unwrap()
-        .as_parameter(StepParameter::StepTime);
+        .as_parameter(StepParameter::StepTime)
+        .unwrap();
     time.save(&path).unwrap();
     assert!(
         std::fs::read_to_string(&path)
