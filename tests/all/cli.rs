@@ -489,3 +489,42 @@ fn learn_names_the_step_parameters_of_a_run() {
         assert!(err.contains("step"), "{bad:?}: {err}");
     }
 }
+
+/// The step time learned in both planes runs from the shipped config: the run's identity
+/// records the planes, and a footstep offset in both planes is refused before anything runs,
+/// naming the key.
+#[test]
+fn the_step_time_in_both_planes_runs_from_its_config() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("both");
+    let config = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/both_planes_step_time.toml"
+    );
+    let run = |config: &str| {
+        steplearn(&[
+            "experiment",
+            "stability",
+            "--pushes",
+            "2",
+            "--seed",
+            "1",
+            "--learn",
+            "step-x,step-y,step-time",
+            "--config",
+            config,
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let o = run(config);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let identity = std::fs::read_to_string(out.join("run-config.toml")).unwrap();
+    assert!(identity.contains("plane = \"both\""), "{identity}");
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[settings.learner.step-x]\nplane = \"both\"\n").unwrap();
+    let o = run(bad.to_str().unwrap());
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("step-x.plane"), "{err}");
+}

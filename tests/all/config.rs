@@ -419,22 +419,22 @@ fn the_shipped_configs_pass_the_check() {
         assert_eq!(config, ConfigFile::default(), "{file}");
     }
 
-    // The step time learned sideways: the defaults but for the step time's plane and dead zone.
+    // The step time learned sideways, and in both planes: the defaults but for the step time's
+    // plane and dead zone.
     use steplearn::control::Planes;
-    let path = format!(
-        "{}/configs/frontal_step_time.toml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let o = steplearn(&["config", "--check", &path]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let mut config = ConfigFile::load(Path::new(&path)).unwrap();
-    let time = &mut config.settings.learner.step_time;
-    assert_eq!(
-        (time.plane, time.dead_zone),
-        (Some(Planes::Frontal), Some(0.0))
-    );
-    *time = Default::default();
-    assert_eq!(config, ConfigFile::default());
+    for (file, planes) in [
+        ("frontal_step_time", Planes::Frontal),
+        ("both_planes_step_time", Planes::Both),
+    ] {
+        let path = format!("{}/configs/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+        let o = steplearn(&["config", "--check", &path]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut config = ConfigFile::load(Path::new(&path)).unwrap();
+        let time = &mut config.settings.learner.step_time;
+        assert_eq!((time.plane, time.dead_zone), (Some(planes), Some(0.0)));
+        *time = Default::default();
+        assert_eq!(config, ConfigFile::default(), "{file}");
+    }
 }
 
 #[test]
