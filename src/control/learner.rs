@@ -63,7 +63,7 @@ use super::learner_config::check_range;
 pub use super::learner_config::{
     CheckedLearnerConfig, FallSettings, GuardSettings, LEARNER_INPUTS, LearnerConfig, LearnerInput,
     MAX_OFFSET_INPUTS, MAX_PRIOR_SAMPLES, MAX_SAMPLES_PER_STEP, MemorySettings, OffsetSettings,
-    ParameterSettings, Prior, TrustFallback, TrustSettings,
+    ParameterSettings, PartSettings, Prior, TrustFallback, TrustSettings,
 };
 pub use super::learner_error::LearnerError;
 use super::step_parameter::{Plane, StepParameter};

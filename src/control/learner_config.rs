@@ -4,7 +4,7 @@
 //! grouped by the safeguard they belong to. A learner holds only checked settings.
 
 use super::learner_error::LearnerError;
-use super::step_parameter::{LearnSet, Planes, StepParameter};
+use super::step_parameter::{LearnSet, Plane, Planes, StepParameter};
 use serde::{Deserialize, Serialize};
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
@@ -162,6 +162,30 @@ pub struct ParameterSettings {
     /// both planes at once (one learner per plane, their offsets summed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub plane: Option<Planes>,
+    /// With `plane = "both"`, the frontal part's own settings (`[settings.learner.step-time.frontal]`):
+    /// each key given replaces this table's value for the learner of the frontal plane; the
+    /// sagittal part keeps this table's. Only with `plane = "both"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frontal: Option<PartSettings>,
+}
+
+/// The settings of one part of an offset learned in both planes, apart from its parameter's
+/// (`[settings.learner.step-time.frontal]`): each key given replaces the parameter's value.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PartSettings {
+    /// The part's learning rate eta.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eta: Option<f64>,
+    /// The dead zone on the part's gradient.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dead_zone: Option<f64>,
+    /// The part's leakage.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub leakage: Option<f64>,
+    /// The clamp on the part's query.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_offset: Option<f64>,
 }
 
 impl ParameterSettings {
@@ -470,6 +494,21 @@ impl LearnerConfig {
         self
     }
 
+    /// The settings of `parameter`'s learner in `plane`: these, with `parameter` learned in
+    /// `plane` alone and, in the frontal plane, its `frontal` table's values in place of its
+    /// own (what a learner of a parameter in both planes gives each part).
+    pub fn part(mut self, parameter: StepParameter, plane: Plane) -> Self {
+        let own = self.parameter_settings_mut(parameter);
+        if let (Plane::Frontal, Some(f)) = (plane, own.frontal) {
+            own.eta = f.eta.or(own.eta);
+            own.dead_zone = f.dead_zone.or(own.dead_zone);
+            own.leakage = f.leakage.or(own.leakage);
+            own.max_offset = f.max_offset.or(own.max_offset);
+        }
+        own.frontal = None;
+        self.in_planes(parameter, plane.into())
+    }
+
     /// Checks every setting, each parameter's table included, once, and groups them into the
     /// values a learner holds.
     pub fn check(&self) -> Result<CheckedLearnerConfig, LearnerError> {
@@ -498,6 +537,17 @@ impl LearnerConfig {
                 ));
             }
             planes[p.index()] = plane;
+            if self.parameter_settings(p).frontal.is_some() {
+                if plane != Planes::Both {
+                    return Err(LearnerError::config(
+                        FRONTAL_KEYS[p.index()],
+                        format!(
+                            "sets the frontal part of {p} learned in both planes; needs plane = \"both\", got {plane}"
+                        ),
+                    ));
+                }
+                check_offset(FRONTAL_OFFSET_KEYS, &self.part(p, Plane::Frontal).offset(p))?;
+            }
         }
         Ok(CheckedLearnerConfig {
             offsets,
@@ -629,6 +679,17 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
         "step-time.leakage",
         "step-time.max_offset",
     ],
+];
+
+/// The `frontal` table of each parameter's table, in [`StepParameter::ALL`]'s order.
+const FRONTAL_KEYS: [&str; 3] = ["step-x.frontal", "step-y.frontal", "step-time.frontal"];
+
+/// The keys of the frontal part's offset settings (only the step time is learned in both).
+const FRONTAL_OFFSET_KEYS: [&str; 4] = [
+    "step-time.frontal.eta",
+    "step-time.frontal.dead_zone",
+    "step-time.frontal.leakage",
+    "step-time.frontal.max_offset",
 ];
 
 /// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.

@@ -26,7 +26,7 @@ pub use crate::robot::{
 
 // The learner and what it is built from, where users look for them.
 pub use learner::{FootstepLearner, OffsetLearner, SavedLearner, TouchDownReport};
-pub use learner_config::{LearnerConfig, LearnerInput, ParameterSettings, Prior};
+pub use learner_config::{LearnerConfig, LearnerInput, ParameterSettings, PartSettings, Prior};
 pub use learner_error::LearnerError;
 pub use policy::FootstepPolicy;
 pub use step_learner::StepLearner;

@@ -152,7 +152,7 @@ impl RunContext<'_> {
 
     /// A fresh learner of `set` with the settings' learner config: one
     /// [`Self::make_parameter_learner`] per parameter and plane it is learned in (the step
-    /// time in `both` planes has one per plane).
+    /// time in `both` planes has one per plane, with [`LearnerConfig::part`]'s settings).
     pub fn make_learner_of(&self, set: LearnSet) -> Result<RunStepLearner, LearnerError> {
         let config = LearnerConfig {
             learn: set,
@@ -165,7 +165,7 @@ impl RunContext<'_> {
             for plane in planes.iter() {
                 let one = match planes.single() {
                     Some(_) => config,
-                    None => config.in_planes(p, plane.into()),
+                    None => config.part(p, plane),
                 };
                 learners.push((p, self.make_parameter_learner(p, one)?));
             }

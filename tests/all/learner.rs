@@ -1249,6 +1249,59 @@ fn the_step_time_may_be_learned_in_both_planes_by_a_step_learner_only() {
     );
 }
 
+/// In both planes the frontal part may have its own offset settings
+/// (`[step-time.frontal]`): its learner gets them, the sagittal part keeps the step time's, and
+/// the table is refused (naming it) without `plane = "both"` or with a bad value.
+#[test]
+fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
+    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::{Plane, Planes};
+    let text = "dead_zone = 0.06\n[step-time]\nplane = \"both\"\neta = 0.5\n[step-time.frontal]\ndead_zone = 0.0\n";
+    let cfg: LearnerConfig = toml::from_str(text).unwrap();
+    cfg.check().unwrap();
+    let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
+    assert_eq!(back, cfg);
+    let t = StepParameter::StepTime;
+    let (sagittal, frontal) = (cfg.part(t, Plane::Sagittal), cfg.part(t, Plane::Frontal));
+    for (part, plane, dead_zone) in [
+        (sagittal, Planes::Sagittal, 0.06),
+        (frontal, Planes::Frontal, 0.0),
+    ] {
+        let checked = part.check().unwrap();
+        assert_eq!(checked.planes(t), plane);
+        assert_eq!(checked.offset(t).dead_zone, dead_zone);
+        assert_eq!(checked.offset(t).eta, 0.5);
+        assert!(part.step_time.frontal.is_none());
+        // The other parameters are untouched.
+        assert_eq!(part.step_x, cfg.step_x);
+        assert_eq!(
+            part.offset(StepParameter::StepX),
+            cfg.offset(StepParameter::StepX)
+        );
+    }
+    let refused = |text: &str, key: &str| {
+        let cfg: LearnerConfig = toml::from_str(text).unwrap();
+        match cfg.check() {
+            Err(LearnerError::InvalidConfig { param, .. }) => assert_eq!(param, key, "{text}"),
+            other => panic!("{text}: expected a refusal, got {other:?}"),
+        }
+    };
+    refused(
+        "[step-time.frontal]\ndead_zone = 0.0\n",
+        "step-time.frontal",
+    );
+    refused(
+        "[step-time]\nplane = \"frontal\"\n[step-time.frontal]\neta = 1.0\n",
+        "step-time.frontal",
+    );
+    refused("[step-x.frontal]\neta = 1.0\n", "step-x.frontal");
+    refused(
+        "[step-time]\nplane = \"both\"\n[step-time.frontal]\ndead_zone = -1.0\n",
+        "step-time.frontal.dead_zone",
+    );
+    assert!(toml::from_str::<LearnerConfig>("[step-time.frontal]\nplane = \"frontal\"\n").is_err());
+}
+
 #[test]
 fn checked_settings_hold_every_value_in_its_group() {
     use steplearn::control::step_parameter::StepParameter;
