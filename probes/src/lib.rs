@@ -2,8 +2,12 @@
 //! model beside a learner on the same trial.
 
 use std::path::{Path, PathBuf};
+use steplearn::bench::Registry;
+use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::FootstepPolicy;
+use steplearn::experiments::RunContext;
 use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::experiment::RunStepLearner;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{Observer, TrialSetup, run_trial};
 
@@ -13,6 +17,26 @@ pub fn settings(config: Option<&Path>) -> Result<Settings, ProbeError> {
         Some(path) => ConfigFile::load(path)?.settings,
         None => Settings::default(),
     })
+}
+
+/// The learner of `set` as `steplearn experiment` builds it for `config` and `seed`: the
+/// registry's `lwpr` with the config's LWPR settings and `pendulum-cart`.
+pub fn builtin_learner(
+    config: &ConfigFile,
+    seed: u64,
+    set: LearnSet,
+) -> Result<RunStepLearner, Box<dyn std::error::Error>> {
+    let settings = &config.settings;
+    let components = Registry::builtin().components("lwpr", "pendulum-cart", &settings.lwpr)?;
+    let ctx = RunContext {
+        settings,
+        protocols: &config.protocols,
+        seed,
+        approx: "lwpr",
+        rule: "pendulum-cart",
+        components: &components,
+    };
+    Ok(ctx.make_learner_of(set)?)
 }
 
 /// The error a probe's parallel part returns.

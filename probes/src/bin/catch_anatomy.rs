@@ -21,16 +21,15 @@
 use clap::Parser;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use steplearn::bench::Registry;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::{Tick, WalkerMode};
+use steplearn::experiments::ConfigFile;
 use steplearn::experiments::catch_step::{
     MIN_CATCH_BEYOND_REFERENCE, catch_step_reach, catch_steps,
 };
 use steplearn::experiments::fall_causes::FallCauseObserver;
 use steplearn::experiments::stability::{self, StabilityProtocol};
 use steplearn::experiments::trial::{FallRecord, Observer, TrialSetup, run_trial};
-use steplearn::experiments::{ConfigFile, RunContext};
 
 #[derive(Parser)]
 struct Args {
@@ -343,17 +342,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let settings = &config.settings;
     let setup = stability::trial_setup(settings, &protocol, args.seed, WalkerMode::CaptureStep);
-    let registry = Registry::builtin();
-    let components = registry.components("lwpr", "pendulum-cart", &settings.lwpr)?;
-    let ctx = RunContext {
-        settings,
-        protocols: &config.protocols,
-        seed: args.seed,
-        approx: "lwpr",
-        rule: "pendulum-cart",
-        components: &components,
-    };
-    let mut learner = ctx.make_learner_of(args.learn)?;
+    let mut learner = steplearn_probes::builtin_learner(&config, args.seed, args.learn)?;
     let mut csv = String::from(
         "walker,push,time,impulse,fell,counted,ratio,lib_counted,lib_ratio,lib_commanded,lib_realised,lib_duration",
     );

@@ -10,12 +10,11 @@
 
 use clap::Parser;
 use std::path::PathBuf;
-use steplearn::bench::Registry;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::{Tick, WalkerMode};
+use steplearn::experiments::ConfigFile;
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::{Observer, StepRecord, run_trial};
-use steplearn::experiments::{ConfigFile, RunContext};
 
 #[derive(Parser)]
 struct Args {
@@ -67,16 +66,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         [1.0, 0.0, 0.0],
         args.seconds,
     );
-    let components = Registry::builtin().components("lwpr", "pendulum-cart", &settings.lwpr)?;
-    let ctx = RunContext {
-        settings,
-        protocols: &config.protocols,
-        seed: args.seed,
-        approx: "lwpr",
-        rule: "pendulum-cart",
-        components: &components,
-    };
-    let mut learner = ctx.make_learner_of(args.learn)?;
+    let mut learner = steplearn_probes::builtin_learner(&config, args.seed, args.learn)?;
     let mut model = Cadence::default();
     let log_model = run_trial(&setup, None, &mut [&mut model])?;
     let mut learned = Cadence::default();
