@@ -162,9 +162,10 @@ pub struct ParameterSettings {
     /// both planes at once (one learner per plane, their offsets summed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub plane: Option<Planes>,
-    /// With `plane = "both"`, the frontal part's own settings (`[settings.learner.step-time.frontal]`):
-    /// each key given replaces this table's value for the learner of the frontal plane; the
-    /// sagittal part keeps this table's. Only with `plane = "both"`.
+    /// With `plane = "both"`, the frontal part's own settings
+    /// (`[settings.learner.step-time.frontal]`, its dead zone): each key given replaces this
+    /// table's value for the learner of the frontal plane; the sagittal part keeps this
+    /// table's. Only with `plane = "both"`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frontal: Option<PartSettings>,
 }
@@ -174,18 +175,9 @@ pub struct ParameterSettings {
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PartSettings {
-    /// The part's learning rate eta.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub eta: Option<f64>,
     /// The dead zone on the part's gradient.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dead_zone: Option<f64>,
-    /// The part's leakage.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub leakage: Option<f64>,
-    /// The clamp on the part's query.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_offset: Option<f64>,
 }
 
 impl ParameterSettings {
@@ -500,10 +492,7 @@ impl LearnerConfig {
     pub fn part(mut self, parameter: StepParameter, plane: Plane) -> Self {
         let own = self.parameter_settings_mut(parameter);
         if let (Plane::Frontal, Some(f)) = (plane, own.frontal) {
-            own.eta = f.eta.or(own.eta);
             own.dead_zone = f.dead_zone.or(own.dead_zone);
-            own.leakage = f.leakage.or(own.leakage);
-            own.max_offset = f.max_offset.or(own.max_offset);
         }
         own.frontal = None;
         self.in_planes(parameter, plane.into())

@@ -255,6 +255,19 @@ mod tests {
         }
     }
 
+    /// `outcome(theta_e)` in the sagittal plane, leaning 0.1 rad towards the swing leg at a
+    /// width on the reference in the frontal plane.
+    fn leaning_sideways(theta_e: f64) -> PerParameter<StepOutcome> {
+        let mut o = outcome(theta_e);
+        o[StepParameter::StepY] = StepOutcome {
+            theta_e: 0.1,
+            theta_e_dot: 0.0,
+            f_e: 0.0,
+            f_r: 0.0,
+        };
+        o
+    }
+
     /// The step time in both planes: the sagittal and the frontal learner.
     fn both_planes() -> StepLearner<AnyApproximator, Box<dyn LearningRule>> {
         use crate::control::step_parameter::Planes;
@@ -351,13 +364,7 @@ mod tests {
         assert!(sagittal.recorded_inputs().any(|x| x != lateral));
         // Taught by the frontal outcome: a lean towards the swing leg, where the sagittal one
         // leans back.
-        let mut o = outcome(-0.1);
-        o[StepParameter::StepY] = StepOutcome {
-            theta_e: 0.1,
-            theta_e_dot: 0.0,
-            f_e: 0.0,
-            f_r: 0.0,
-        };
+        let o = leaning_sideways(-0.1);
         let r = l.touch_down(&o).unwrap();
         let want = StepTime::frontal(0.2).gradient(&o[StepParameter::StepY]);
         assert_eq!(r[StepParameter::StepTime].unwrap().gradient, want);
@@ -394,13 +401,7 @@ mod tests {
         assert!(sagittal.recorded_inputs().any(|x| x != lateral));
         // Leaning forward and towards the swing leg: each part is taught by its own plane's
         // outcome and rule, and the report sums the two gradients.
-        let mut o = outcome(0.2);
-        o[StepParameter::StepY] = StepOutcome {
-            theta_e: 0.1,
-            theta_e_dot: 0.0,
-            f_e: 0.0,
-            f_r: 0.0,
-        };
+        let o = leaning_sideways(0.2);
         let r = l.touch_down(&o).unwrap();
         let g_s = StepTime::default().gradient(&o[StepParameter::StepX]);
         let g_f = StepTime::frontal(0.2).gradient(&o[StepParameter::StepY]);
@@ -445,6 +446,15 @@ mod tests {
         assert!(after >= before - 1e-12, "{before} -> {after}");
     }
 
+    /// The learner of `l`'s checkpoint written as JSON and read back.
+    fn through_json(
+        l: &StepLearner<AnyApproximator, Box<dyn LearningRule>>,
+    ) -> StepLearner<AnyApproximator, Box<dyn LearningRule>> {
+        let json = serde_json::to_string(&l.checkpoint()).unwrap();
+        let saved: SavedStepLearner<AnyApproximator> = serde_json::from_str(&json).unwrap();
+        StepLearner::from_checkpoint(saved, rule).unwrap()
+    }
+
     #[test]
     fn a_checkpoint_continues_bit_for_bit_mid_step() {
         let mut a = StepLearner::new(vec![
@@ -460,12 +470,7 @@ mod tests {
         a.touch_down(&outcome(0.2)).unwrap();
         a.offsets(&inputs(1)).unwrap();
         a.set_reach(&reach).unwrap();
-        let json = serde_json::to_string(&a.checkpoint()).unwrap();
-        let mut b = StepLearner::from_checkpoint(
-            serde_json::from_str::<SavedStepLearner<AnyApproximator>>(&json).unwrap(),
-            rule,
-        )
-        .unwrap();
+        let mut b = through_json(&a);
         assert_eq!(b.learns(), a.learns());
         // The step time in both planes: each part comes back in its plane with its rule.
         let mut c = both_planes();
@@ -473,14 +478,8 @@ mod tests {
             c.offsets(&inputs(k)).unwrap();
             c.set_reach(&reach).unwrap();
         }
-        let json_c = serde_json::to_string(&c.checkpoint()).unwrap();
-        let mut d = StepLearner::from_checkpoint(
-            serde_json::from_str::<SavedStepLearner<AnyApproximator>>(&json_c).unwrap(),
-            rule,
-        )
-        .unwrap();
-        let mut o = outcome(0.2);
-        o[StepParameter::StepY].theta_e = 0.1;
+        let mut d = through_json(&c);
+        let o = leaning_sideways(0.2);
         let (rc, rd) = (c.touch_down(&o).unwrap(), d.touch_down(&o).unwrap());
         assert_eq!(format!("{rc:?}"), format!("{rd:?}"));
         assert_eq!(

@@ -448,6 +448,13 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `experiment stability` with two pushes on seed 1 into `out`, with `args` besides.
+fn two_pushes(out: &std::path::Path, args: &[&str]) -> std::process::Output {
+    let out = out.to_str().unwrap();
+    let fixed = ["experiment", "stability", "--pushes", "2", "--seed", "1"];
+    steplearn(&[&fixed[..], args, &["--out", out]].concat())
+}
+
 /// `--learn` sets the learned step parameters: the summary names the set, the run identity
 /// records it (another set into the same directory is refused), and a malformed set is refused
 /// before anything runs, naming what is wrong.
@@ -455,20 +462,7 @@ fn reproduce_writes_runs_and_the_claims_report_and_reuses_runs() {
 fn learn_names_the_step_parameters_of_a_run() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("xt");
-    let run = |learn: &str| {
-        steplearn(&[
-            "experiment",
-            "stability",
-            "--pushes",
-            "2",
-            "--seed",
-            "1",
-            "--learn",
-            learn,
-            "--out",
-            out.to_str().unwrap(),
-        ])
-    };
+    let run = |learn: &str| two_pushes(&out, &["--learn", learn]);
     let o = run("step-time,step-x");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary: serde_json::Value =
@@ -502,20 +496,10 @@ fn the_step_time_in_both_planes_runs_from_its_config() {
         "/configs/both_planes_step_time.toml"
     );
     let run = |config: &str| {
-        steplearn(&[
-            "experiment",
-            "stability",
-            "--pushes",
-            "2",
-            "--seed",
-            "1",
-            "--learn",
-            "step-x,step-y,step-time",
-            "--config",
-            config,
-            "--out",
-            out.to_str().unwrap(),
-        ])
+        two_pushes(
+            &out,
+            &["--learn", "step-x,step-y,step-time", "--config", config],
+        )
     };
     let o = run(config);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -1249,8 +1249,7 @@ fn the_step_time_may_be_learned_in_both_planes_by_a_step_learner_only() {
     );
 }
 
-/// In both planes the frontal part may have its own offset settings
-/// (`[step-time.frontal]`): its learner gets them, the sagittal part keeps the step time's, and
+/// In both planes the frontal part may have its own dead zone (`[step-time.frontal]`): its learner gets them, the sagittal part keeps the step time's, and
 /// the table is refused (naming it) without `plane = "both"` or with a bad value.
 #[test]
 fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
@@ -1291,10 +1290,12 @@ fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
         "step-time.frontal",
     );
     refused(
-        "[step-time]\nplane = \"frontal\"\n[step-time.frontal]\neta = 1.0\n",
+        "[step-time]\nplane = \"frontal\"\n[step-time.frontal]\ndead_zone = 0.1\n",
         "step-time.frontal",
     );
-    refused("[step-x.frontal]\neta = 1.0\n", "step-x.frontal");
+    refused("[step-x.frontal]\ndead_zone = 0.1\n", "step-x.frontal");
+    // Only the dead zone is set apart.
+    assert!(toml::from_str::<LearnerConfig>("[step-time.frontal]\neta = 1.0\n").is_err());
     refused(
         "[step-time]\nplane = \"both\"\n[step-time.frontal]\ndead_zone = -1.0\n",
         "step-time.frontal.dead_zone",
