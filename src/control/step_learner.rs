@@ -30,8 +30,16 @@ use serde::{Deserialize, Serialize};
 pub struct StepLearner<A: FunctionApproximator, R: LearningRule> {
     /// In the order of [`StepParameter::ALL`], the sagittal plane first; each parameter and
     /// plane once.
-    learners: Vec<(StepParameter, FootstepLearner<A, R>)>,
+    slots: Vec<Slot<A, R>>,
     set: LearnSet,
+}
+
+/// A learner in its place: the parameter it gives the offset of (or a part of it) and the
+/// plane it reads, the one its settings name for that parameter.
+struct Slot<A: FunctionApproximator, R: LearningRule> {
+    parameter: StepParameter,
+    plane: Plane,
+    learner: FootstepLearner<A, R>,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> std::fmt::Debug for StepLearner<A, R> {
@@ -51,44 +59,51 @@ pub struct SavedStepLearner<A> {
 }
 
 impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
-    /// The learner of `learners`, each the learner of its parameter (any order; at least one;
-    /// a parameter more than once only in different planes).
+    /// The learner of `learners`, each learning the offset of its parameter in the plane its
+    /// settings name for that parameter (any order; at least one; a parameter more than once
+    /// only in different planes).
     pub fn new(
-        mut learners: Vec<(StepParameter, FootstepLearner<A, R>)>,
+        learners: Vec<(StepParameter, FootstepLearner<A, R>)>,
     ) -> Result<Self, LearnerError> {
         let invalid = |reason: String| LearnerError::InvalidConfig {
             param: "learn",
             reason,
         };
-        if let Some((p, l)) = learners.iter().find(|(p, l)| *p != l.parameter()) {
-            return Err(invalid(format!(
-                "the learner given for {p} learns {}",
-                l.parameter()
-            )));
+        let mut slots = Vec::with_capacity(learners.len());
+        for (parameter, learner) in learners {
+            let Some(plane) = learner.settings().planes(parameter).single() else {
+                return Err(invalid(format!(
+                    "the learner given for {parameter} names both planes; give one per plane"
+                )));
+            };
+            slots.push(Slot {
+                parameter,
+                plane,
+                learner,
+            });
         }
-        learners.sort_by_key(|(p, l)| (p.index(), l.plane() as usize));
-        if let Some(w) = learners
+        slots.sort_by_key(|s| (s.parameter.index(), s.plane as usize));
+        if let Some(w) = slots
             .windows(2)
-            .find(|w| w[0].0 == w[1].0 && w[0].1.plane() == w[1].1.plane())
+            .find(|w| (w[0].parameter, w[0].plane) == (w[1].parameter, w[1].plane))
         {
             return Err(invalid(format!(
                 "{} is learned twice in the {} plane",
-                w[0].0,
-                w[0].1.plane()
+                w[0].parameter, w[0].plane
             )));
         }
-        let mut parameters: Vec<StepParameter> = learners.iter().map(|(p, _)| *p).collect();
+        let mut parameters: Vec<StepParameter> = slots.iter().map(|s| s.parameter).collect();
         parameters.dedup();
         let set = LearnSet::of(&parameters).map_err(|e| invalid(e.to_string()))?;
-        Ok(StepLearner { learners, set })
+        Ok(StepLearner { slots, set })
     }
 
     /// The learner of `parameter`, if it is learned (in the sagittal plane if in both).
     pub fn learner(&self, parameter: StepParameter) -> Option<&FootstepLearner<A, R>> {
-        self.learners
+        self.slots
             .iter()
-            .find(|(p, _)| *p == parameter)
-            .map(|(_, l)| l)
+            .find(|s| s.parameter == parameter)
+            .map(|s| &s.learner)
     }
 
     /// The learner of `parameter` in `plane`, if it is learned there.
@@ -97,21 +112,21 @@ impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
         parameter: StepParameter,
         plane: Plane,
     ) -> Option<&FootstepLearner<A, R>> {
-        self.learners
+        self.slots
             .iter()
-            .find(|(p, l)| *p == parameter && l.plane() == plane)
-            .map(|(_, l)| l)
+            .find(|s| (s.parameter, s.plane) == (parameter, plane))
+            .map(|s| &s.learner)
     }
 
     /// Every learned parameter with its learner (one per plane it is learned in), in order.
     pub fn learners(&self) -> impl Iterator<Item = (StepParameter, &FootstepLearner<A, R>)> {
-        self.learners.iter().map(|(p, l)| (*p, l))
+        self.slots.iter().map(|s| (s.parameter, &s.learner))
     }
 
     /// Reseeds every parameter's rule with `seed`.
     pub fn reseed(&mut self, seed: u64) {
-        for (_, l) in &mut self.learners {
-            l.reseed(seed);
+        for s in &mut self.slots {
+            s.learner.reseed(seed);
         }
     }
 }
@@ -121,9 +136,9 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> StepLearner<A, 
     pub fn checkpoint(&self) -> SavedStepLearner<A> {
         SavedStepLearner {
             learners: self
-                .learners
+                .slots
                 .iter()
-                .map(|(p, l)| (*p, l.checkpoint()))
+                .map(|s| (s.parameter, s.learner.checkpoint()))
                 .collect(),
         }
     }
@@ -170,10 +185,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> StepLearner<A, R> {
         ) -> Result<Option<TouchDownReport>, LearnerError>,
     ) -> Result<StepReports, LearnerError> {
         let mut out = StepReports::default();
-        for (p, l) in &mut self.learners {
-            let outcome = *outcomes.in_plane(*p, l.plane());
-            if let Some(r) = end(l, &outcome)? {
-                out[*p] = Some(match out[*p] {
+        for s in &mut self.slots {
+            let p = s.parameter;
+            if let Some(r) = end(&mut s.learner, outcomes.in_plane(p, s.plane))? {
+                out[p] = Some(match out[p] {
                     Some(first) => combined(first, r),
                     None => r,
                 });
@@ -192,21 +207,21 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
         let mut out = PerParameter::default();
-        for (p, l) in &mut self.learners {
-            out[*p] += l.query(*inputs.in_plane(*p, l.plane()))?;
+        for s in &mut self.slots {
+            out[s.parameter] += s.learner.query(*inputs.in_plane(s.parameter, s.plane))?;
         }
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         // Each part's reach is the parameter's less the other parts' offsets.
         let mut total = PerParameter([0.0; 3]);
-        for (p, l) in &self.learners {
-            total[*p] += l.last_offset();
+        for s in &self.slots {
+            total[s.parameter] += s.learner.last_offset();
         }
-        for (p, l) in &mut self.learners {
-            let others = total[*p] - l.last_offset();
-            let [lo, hi] = reach[*p];
-            l.set_reach(lo - others, hi - others)?;
+        for s in &mut self.slots {
+            let others = total[s.parameter] - s.learner.last_offset();
+            let [lo, hi] = reach[s.parameter];
+            s.learner.set_reach(lo - others, hi - others)?;
         }
         Ok(())
     }
@@ -220,8 +235,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         self.end_step(outcomes, |l, o| l.fall(o))
     }
     fn discard_step(&mut self) {
-        for (_, l) in &mut self.learners {
-            l.discard_step();
+        for s in &mut self.slots {
+            s.learner.discard_step();
         }
     }
 }
@@ -509,7 +524,7 @@ mod tests {
             Err(LearnerError::InvalidConfig { param: "learn", .. })
         ));
         assert!(StepLearner::<AnyApproximator, Box<dyn LearningRule>>::new(vec![]).is_err());
-        // A parameter twice in the same plane, or a learner given for another parameter.
+        // A parameter twice in the same plane.
         let same_plane = StepLearner::new(vec![
             (StepParameter::StepTime, learner(StepParameter::StepTime)),
             (StepParameter::StepTime, learner(StepParameter::StepTime)),
@@ -518,9 +533,13 @@ mod tests {
             same_plane,
             Err(LearnerError::InvalidConfig { param: "learn", .. })
         ));
+        // A learner whose settings learn its slot's parameter in both planes (here a step-x
+        // learner, which may be given for any slot).
+        use crate::control::step_parameter::Planes;
+        let both = LearnerConfig::default().in_planes(StepParameter::StepTime, Planes::Both);
         let other = StepLearner::new(vec![(
             StepParameter::StepTime,
-            learner(StepParameter::StepX),
+            learner_with(StepParameter::StepX, both),
         )]);
         assert!(matches!(
             other,
