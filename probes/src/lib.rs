@@ -6,17 +6,22 @@ use steplearn::bench::Registry;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::FootstepPolicy;
 use steplearn::experiments::RunContext;
-use steplearn::experiments::config_file::ConfigFile;
+use steplearn::experiments::config_file::{ConfigFile, ConfigFileError};
 use steplearn::experiments::experiment::RunStepLearner;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{Observer, TrialSetup, run_trial};
 
-/// The settings of `--config FILE` (`steplearn config` format), or the defaults without one.
-pub fn settings(config: Option<&Path>) -> Result<Settings, ProbeError> {
+/// The config of `--config FILE` (`steplearn config` format), or the defaults without one.
+pub fn config_file(config: Option<&Path>) -> Result<ConfigFile, ConfigFileError> {
     Ok(match config {
-        Some(path) => ConfigFile::load(path)?.settings,
-        None => Settings::default(),
+        Some(path) => ConfigFile::load(path)?,
+        None => ConfigFile::default(),
     })
+}
+
+/// The settings of `--config FILE` ([`config_file`]).
+pub fn settings(config: Option<&Path>) -> Result<Settings, ProbeError> {
+    Ok(config_file(config)?.settings)
 }
 
 /// The learner of `set` as `steplearn experiment` builds it for `config` and `seed`: the

@@ -535,7 +535,10 @@ impl LearnerConfig {
                         ),
                     ));
                 }
-                check_offset(FRONTAL_OFFSET_KEYS, &self.part(p, Plane::Frontal).offset(p))?;
+                // The frontal part differs from the parameter's table in its dead zone only.
+                let mut keys = PARAMETER_OFFSET_KEYS[p.index()];
+                keys[1] = FRONTAL_DEAD_ZONE_KEY;
+                check_offset(keys, &self.part(p, Plane::Frontal).offset(p))?;
             }
         }
         Ok(CheckedLearnerConfig {
@@ -673,13 +676,8 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
 /// The `frontal` table of each parameter's table, in [`StepParameter::ALL`]'s order.
 const FRONTAL_KEYS: [&str; 3] = ["step-x.frontal", "step-y.frontal", "step-time.frontal"];
 
-/// The keys of the frontal part's offset settings (only the step time is learned in both).
-const FRONTAL_OFFSET_KEYS: [&str; 4] = [
-    "step-time.frontal.eta",
-    "step-time.frontal.dead_zone",
-    "step-time.frontal.leakage",
-    "step-time.frontal.max_offset",
-];
+/// The key of the frontal part's dead zone (only the step time is learned in both planes).
+const FRONTAL_DEAD_ZONE_KEY: &str = "step-time.frontal.dead_zone";
 
 /// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
 pub(crate) const PLANE_KEYS: [&str; 3] = ["step-x.plane", "step-y.plane", "step-time.plane"];

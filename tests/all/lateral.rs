@@ -2,12 +2,13 @@
 //! learner's offset within the step-width range, and the effect of learning on the width.
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
-use steplearn::control::Side;
 use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::control::motion::Swing;
 use steplearn::control::step_learner::StepLearner;
 use steplearn::control::step_parameter::StepParameter;
 use steplearn::control::walker::{FootstepPolicy, Walker, WalkerConfig, WalkerMode};
+use steplearn::control::{Plane, Side};
+use steplearn::experiments::experiment::step_time_rule;
 use steplearn::rules::{PendulumCart, StepOutcome};
 use steplearn::sim::{Humanoid, SimConfig};
 
@@ -231,31 +232,30 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
     );
 }
 
+/// A step-time learner (LWPR, the LIPM step-time rule of `plane`) reading `plane` with the
+/// settings `config` gives that part ([`LearnerConfig::part`]).
+fn step_time_learner(
+    plane: Plane,
+    config: LearnerConfig,
+) -> FootstepLearner<AnyApproximator, steplearn::rules::StepTime> {
+    let bounds = InputGrid::default().input_box().unwrap();
+    FootstepLearner::for_parameters(
+        ApproxKind::Lwpr.build(&bounds).unwrap(),
+        [step_time_rule(plane, &WalkerConfig::default())],
+        [StepParameter::StepTime],
+        config.part(StepParameter::StepTime, plane),
+    )
+    .unwrap()
+}
+
 /// The step time learned in the frontal plane is taught by a sideways push: in the second after
 /// a side push its G_T is several times what it was stepping in place before, and well above
 /// what the sagittal step-time rule takes from the same push (a side push moves the trunk a
 /// little sagittally too).
 #[test]
 fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
-    use steplearn::control::Plane;
-    use steplearn::control::learner::ParameterSettings;
-    use steplearn::experiments::experiment::step_time_rule;
     let time_learner = |plane: Plane| {
-        let bounds = InputGrid::default().input_box().unwrap();
-        let config = LearnerConfig {
-            step_time: ParameterSettings {
-                plane: Some(plane.into()),
-                ..ParameterSettings::default()
-            },
-            ..LearnerConfig::default()
-        };
-        let l = FootstepLearner::for_parameters(
-            ApproxKind::Lwpr.build(&bounds).unwrap(),
-            [step_time_rule(plane, &WalkerConfig::default())],
-            [StepParameter::StepTime],
-            config,
-        )
-        .unwrap();
+        let l = step_time_learner(plane, LearnerConfig::default());
         StepLearner::new(vec![(StepParameter::StepTime, l)]).unwrap()
     };
     let mut frontal = time_learner(Plane::Frontal);
@@ -287,25 +287,15 @@ fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
 /// walking alone teaches neither part (without one the step time drifts, docs/learner.md).
 #[test]
 fn a_step_time_in_both_planes_learns_each_push_in_its_own_plane() {
+    use steplearn::control::Planes;
     use steplearn::control::learner::LearnerInput;
-    use steplearn::control::{Plane, Planes};
-    use steplearn::experiments::experiment::step_time_rule;
     let both = || {
         let config = LearnerConfig {
             dead_zone: steplearn::experiments::settings::DEFAULT_DEAD_ZONE,
             ..LearnerConfig::default()
         }
         .in_planes(StepParameter::StepTime, Planes::Both);
-        let part = |plane: Plane| {
-            let bounds = InputGrid::default().input_box().unwrap();
-            FootstepLearner::for_parameters(
-                ApproxKind::Lwpr.build(&bounds).unwrap(),
-                [step_time_rule(plane, &WalkerConfig::default())],
-                [StepParameter::StepTime],
-                config.in_planes(StepParameter::StepTime, plane.into()),
-            )
-            .unwrap()
-        };
+        let part = |plane: Plane| step_time_learner(plane, config);
         StepLearner::new(vec![
             (StepParameter::StepTime, part(Plane::Sagittal)),
             (StepParameter::StepTime, part(Plane::Frontal)),

@@ -23,7 +23,6 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::{Tick, WalkerMode};
-use steplearn::experiments::ConfigFile;
 use steplearn::experiments::catch_step::{
     MIN_CATCH_BEYOND_REFERENCE, catch_step_reach, catch_steps,
 };
@@ -328,10 +327,7 @@ fn run(
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = Args::parse();
-    let mut config = match &args.config {
-        Some(path) => ConfigFile::load(path)?,
-        None => ConfigFile::default(),
-    };
+    let mut config = steplearn_probes::config_file(args.config.as_deref())?;
     config.settings.learner.learn = args.learn;
     let mut protocol: StabilityProtocol = config.protocols.get("stability")?;
     if let Some(p) = args.pushes {

@@ -12,7 +12,6 @@ use clap::Parser;
 use std::path::PathBuf;
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::control::walker::{Tick, WalkerMode};
-use steplearn::experiments::ConfigFile;
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::{Observer, StepRecord, run_trial};
 
@@ -53,10 +52,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if !(args.seconds.is_finite() && args.seconds > 15.0) {
         return Err("--seconds must exceed 15".into());
     }
-    let mut config = match &args.config {
-        Some(path) => ConfigFile::load(path)?,
-        None => ConfigFile::default(),
-    };
+    let mut config = steplearn_probes::config_file(args.config.as_deref())?;
     config.settings.learner.learn = args.learn;
     let settings = &config.settings;
     let setup = settings.trial(
