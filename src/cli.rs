@@ -22,6 +22,7 @@ use crate::experiments::experiment::PushOptions;
 use crate::experiments::index_page::{
     INDEX_FILE, command_line, write_index, write_index_with_replays,
 };
+use crate::experiments::omnidirectional;
 use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::reproduce::{self, Claims};
 use crate::experiments::settings::Settings;
@@ -32,7 +33,7 @@ use crate::experiments::sweep::{
 };
 use crate::report::write_file;
 use crate::rules::PendulumCart;
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -131,10 +132,11 @@ struct ExperimentArgs {
     /// Push impulse range in Ns, "A,B" (disturbance and robustness use one impulse: A,A).
     #[arg(long, value_parser = parse_range)]
     impulse_range: Option<(f64, f64)>,
-    /// Direction of the pushes (default: the protocol's, forward unless a config file
-    /// sets `direction`).
-    #[arg(long, value_enum)]
-    push_direction: Option<PushDirection>,
+    /// Direction of the pushes: forward, backward, left, right, or an azimuth in degrees
+    /// (0 forward, 90 left, as the omnidirectional experiment's sectors) [default: the
+    /// protocol's, forward unless a config file sets `direction`].
+    #[arg(long, value_parser = parse_push_direction, allow_hyphen_values = true)]
+    push_direction: Option<[f64; 3]>,
     /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
     /// step-y (the lateral dW), step-time (dT) [default: the config's, step-x].
     #[arg(long)]
@@ -230,25 +232,27 @@ struct ReplayArgs {
     out: PathBuf,
 }
 
-/// Which way the pushes go, on the command line (`--push-direction`); not
-/// [`crate::experiments::paired::Direction`], which way is better.
-#[derive(Clone, Copy, ValueEnum)]
-enum PushDirection {
-    Forward,
-    Backward,
-    Left,
-    Right,
-}
-
-impl PushDirection {
-    fn unit(self) -> [f64; 3] {
-        match self {
-            PushDirection::Forward => [1.0, 0.0, 0.0],
-            PushDirection::Backward => [-1.0, 0.0, 0.0],
-            PushDirection::Left => [0.0, 1.0, 0.0],
-            PushDirection::Right => [0.0, -1.0, 0.0],
-        }
-    }
+/// The unit push direction of `--push-direction`: a name (forward, backward, left, right) or
+/// an azimuth in degrees within +-360 (0 forward, counter-clockwise), as
+/// [`omnidirectional::direction`] gives the experiment's sectors.
+fn parse_push_direction(s: &str) -> Result<[f64; 3], String> {
+    let deg = match s.trim() {
+        "forward" => 0.0,
+        "left" => 90.0,
+        "backward" => 180.0,
+        "right" => 270.0,
+        other => other
+            .parse::<f64>()
+            .ok()
+            .filter(|d| d.is_finite() && d.abs() <= 360.0)
+            .ok_or_else(|| {
+                format!(
+                    "expected forward, backward, left, right or an azimuth in degrees within \
+                     +-360 (0 forward, 90 left), got {other:?}"
+                )
+            })?,
+    };
+    Ok(omnidirectional::direction(deg))
 }
 
 fn parse_range(s: &str) -> Result<(f64, f64), String> {
@@ -495,7 +499,7 @@ fn experiment(registry: &Registry, args: ExperimentArgs) -> Result<(), String> {
         &experiment,
         pushes,
         impulse_range,
-        push_direction.map(PushDirection::unit),
+        push_direction,
     )?;
     let spec = RunSpec {
         experiment: experiment.clone(),

@@ -322,6 +322,62 @@ fn push_direction_comes_from_the_config_unless_the_flag_is_given() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("has no pushes"));
 }
 
+/// `--push-direction` takes an azimuth in degrees as the omnidirectional experiment's sectors
+/// do: 90 is `left` and -90 `right` bit for bit, 45 pushes along the diagonal, and a value that is not a
+/// direction is refused before anything is written.
+#[test]
+fn push_direction_takes_an_azimuth_in_degrees() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |flag: &str, name: &str| {
+        let out = dir.path().join(name);
+        let o = steplearn(&[
+            "experiment",
+            "stability",
+            "--pushes",
+            "1",
+            "--push-direction",
+            flag,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (o, out)
+    };
+    let read = |out: &std::path::Path, f: &str| std::fs::read_to_string(out.join(f)).unwrap();
+    let (o, left) = run("left", "left");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (o, ninety) = run("90", "ninety");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (o, right) = run("right", "right");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (o, minus_ninety) = run("-90", "minus_ninety");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["summary.json", "run-config.toml"] {
+        assert_eq!(read(&left, f), read(&ninety, f), "{f}");
+        assert_eq!(read(&right, f), read(&minus_ninety, f), "{f}");
+    }
+    let (o, diagonal) = run("45", "diagonal");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let config: toml::Table = read(&diagonal, "run-config.toml").parse().unwrap();
+    let d: Vec<f64> = config["protocol"]["direction"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_float().unwrap())
+        .collect();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(
+        (d[0] - h).abs() < 1e-12 && (d[1] - h).abs() < 1e-12 && d[2] == 0.0,
+        "{d:?}"
+    );
+    for bad in ["400", "-360.5", "north", "NaN", "inf", ""] {
+        let (o, out) = run(bad, "bad");
+        assert!(!o.status.success(), "{bad:?} was accepted");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("azimuth in degrees"), "{bad:?}: {err}");
+        assert!(!out.exists(), "{bad:?} wrote {}", out.display());
+    }
+}
+
 /// `merge` on a directory without finished runs fails and writes no (empty) table; a malformed
 /// run is named in plain words.
 #[test]
