@@ -7,7 +7,7 @@ set -euo pipefail
 bin=../../../target/release/steplearn
 config=${1:-../../../configs/both_planes_step_time.toml}
 name=${2:-both-dz0}
-shift 2 2>/dev/null || true
+shift $(( $# < 2 ? $# : 2 ))
 azimuths=("$@"); [ ${#azimuths[@]} -eq 0 ] && azimuths=(45 135 180 225 315)
 for az in "${azimuths[@]}"; do for s in ${SEEDS:-0 1 2 3 4}; do
   out=C-$name-az$az-s$s
