@@ -148,9 +148,58 @@ impl From<Plane> for Planes {
     }
 }
 
+/// How the two parts of an offset learned in both planes combine (its table's `blend` key).
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    Serialize,
+    Deserialize,
+    strum::EnumString,
+    strum::Display,
+)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+pub enum Blend {
+    /// The parts' offsets add (the default).
+    #[default]
+    Sum,
+    /// Each part's offset is weighted by its plane's share of the trunk's squared deviation
+    /// rate, `r_p^2 / (r_sagittal^2 + r_frontal^2)` (half each when both are 0): the part of
+    /// the plane the trunk falls in acts, the other fades.
+    RateShare,
+}
+
+impl Blend {
+    /// The weights of the sagittal and the frontal part at the planes' deviation rates.
+    pub fn weights(self, sagittal_rate: f64, frontal_rate: f64) -> [f64; 2] {
+        match self {
+            Blend::Sum => [1.0, 1.0],
+            Blend::RateShare => {
+                let (s, f) = (sagittal_rate * sagittal_rate, frontal_rate * frontal_rate);
+                if s + f > 0.0 {
+                    [s / (s + f), f / (s + f)]
+                } else {
+                    [0.5, 0.5]
+                }
+            }
+        }
+    }
+}
+
 /// One value per step parameter, indexed by [`StepParameter`].
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct PerParameter<T>(pub [T; 3]);
+
+impl<T: Default + PartialEq> PerParameter<T> {
+    /// Whether every value is its default.
+    pub fn is_default(&self) -> bool {
+        self.0.iter().all(|v| *v == T::default())
+    }
+}
 
 impl<T> PerParameter<T> {
     /// The value of `p`.

@@ -1303,6 +1303,71 @@ fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
     assert!(toml::from_str::<LearnerConfig>("[step-time.frontal]\nplane = \"frontal\"\n").is_err());
 }
 
+/// `[step-time] blend` combines the two parts of a step time learned in both planes: checked
+/// once, refused (naming it) without `plane = "both"`, left out of each part's settings, and
+/// given to the run's learner.
+#[test]
+fn a_step_time_in_both_planes_blends_its_parts_as_configured() {
+    use steplearn::bench::Registry;
+    use steplearn::control::step_parameter::{Blend, LearnSet, StepParameter};
+    use steplearn::control::{Plane, Planes};
+    use steplearn::experiments::RunContext;
+    use steplearn::experiments::config_file::ConfigFile;
+    let t = StepParameter::StepTime;
+    let text = "[step-time]\nplane = \"both\"\nblend = \"rate-share\"\n";
+    let cfg: LearnerConfig = toml::from_str(text).unwrap();
+    assert_eq!(cfg.check().unwrap().blend(t), Blend::RateShare);
+    assert_eq!(
+        LearnerConfig::default().check().unwrap().blend(t),
+        Blend::Sum
+    );
+    let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
+    assert_eq!(back, cfg);
+    for plane in [Plane::Sagittal, Plane::Frontal] {
+        let part = cfg.part(t, plane);
+        assert!(part.step_time.blend.is_none());
+        assert_eq!(part.check().unwrap().planes(t), Planes::from(plane));
+    }
+    let refused = |text: &str, key: &str| {
+        let cfg: LearnerConfig = toml::from_str(text).unwrap();
+        match cfg.check() {
+            Err(LearnerError::InvalidConfig { param, .. }) => assert_eq!(param, key, "{text}"),
+            other => panic!("{text}: expected a refusal, got {other:?}"),
+        }
+    };
+    refused("[step-time]\nblend = \"rate-share\"\n", "step-time.blend");
+    refused(
+        "[step-time]\nplane = \"frontal\"\nblend = \"sum\"\n",
+        "step-time.blend",
+    );
+    refused("[step-x]\nblend = \"rate-share\"\n", "step-x.blend");
+    assert!(
+        toml::from_str::<LearnerConfig>("[step-time]\nplane = \"both\"\nblend = \"max\"\n")
+            .is_err()
+    );
+    // The run's learner of a set with the step time gets the blend.
+    let mut config = ConfigFile::default();
+    config.settings.learner = LearnerConfig {
+        learn: LearnSet::of(&[StepParameter::StepX, t]).unwrap(),
+        ..cfg
+    };
+    let settings = &config.settings;
+    let components = Registry::builtin()
+        .components("lwpr", "pendulum-cart", &settings.lwpr)
+        .unwrap();
+    let ctx = RunContext {
+        settings,
+        protocols: &config.protocols,
+        seed: 0,
+        approx: "lwpr",
+        rule: "pendulum-cart",
+        components: &components,
+    };
+    let learner = ctx.make_step_learner().unwrap();
+    assert_eq!(learner.blend(t), Blend::RateShare);
+    assert_eq!(learner.learners().filter(|(p, _)| *p == t).count(), 2);
+}
+
 #[test]
 fn checked_settings_hold_every_value_in_its_group() {
     use steplearn::control::step_parameter::StepParameter;
