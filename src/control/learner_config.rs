@@ -4,7 +4,7 @@
 //! grouped by the safeguard they belong to. A learner holds only checked settings.
 
 use super::learner_error::LearnerError;
-use super::step_parameter::{Blend, LearnSet, Plane, Planes, StepParameter};
+use super::step_parameter::{Gate, LearnSet, Plane, Planes, StepParameter};
 use serde::{Deserialize, Serialize};
 
 /// Number of inputs of the learner's approximator: (theta_E, theta_E_dot, F_R).
@@ -168,10 +168,10 @@ pub struct ParameterSettings {
     /// table's. Only with `plane = "both"`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frontal: Option<PartSettings>,
-    /// With `plane = "both"`, how the two parts' offsets combine (default
-    /// [`Blend::Sum`]). Only with `plane = "both"`.
+    /// What the offset is weighted by each tick (default [`Gate::Off`]); in both planes each
+    /// part by its own plane.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub blend: Option<Blend>,
+    pub gate: Option<Gate>,
 }
 
 /// The settings of one part of an offset learned in both planes, apart from its parameter's
@@ -269,7 +269,7 @@ pub struct CheckedLearnerConfig {
     pub(crate) prior: Prior,
     pub(crate) learn: LearnSet,
     pub(crate) planes: [Planes; StepParameter::ALL.len()],
-    pub(crate) blends: [Blend; StepParameter::ALL.len()],
+    pub(crate) gates: [Gate; StepParameter::ALL.len()],
 }
 
 impl CheckedLearnerConfig {
@@ -283,9 +283,9 @@ impl CheckedLearnerConfig {
         self.planes[parameter.index()]
     }
 
-    /// How the parts of `parameter` combine where it is learned in both planes.
-    pub fn blend(&self, parameter: StepParameter) -> Blend {
-        self.blends[parameter.index()]
+    /// What `parameter`'s offset is weighted by.
+    pub fn gate(&self, parameter: StepParameter) -> Gate {
+        self.gates[parameter.index()]
     }
 
     /// The gain guard and anti-windup.
@@ -505,7 +505,6 @@ impl LearnerConfig {
             own.dead_zone = f.dead_zone.or(own.dead_zone);
         }
         own.frontal = None;
-        own.blend = None;
         self.in_planes(parameter, plane.into())
     }
 
@@ -522,7 +521,7 @@ impl LearnerConfig {
         self.check_shared()?;
         let mut offsets = [shared; StepParameter::ALL.len()];
         let mut planes = [Planes::Sagittal; StepParameter::ALL.len()];
-        let mut blends = [Blend::Sum; StepParameter::ALL.len()];
+        let mut gates = [Gate::Off; StepParameter::ALL.len()];
         for p in StepParameter::ALL {
             let o = self.offset(p);
             check_offset(PARAMETER_OFFSET_KEYS[p.index()], &o)?;
@@ -538,17 +537,7 @@ impl LearnerConfig {
                 ));
             }
             planes[p.index()] = plane;
-            if let Some(blend) = self.parameter_settings(p).blend
-                && plane != Planes::Both
-            {
-                return Err(LearnerError::config(
-                    BLEND_KEYS[p.index()],
-                    format!(
-                        "combines the parts of {p} learned in both planes ({blend}); needs plane = \"both\", got {plane}"
-                    ),
-                ));
-            }
-            blends[p.index()] = self.parameter_settings(p).blend.unwrap_or_default();
+            gates[p.index()] = self.parameter_settings(p).gate.unwrap_or_default();
             if self.parameter_settings(p).frontal.is_some() {
                 if plane != Planes::Both {
                     return Err(LearnerError::config(
@@ -586,7 +575,7 @@ impl LearnerConfig {
             prior: self.prior,
             learn: self.learn,
             planes,
-            blends,
+            gates,
         })
     }
 
@@ -699,9 +688,6 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
 
 /// The `frontal` table of each parameter's table, in [`StepParameter::ALL`]'s order.
 const FRONTAL_KEYS: [&str; 3] = ["step-x.frontal", "step-y.frontal", "step-time.frontal"];
-
-/// The `blend` key of each parameter's table, in [`StepParameter::ALL`]'s order.
-const BLEND_KEYS: [&str; 3] = ["step-x.blend", "step-y.blend", "step-time.blend"];
 
 /// The key of the frontal part's dead zone (only the step time is learned in both planes).
 const FRONTAL_DEAD_ZONE_KEY: &str = "step-time.frontal.dead_zone";

@@ -18,12 +18,22 @@
 //! ([`PerParameter::in_plane`]).
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
-use super::step_parameter::{LearnSet, PerParameter};
+use super::step_parameter::{Gate, LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::FunctionApproximator;
 use crate::rules::{LearningRule, StepOutcome};
 
 /// What a policy did with a step, per parameter (`None` for a parameter it did not learn from).
 pub type StepReports = PerParameter<Option<TouchDownReport>>;
+
+/// The weight `gate` gives the offset of a learner reading `plane` at these inputs (the
+/// planes' deviation rates: the sagittal input's theta_E_dot, the frontal input's lean rate).
+pub(crate) fn gate_weight(gate: Gate, plane: Plane, inputs: &PerParameter<LearnerInput>) -> f64 {
+    gate.weight(
+        plane,
+        inputs[StepParameter::StepX].theta_e_dot,
+        inputs[StepParameter::StepY].theta_e_dot,
+    )
+}
 
 /// A source of learned step offsets: asked every tick, told at touch-down and at falls.
 ///
@@ -66,7 +76,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for Footst
     ) -> Result<PerParameter<f64>, LearnerError> {
         let p = self.parameter();
         let mut out = PerParameter::default();
-        out[p] = self.query(*inputs.in_plane(p, self.plane()))?;
+        let weight = gate_weight(self.settings().gate(p), self.plane(), inputs);
+        out[p] = weight * self.query(*inputs.in_plane(p, self.plane()))?;
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {

@@ -20,8 +20,8 @@
 //! state)). Each part's reach is the parameter's, less the other part's offset.
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
-use super::policy::{FootstepPolicy, StepReports};
-use super::step_parameter::{Blend, LearnSet, PerParameter, Plane, StepParameter};
+use super::policy::{FootstepPolicy, StepReports, gate_weight};
+use super::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -32,8 +32,6 @@ pub struct StepLearner<A: FunctionApproximator, R: LearningRule> {
     /// plane once.
     slots: Vec<Slot<A, R>>,
     set: LearnSet,
-    /// How the parts of each parameter learned in both planes combine.
-    blends: PerParameter<Blend>,
 }
 
 /// A learner in its place: the parameter it gives the offset of (or a part of it) and the
@@ -42,7 +40,7 @@ struct Slot<A: FunctionApproximator, R: LearningRule> {
     parameter: StepParameter,
     plane: Plane,
     learner: FootstepLearner<A, R>,
-    /// The weight of its offset in the parameter's at the last query (1 unless blended).
+    /// The weight of its offset at the last query (its parameter's [`Gate`]).
     weight: f64,
 }
 
@@ -60,10 +58,6 @@ impl<A: FunctionApproximator, R: LearningRule> std::fmt::Debug for StepLearner<A
 pub struct SavedStepLearner<A> {
     /// Each learned parameter with its learner's checkpoint.
     pub learners: Vec<(StepParameter, SavedLearner<A>)>,
-    /// How the parts of each parameter learned in both planes combine (left out: every one
-    /// summed).
-    #[serde(default, skip_serializing_if = "PerParameter::is_default")]
-    pub blends: PerParameter<Blend>,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
@@ -104,39 +98,7 @@ impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
         let mut parameters: Vec<StepParameter> = slots.iter().map(|s| s.parameter).collect();
         parameters.dedup();
         let set = LearnSet::of(&parameters).map_err(|e| invalid(e.to_string()))?;
-        Ok(StepLearner {
-            slots,
-            set,
-            blends: PerParameter::default(),
-        })
-    }
-
-    /// The same learner with the parts of `parameter` combined by `blend` (default
-    /// [`Blend::Sum`]). Errors unless `parameter` is learned in both planes.
-    pub fn with_blend(
-        mut self,
-        parameter: StepParameter,
-        blend: Blend,
-    ) -> Result<Self, LearnerError> {
-        if self
-            .slots
-            .iter()
-            .filter(|s| s.parameter == parameter)
-            .count()
-            != 2
-        {
-            return Err(LearnerError::InvalidConfig {
-                param: "blend",
-                reason: format!("{parameter} is not learned in both planes"),
-            });
-        }
-        self.blends[parameter] = blend;
-        Ok(self)
-    }
-
-    /// How the parts of `parameter` combine (where it is learned in both planes).
-    pub fn blend(&self, parameter: StepParameter) -> Blend {
-        self.blends[parameter]
+        Ok(StepLearner { slots, set })
     }
 
     /// The learner of `parameter`, if it is learned (in the sagittal plane if in both).
@@ -181,7 +143,6 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> StepLearner<A, 
                 .iter()
                 .map(|s| (s.parameter, s.learner.checkpoint()))
                 .collect(),
-            blends: self.blends,
         }
     }
 
@@ -192,7 +153,6 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> StepLearner<A, 
         saved: SavedStepLearner<A>,
         mut rule: impl FnMut(StepParameter, Plane) -> R,
     ) -> Result<Self, LearnerError> {
-        let blends = saved.blends;
         let learners = saved
             .learners
             .into_iter()
@@ -201,13 +161,7 @@ impl<A: FunctionApproximator + Persist + Clone, R: LearningRule> StepLearner<A, 
                 Ok((p, FootstepLearner::from_checkpoint(s, rule(p, plane))?))
             })
             .collect::<Result<Vec<_>, LearnerError>>()?;
-        let mut learner = Self::new(learners)?;
-        for p in StepParameter::ALL {
-            if blends[p] != Blend::Sum {
-                learner = learner.with_blend(p, blends[p])?;
-            }
-        }
-        Ok(learner)
+        Self::new(learners)
     }
 }
 
@@ -258,14 +212,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         let mut out = PerParameter::default();
         for s in &mut self.slots {
             let p = s.parameter;
-            let [w_sagittal, w_frontal] = self.blends[p].weights(
-                inputs.in_plane(p, Plane::Sagittal).theta_e_dot,
-                inputs.in_plane(p, Plane::Frontal).theta_e_dot,
-            );
-            s.weight = match s.plane {
-                Plane::Sagittal => w_sagittal,
-                Plane::Frontal => w_frontal,
-            };
+            s.weight = gate_weight(s.learner.settings().gate(p), s.plane, inputs);
             out[p] += s.weight * s.learner.query(*inputs.in_plane(p, s.plane))?;
         }
         Ok(out)
@@ -306,6 +253,7 @@ mod tests {
     use super::*;
     use crate::approx::{AnyApproximator, ApproxKind};
     use crate::control::learner::{InputGrid, LearnerConfig};
+    use crate::control::step_parameter::Gate;
     use crate::rules::{PendulumCart, StepTime};
 
     fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
@@ -499,11 +447,22 @@ mod tests {
     }
 
     #[test]
-    fn a_rate_share_blend_weights_each_part_by_its_planes_share_of_the_rate() {
-        let mut l = both_planes()
-            .with_blend(StepParameter::StepTime, Blend::RateShare)
-            .unwrap();
-        assert_eq!(l.blend(StepParameter::StepTime), Blend::RateShare);
+    fn a_rate_share_gate_weights_each_part_by_its_planes_share_of_the_rate() {
+        use crate::control::step_parameter::Planes;
+        let config = LearnerConfig::default();
+        let mut gated = config.in_planes(StepParameter::StepTime, Planes::Both);
+        gated.step_time.gate = Some(Gate::RateShare);
+        let time = |plane: Plane| {
+            learner_with(
+                StepParameter::StepTime,
+                gated.part(StepParameter::StepTime, plane),
+            )
+        };
+        let mut l = StepLearner::new(vec![
+            (StepParameter::StepTime, time(Plane::Sagittal)),
+            (StepParameter::StepTime, time(Plane::Frontal)),
+        ])
+        .unwrap();
         // Teach both parts a negative offset.
         let mut o = outcome(0.3);
         o[StepParameter::StepY].theta_e = 0.2;
@@ -511,39 +470,42 @@ mod tests {
             l.offsets(&inputs(k)).unwrap();
             l.touch_down(&o).unwrap();
         }
-        let mut x = inputs(1);
         let last = |l: &StepLearner<_, _>, plane| {
             l.learner_in(StepParameter::StepTime, plane)
                 .unwrap()
                 .last_offset()
         };
+        let mut x = inputs(1);
         for (sagittal_rate, frontal_rate) in [(0.1, 0.0), (0.1, 0.05), (0.05, 0.1), (0.0, 0.0)] {
-            // The step time's own input is the sagittal plane's.
+            // The planes' rates: the sagittal input's (`step-x`, also the step time's own) and
+            // the frontal one's.
+            x[StepParameter::StepX].theta_e_dot = sagittal_rate;
             x[StepParameter::StepTime].theta_e_dot = sagittal_rate;
             x[StepParameter::StepY].theta_e_dot = frontal_rate;
             let got = l.offsets(&x).unwrap()[StepParameter::StepTime];
             let (s, f) = (last(&l, Plane::Sagittal), last(&l, Plane::Frontal));
-            let [ws, wf] = Blend::RateShare.weights(sagittal_rate, frontal_rate);
+            let w = |plane| Gate::RateShare.weight(plane, sagittal_rate, frontal_rate);
+            let (ws, wf) = (w(Plane::Sagittal), w(Plane::Frontal));
             assert!((ws + wf - 1.0).abs() < 1e-15);
             assert!((got - (ws * s + wf * f)).abs() < 1e-12, "{got} {s} {f}");
-            if sagittal_rate == 0.1 && frontal_rate == 0.0 {
+            if frontal_rate == 0.0 && sagittal_rate > 0.0 {
                 // Where both parts were trained: the sagittal part alone acts.
                 assert!(s < 0.0 && f < 0.0 && got == s, "{got} {s} {f}");
             }
         }
-        // A fall in the sagittal plane alone leaves the frontal part out, and the other way.
-        assert_eq!(Blend::RateShare.weights(1.0, 0.0), [1.0, 0.0]);
-        assert_eq!(Blend::RateShare.weights(0.0, -2.0), [0.0, 1.0]);
-        assert_eq!(Blend::Sum.weights(1.0, 0.0), [1.0, 1.0]);
-        // A blend needs the parameter in both planes, and a checkpoint keeps it.
-        assert!(
-            both_planes()
-                .with_blend(StepParameter::StepX, Blend::RateShare)
-                .is_err()
+        assert_eq!(Gate::RateShare.weight(Plane::Frontal, 1.0, 0.0), 0.0);
+        assert_eq!(Gate::RateShare.weight(Plane::Frontal, 0.0, -2.0), 1.0);
+        assert_eq!(Gate::RateShare.weight(Plane::Sagittal, 0.0, 0.0), 0.5);
+        assert_eq!(Gate::Off.weight(Plane::Frontal, 1.0, 0.0), 1.0);
+        // A checkpoint keeps the gate (it is each part's setting).
+        let back = StepLearner::from_checkpoint(l.checkpoint(), rule).unwrap();
+        let part = back
+            .learner_in(StepParameter::StepTime, Plane::Frontal)
+            .unwrap();
+        assert_eq!(
+            part.settings().gate(StepParameter::StepTime),
+            Gate::RateShare
         );
-        let saved = l.checkpoint();
-        let back = StepLearner::from_checkpoint(saved, rule).unwrap();
-        assert_eq!(back.blend(StepParameter::StepTime), Blend::RateShare);
     }
 
     #[test]

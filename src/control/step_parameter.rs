@@ -148,7 +148,7 @@ impl From<Plane> for Planes {
     }
 }
 
-/// How the two parts of an offset learned in both planes combine (its table's `blend` key).
+/// What a learned offset is weighted by each tick (its table's `gate` key).
 #[derive(
     Debug,
     Clone,
@@ -163,28 +163,29 @@ impl From<Plane> for Planes {
 )]
 #[serde(rename_all = "kebab-case")]
 #[strum(serialize_all = "kebab-case")]
-pub enum Blend {
-    /// The parts' offsets add (the default).
+pub enum Gate {
+    /// The offset acts whole (the default). A parameter learned in both planes is the sum of
+    /// its parts.
     #[default]
-    Sum,
-    /// Each part's offset is weighted by its plane's share of the trunk's squared deviation
-    /// rate, `r_p^2 / (r_sagittal^2 + r_frontal^2)` (half each when both are 0): the part of
-    /// the plane the trunk falls in acts, the other fades.
+    Off,
+    /// The offset of a learner reading `plane` is weighted by that plane's share of the trunk's
+    /// squared deviation rate, `r_plane^2 / (r_sagittal^2 + r_frontal^2)` (half when both are
+    /// 0): it acts when the trunk falls in its plane and fades when it falls in the other.
     RateShare,
 }
 
-impl Blend {
-    /// The weights of the sagittal and the frontal part at the planes' deviation rates.
-    pub fn weights(self, sagittal_rate: f64, frontal_rate: f64) -> [f64; 2] {
+impl Gate {
+    /// The weight of the offset of a learner reading `plane`, at the planes' deviation rates.
+    pub fn weight(self, plane: Plane, sagittal_rate: f64, frontal_rate: f64) -> f64 {
         match self {
-            Blend::Sum => [1.0, 1.0],
-            Blend::RateShare => {
+            Gate::Off => 1.0,
+            Gate::RateShare => {
                 let (s, f) = (sagittal_rate * sagittal_rate, frontal_rate * frontal_rate);
-                if s + f > 0.0 {
-                    [s / (s + f), f / (s + f)]
-                } else {
-                    [0.5, 0.5]
-                }
+                let own = match plane {
+                    Plane::Sagittal => s,
+                    Plane::Frontal => f,
+                };
+                if s + f > 0.0 { own / (s + f) } else { 0.5 }
             }
         }
     }
@@ -193,13 +194,6 @@ impl Blend {
 /// One value per step parameter, indexed by [`StepParameter`].
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct PerParameter<T>(pub [T; 3]);
-
-impl<T: Default + PartialEq> PerParameter<T> {
-    /// Whether every value is its default.
-    pub fn is_default(&self) -> bool {
-        self.0.iter().all(|v| *v == T::default())
-    }
-}
 
 impl<T> PerParameter<T> {
     /// The value of `p`.

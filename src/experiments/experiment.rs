@@ -158,7 +158,7 @@ impl RunContext<'_> {
             learn: set,
             ..self.settings.learner
         };
-        let checked = config.check()?;
+        config.check()?;
         let mut learners = Vec::new();
         for p in set.iter() {
             let planes = config.planes(p);
@@ -170,13 +170,7 @@ impl RunContext<'_> {
                 learners.push((p, self.make_parameter_learner(p, one)?));
             }
         }
-        let mut learner = StepLearner::new(learners)?;
-        for p in set.iter() {
-            if config.planes(p).single().is_none() {
-                learner = learner.with_blend(p, checked.blend(p))?;
-            }
-        }
-        Ok(learner)
+        StepLearner::new(learners)
     }
 
     /// A fresh learner of the settings' set (`[settings.learner] learn`, `--learn`).

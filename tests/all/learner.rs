@@ -1303,54 +1303,39 @@ fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
     assert!(toml::from_str::<LearnerConfig>("[step-time.frontal]\nplane = \"frontal\"\n").is_err());
 }
 
-/// `[step-time] blend` combines the two parts of a step time learned in both planes: checked
-/// once, refused (naming it) without `plane = "both"`, left out of each part's settings, and
-/// given to the run's learner.
+/// `gate = "rate-share"` in a parameter's table weights its offset by its plane's share of the
+/// trunk's deviation rate: checked once (an unknown gate refused), kept by each part of a step
+/// time in both planes, and acting in the run's learner: a gated `step-y` learner gives nothing
+/// while the trunk falls only forward, its whole offset while it falls only sideways.
 #[test]
-fn a_step_time_in_both_planes_blends_its_parts_as_configured() {
+fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
     use steplearn::bench::Registry;
-    use steplearn::control::step_parameter::{Blend, LearnSet, StepParameter};
+    use steplearn::control::learner::LearnerInput;
+    use steplearn::control::step_parameter::{Gate, LearnSet, PerParameter, StepParameter};
+    use steplearn::control::walker::FootstepPolicy;
     use steplearn::control::{Plane, Planes};
     use steplearn::experiments::RunContext;
     use steplearn::experiments::config_file::ConfigFile;
+    use steplearn::rules::StepOutcome;
     let t = StepParameter::StepTime;
-    let text = "[step-time]\nplane = \"both\"\nblend = \"rate-share\"\n";
+    let text = "[step-time]\nplane = \"both\"\ngate = \"rate-share\"\n";
     let cfg: LearnerConfig = toml::from_str(text).unwrap();
-    assert_eq!(cfg.check().unwrap().blend(t), Blend::RateShare);
-    assert_eq!(
-        LearnerConfig::default().check().unwrap().blend(t),
-        Blend::Sum
-    );
+    assert_eq!(cfg.check().unwrap().gate(t), Gate::RateShare);
+    assert_eq!(LearnerConfig::default().check().unwrap().gate(t), Gate::Off);
     let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
     assert_eq!(back, cfg);
     for plane in [Plane::Sagittal, Plane::Frontal] {
-        let part = cfg.part(t, plane);
-        assert!(part.step_time.blend.is_none());
-        assert_eq!(part.check().unwrap().planes(t), Planes::from(plane));
+        let part = cfg.part(t, plane).check().unwrap();
+        assert_eq!(part.planes(t), Planes::from(plane));
+        assert_eq!(part.gate(t), Gate::RateShare);
     }
-    let refused = |text: &str, key: &str| {
-        let cfg: LearnerConfig = toml::from_str(text).unwrap();
-        match cfg.check() {
-            Err(LearnerError::InvalidConfig { param, .. }) => assert_eq!(param, key, "{text}"),
-            other => panic!("{text}: expected a refusal, got {other:?}"),
-        }
-    };
-    refused("[step-time]\nblend = \"rate-share\"\n", "step-time.blend");
-    refused(
-        "[step-time]\nplane = \"frontal\"\nblend = \"sum\"\n",
-        "step-time.blend",
-    );
-    refused("[step-x]\nblend = \"rate-share\"\n", "step-x.blend");
-    assert!(
-        toml::from_str::<LearnerConfig>("[step-time]\nplane = \"both\"\nblend = \"max\"\n")
-            .is_err()
-    );
-    // The run's learner of a set with the step time gets the blend.
+    assert!(toml::from_str::<LearnerConfig>("[step-y]\ngate = \"max\"\n").is_err());
+    // The run's learner of `step-x,step-y` with a gated `step-y`.
     let mut config = ConfigFile::default();
-    config.settings.learner = LearnerConfig {
-        learn: LearnSet::of(&[StepParameter::StepX, t]).unwrap(),
-        ..cfg
-    };
+    let y = StepParameter::StepY;
+    config.settings.learner.learn = LearnSet::of(&[StepParameter::StepX, y]).unwrap();
+    config.settings.learner.step_y.gate = Some(Gate::RateShare);
+    config.settings.learner.step_y.dead_zone = Some(0.0);
     let settings = &config.settings;
     let components = Registry::builtin()
         .components("lwpr", "pendulum-cart", &settings.lwpr)
@@ -1363,9 +1348,28 @@ fn a_step_time_in_both_planes_blends_its_parts_as_configured() {
         rule: "pendulum-cart",
         components: &components,
     };
-    let learner = ctx.make_step_learner().unwrap();
-    assert_eq!(learner.blend(t), Blend::RateShare);
-    assert_eq!(learner.learners().filter(|(p, _)| *p == t).count(), 2);
+    let mut learner = ctx.make_step_learner().unwrap();
+    let input = |sagittal_rate: f64, frontal_rate: f64| {
+        let x = LearnerInput::new(0.0, sagittal_rate, 0.0);
+        PerParameter([x, LearnerInput::new(0.05, frontal_rate, 0.0), x])
+    };
+    // Teach the lateral offset at a lean towards the swing leg, sideways rate only.
+    let outcome = StepOutcome {
+        theta_e: 0.1,
+        theta_e_dot: 0.0,
+        f_e: 0.0,
+        f_r: 0.0,
+    };
+    for _ in 0..20 {
+        learner.offsets(&input(0.0, 0.2)).unwrap();
+        learner.touch_down(&PerParameter([outcome; 3])).unwrap();
+    }
+    let sideways = learner.offsets(&input(0.0, 0.2)).unwrap()[y];
+    assert!(sideways.abs() > 1e-4, "{sideways}");
+    assert_eq!(learner.offsets(&input(0.2, 0.0)).unwrap()[y], 0.0);
+    let half = learner.offsets(&input(0.2, 0.2)).unwrap()[y];
+    let whole = learner.learner(y).unwrap().last_offset();
+    assert!((half - 0.5 * whole).abs() < 1e-12, "{half} {whole}");
 }
 
 #[test]
