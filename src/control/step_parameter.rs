@@ -149,20 +149,8 @@ impl From<Plane> for Planes {
 }
 
 /// What a learned offset is weighted by each tick (its table's `gate` key).
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    Serialize,
-    Deserialize,
-    strum::EnumString,
-    strum::Display,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-#[strum(serialize_all = "kebab-case")]
 pub enum Gate {
     /// The offset acts whole (the default). A parameter learned in both planes is the sum of
     /// its parts.
