@@ -15,8 +15,8 @@
 //! second offset's reach, last value, exploration and rule state are saved beside the first's.
 
 use super::learner::{LearnerConfig, LearnerError, LearnerInput, OffsetLearner, TouchDownReport};
-use super::policy::{FootstepPolicy, StepReports};
-use super::step_parameter::{LearnSet, PerParameter, StepParameter};
+use super::policy::{FootstepPolicy, StepReports, gate_weight};
+use super::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::{FunctionApproximator, InputBox};
 use crate::rules::{LearningRule, StepOutcome};
 
@@ -108,7 +108,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
         inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
         let [df, dw] = self.query(inputs[StepParameter::StepX], inputs[StepParameter::StepY])?;
-        Ok(PerParameter([df, dw, 0.0]))
+        // Each offset weighted by its parameter's gate in its own plane.
+        let gate = |p: StepParameter, plane| gate_weight(self.settings().gate(p), plane, inputs);
+        Ok(PerParameter([
+            gate(StepParameter::StepX, Plane::Sagittal) * df,
+            gate(StepParameter::StepY, Plane::Frontal) * dw,
+            0.0,
+        ]))
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         for (plane, p) in PLANE_PARAMETERS.into_iter().enumerate() {

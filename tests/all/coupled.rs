@@ -490,3 +490,41 @@ fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
         "{err}"
     );
 }
+
+/// A gate on either offset (`gate = "rate-share"`) weights the coupled learner's offsets as it
+/// weights the uncoupled ones: each by its plane's share of the trunk's squared deviation rate.
+#[test]
+fn a_gate_weights_each_coupled_offset_by_its_planes_share() {
+    use steplearn::control::Plane;
+    use steplearn::control::step_parameter::Gate;
+    let mut config = LearnerConfig {
+        trust_region: None,
+        ..LearnerConfig::default()
+    };
+    config.step_x.gate = Some(Gate::RateShare);
+    config.step_y.gate = Some(Gate::RateShare);
+    let mut learner = coupled(config);
+    // Teach both outputs something other than zero.
+    for _ in 0..5 {
+        learner
+            .offsets(&PerParameter([SAGITTAL, LATERAL, SAGITTAL]))
+            .unwrap();
+        FootstepPolicy::touch_down(
+            &mut learner,
+            &PerParameter([outcome(0.1, 0.0), outcome(0.1, 0.0), outcome(0.1, 0.0)]),
+        )
+        .unwrap();
+    }
+    let both = learner.predict(&at(SAGITTAL, LATERAL)).unwrap();
+    assert!(both[0].abs() > 1e-6 && both[1].abs() > 1e-6, "{both:?}");
+    let offsets = learner
+        .offsets(&PerParameter([SAGITTAL, LATERAL, SAGITTAL]))
+        .unwrap();
+    let (rs, rf) = (SAGITTAL.theta_e_dot, LATERAL.theta_e_dot);
+    let want = [
+        Gate::RateShare.weight(Plane::Sagittal, rs, rf) * both[0],
+        Gate::RateShare.weight(Plane::Frontal, rs, rf) * both[1],
+    ];
+    assert!((offsets.0[0] - want[0]).abs() < 1e-15 && (offsets.0[1] - want[1]).abs() < 1e-15);
+    assert!(offsets.0[0].abs() < both[0].abs() && offsets.0[1].abs() < both[1].abs());
+}
