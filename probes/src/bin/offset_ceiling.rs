@@ -118,14 +118,6 @@ impl FootstepPolicy for FixedLaw {
     fn discard_step(&mut self) {}
 }
 
-/// Student's t 97.5% quantile with `n - 1` degrees of freedom (normal beyond 10 samples).
-fn t975(n: usize) -> f64 {
-    const T: [f64; 9] = [
-        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262,
-    ];
-    T.get(n.saturating_sub(2)).copied().unwrap_or(1.96)
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = Args::parse();
     let settings = steplearn_probes::settings(args.config.as_deref()).map_err(|e| e.to_string())?;
@@ -148,8 +140,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for &seed in &args.seeds {
         for &(name, sign) in &directions {
             runs.push((seed, name, sign, None));
-            for &law in &args.laws {
-                runs.push((seed, name, sign, Some(law)));
+            for k in 0..args.laws.len() {
+                runs.push((seed, name, sign, Some(k)));
             }
         }
     }
@@ -158,7 +150,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|&(seed, _, sign, law)| {
             let setup =
                 settings.push_trial(WalkerMode::CaptureStep, 0.0, &plan, seed, [sign, 0.0, 0.0]);
-            let mut policy = law.map(|l| FixedLaw(l, Vec::new()));
+            let mut policy = law.map(|k| FixedLaw(args.laws[k], Vec::new()));
             let log = run_trial(
                 &setup,
                 policy.as_mut().map(|p| p as &mut dyn FootstepPolicy),
@@ -185,31 +177,34 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         })
         .collect();
     println!("seed,direction,law,model_i50_ns,law_i50_ns,ratio");
-    let mut ratios: Vec<(String, &str, f64)> = Vec::new();
+    // (law's index, direction, ratio)
+    let mut ratios: Vec<(usize, &str, f64)> = Vec::new();
     let mut model = 0.0;
     for (&(seed, direction, _, law), i50) in runs.iter().zip(&i50s) {
         let i50 = i50.clone()?;
         match law {
             None => model = i50,
-            Some(law) => {
+            Some(k) => {
                 println!(
-                    "{seed},{direction},{law},{model:.3},{i50:.3},{:.4}",
+                    "{seed},{direction},{},{model:.3},{i50:.3},{:.4}",
+                    args.laws[k],
                     i50 / model
                 );
-                ratios.push((law.to_string(), direction, i50 / model));
+                ratios.push((k, direction, i50 / model));
             }
         }
     }
     println!("\nlaw,direction,mean_ratio,lo95,hi95");
-    for law in &args.laws {
+    for (k, law) in args.laws.iter().enumerate() {
         for &(direction, _) in &directions {
             let r = MeanStd::of(
                 ratios
                     .iter()
-                    .filter(|(l, d, _)| *l == law.to_string() && *d == direction)
+                    .filter(|(l, d, _)| *l == k && *d == direction)
                     .map(|r| r.2),
             );
-            let half = t975(r.count()) * r.sample_std() / (r.count().max(1) as f64).sqrt();
+            // One seed has no interval: printed as the mean alone (lo = hi).
+            let half = r.ci95_half_width().unwrap_or(0.0);
             println!(
                 "{law},{direction},{:.4},{:.4},{:.4}",
                 r.mean(),
