@@ -3,8 +3,10 @@
 
 use std::path::{Path, PathBuf};
 use steplearn::bench::Registry;
-use steplearn::control::step_parameter::LearnSet;
-use steplearn::control::walker::FootstepPolicy;
+use steplearn::control::learner::{LearnerError, LearnerInput};
+use steplearn::control::step_parameter::{LearnSet, PerParameter};
+use steplearn::control::walker::{FootstepPolicy, StepReports};
+use steplearn::rules::StepOutcome;
 use steplearn::experiments::RunContext;
 use steplearn::experiments::config_file::{ConfigFile, ConfigFileError};
 use steplearn::experiments::experiment::RunStepLearner;
@@ -90,4 +92,41 @@ pub fn summaries(
         }
     }
     Ok(found)
+}
+
+/// A policy that does not learn: `offsets` maps the learner's inputs to the offsets of the
+/// parameters in `learns`, and touch-downs and falls teach it nothing.
+pub struct FixedPolicy<F> {
+    /// The parameters it sets.
+    pub learns: LearnSet,
+    /// The offsets, from the inputs of every parameter.
+    pub offsets: F,
+}
+
+impl<F> FootstepPolicy for FixedPolicy<F>
+where
+    F: FnMut(&PerParameter<LearnerInput>) -> PerParameter<f64>,
+{
+    fn learns(&self) -> LearnSet {
+        self.learns
+    }
+    fn offsets(
+        &mut self,
+        inputs: &PerParameter<LearnerInput>,
+    ) -> Result<PerParameter<f64>, LearnerError> {
+        Ok((self.offsets)(inputs))
+    }
+    fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
+        Ok(())
+    }
+    fn touch_down(
+        &mut self,
+        _outcomes: &PerParameter<StepOutcome>,
+    ) -> Result<StepReports, LearnerError> {
+        Ok(StepReports::default())
+    }
+    fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
+        Ok(StepReports::default())
+    }
+    fn discard_step(&mut self) {}
 }

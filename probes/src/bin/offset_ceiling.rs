@@ -18,14 +18,14 @@ use clap::Parser;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::str::FromStr;
-use steplearn::control::learner::{LearnerError, LearnerInput};
+use steplearn::control::learner::LearnerInput;
 use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
-use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
+use steplearn::control::walker::{FootstepPolicy, WalkerMode};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::trial::run_trial;
 use steplearn::report::fall_rate::impulse_at_50pct_fall;
-use steplearn::rules::StepOutcome;
 use steplearn::stats::MeanStd;
+use steplearn_probes::FixedPolicy;
 
 /// One fixed offset law: `kx_theta:kx_rate:kt_theta:kt_rate[:gate]` (gate: the law acts only
 /// while |theta_E_dot| exceeds it, rad/s; 0 by default, always).
@@ -82,42 +82,6 @@ struct Args {
     config: Option<PathBuf>,
 }
 
-/// The fixed law as a policy of `step-x` and `step-time`.
-struct FixedLaw(Law, Vec<[f64; 2]>);
-
-impl FootstepPolicy for FixedLaw {
-    fn learns(&self) -> LearnSet {
-        LearnSet::of(&[StepParameter::StepX, StepParameter::StepTime]).expect("two parameters")
-    }
-    fn offsets(
-        &mut self,
-        inputs: &PerParameter<LearnerInput>,
-    ) -> Result<PerParameter<f64>, LearnerError> {
-        let [kxa, kxr, kta, ktr] = self.0.0;
-        let x = inputs[StepParameter::StepX];
-        self.1.push([x.theta_e.abs(), x.theta_e_dot.abs()]);
-        let mut out = PerParameter::default();
-        if x.theta_e_dot.abs() >= self.0.1 {
-            out[StepParameter::StepX] = kxa * x.theta_e + kxr * x.theta_e_dot;
-            out[StepParameter::StepTime] = kta * x.theta_e.abs() + ktr * x.theta_e_dot.abs();
-        }
-        Ok(out)
-    }
-    fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
-        Ok(())
-    }
-    fn touch_down(
-        &mut self,
-        _outcomes: &PerParameter<StepOutcome>,
-    ) -> Result<StepReports, LearnerError> {
-        Ok(StepReports::default())
-    }
-    fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
-        Ok(StepReports::default())
-    }
-    fn discard_step(&mut self) {}
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = Args::parse();
     let settings = steplearn_probes::settings(args.config.as_deref()).map_err(|e| e.to_string())?;
@@ -150,16 +114,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|&(seed, _, sign, law)| {
             let setup =
                 settings.push_trial(WalkerMode::CaptureStep, 0.0, &plan, seed, [sign, 0.0, 0.0]);
-            let mut policy = law.map(|k| FixedLaw(args.laws[k], Vec::new()));
+            // The inputs' |theta_E| and |theta_E_dot| at every tick, for their quantiles.
+            let mut seen: Vec<[f64; 2]> = Vec::new();
+            let mut policy = law.map(|k| {
+                let Law([kxa, kxr, kta, ktr], gate) = args.laws[k];
+                let seen = &mut seen;
+                FixedPolicy {
+                    learns: LearnSet::of(&[StepParameter::StepX, StepParameter::StepTime])
+                        .expect("two parameters"),
+                    offsets: move |inputs: &PerParameter<LearnerInput>| {
+                        let x = inputs[StepParameter::StepX];
+                        seen.push([x.theta_e.abs(), x.theta_e_dot.abs()]);
+                        let mut out = PerParameter::default();
+                        if x.theta_e_dot.abs() >= gate {
+                            out[StepParameter::StepX] = kxa * x.theta_e + kxr * x.theta_e_dot;
+                            out[StepParameter::StepTime] =
+                                kta * x.theta_e.abs() + ktr * x.theta_e_dot.abs();
+                        }
+                        out
+                    },
+                }
+            });
             let log = run_trial(
                 &setup,
                 policy.as_mut().map(|p| p as &mut dyn FootstepPolicy),
                 &mut [],
             )
             .map_err(|e| e.to_string())?;
-            if let Some(p) = &mut policy {
+            drop(policy);
+            if law.is_some() {
                 let q = |i: usize| {
-                    let mut v: Vec<f64> = p.1.iter().map(|a| a[i]).collect();
+                    let mut v: Vec<f64> = seen.iter().map(|a| a[i]).collect();
                     v.sort_by(f64::total_cmp);
                     [0.5, 0.9, 0.99, 0.999].map(|f| v[((v.len() as f64 - 1.0) * f) as usize])
                 };
