@@ -6,12 +6,12 @@ use steplearn::bench::Registry;
 use steplearn::control::learner::{LearnerError, LearnerInput};
 use steplearn::control::step_parameter::{LearnSet, PerParameter};
 use steplearn::control::walker::{FootstepPolicy, StepReports};
-use steplearn::rules::StepOutcome;
 use steplearn::experiments::RunContext;
 use steplearn::experiments::config_file::{ConfigFile, ConfigFileError};
 use steplearn::experiments::experiment::RunStepLearner;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{Observer, TrialSetup, run_trial};
+use steplearn::rules::StepOutcome;
 
 /// The config of `--config FILE` (`steplearn config` format), or the defaults without one.
 pub fn config_file(config: Option<&Path>) -> Result<ConfigFile, ConfigFileError> {

@@ -205,7 +205,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if args.chaos > 0 {
         let null: Vec<usize> = std::iter::once(0).chain(grid + 1..walkers).collect();
         line(
-            &format!("chaos envelope (any of {} null pairs or the model)", args.chaos),
+            &format!(
+                "chaos envelope (any of {} null pairs or the model)",
+                args.chaos
+            ),
             &envelope(&null),
         )?;
     }
