@@ -141,7 +141,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 &mut [],
             )
             .map_err(|e| e.to_string())?;
-            drop(policy);
             if law.is_some() {
                 let q = |i: usize| {
                     let mut v: Vec<f64> = seen.iter().map(|a| a[i]).collect();

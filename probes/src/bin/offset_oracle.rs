@@ -5,6 +5,7 @@
 //! `--hold` seconds (zero before and after; dF positive is a longer step in the push's
 //! direction, dT negative a sooner step).
 //!
+//! Each run's row gives the case's gait phase at the push (time since the last touch-down).
 //! Per direction it prints the I50 (logistic fit over the cases, as experiment C's) of:
 //! - the model;
 //! - each pair of the grid (a fixed reflex that knows when a push came and its direction);
@@ -63,12 +64,24 @@ struct Args {
     config: Option<PathBuf>,
 }
 
-/// Tells the policy the trial time of the last tick.
-struct Clock(Rc<Cell<f64>>);
+/// Tells the policy the trial time of the last tick, and measures the gait phase at the push.
+struct Clock {
+    now: Rc<Cell<f64>>,
+    push_at: f64,
+    last_touch_down: f64,
+    /// Time since the last touch-down at the tick the push came.
+    phase: Option<f64>,
+}
 
 impl Observer for Clock {
-    fn on_tick(&mut self, time: f64, _tick: &Tick) {
-        self.0.set(time);
+    fn on_tick(&mut self, time: f64, tick: &Tick) {
+        self.now.set(time);
+        if tick.step.is_some() {
+            self.last_touch_down = time;
+        }
+        if self.phase.is_none() && time >= self.push_at {
+            self.phase = Some(time - self.last_touch_down);
+        }
     }
 }
 
@@ -115,7 +128,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     // (impulse, fell) per run.
-    let outcomes: Vec<Result<(f64, bool), String>> = runs
+    let outcomes: Vec<Result<(f64, bool, f64), String>> = runs
         .par_iter()
         .map(|&(case, pair)| {
             let setup =
@@ -138,7 +151,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     out
                 },
             });
-            let mut clock = Clock(now);
+            let mut clock = Clock {
+                now,
+                push_at: push.time,
+                last_touch_down: 0.0,
+                phase: None,
+            };
             let log = run_trial(
                 &setup,
                 policy.as_mut().map(|p| p as &mut dyn FootstepPolicy),
@@ -149,20 +167,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .pushes
                 .first()
                 .ok_or_else(|| format!("case {case}: the push was not delivered"))?;
-            Ok((p.impulse, p.fell))
+            Ok((p.impulse, p.fell, clock.phase.unwrap_or(f64::NAN)))
         })
         .collect();
-    let outcomes: Vec<(f64, bool)> = outcomes.into_iter().collect::<Result<_, _>>()?;
+    let with_phase: Vec<(f64, bool, f64)> = outcomes.into_iter().collect::<Result<_, _>>()?;
+    let outcomes: Vec<(f64, bool)> = with_phase.iter().map(|o| (o.0, o.1)).collect();
     let walkers = pairs.len() + 1;
-    println!("case,impulse_ns,walker,dx,dt,fell");
+    println!("case,impulse_ns,walker,dx,dt,fell,phase_s");
     for (r, &(case, pair)) in runs.iter().enumerate() {
-        let (j, fell) = outcomes[r];
+        let (j, fell, phase) = with_phase[r];
         let (name, [dx, dt]) = match pair {
             None => ("model".to_string(), [0.0, 0.0]),
             Some(k) if k < grid => ("pair".to_string(), pairs[k]),
             Some(k) => ("null".to_string(), pairs[k]),
         };
-        println!("{case},{j:.4},{name},{dx},{dt},{}", fell as u8);
+        println!("{case},{j:.4},{name},{dx},{dt},{},{phase:.3}", fell as u8);
     }
     // Per walker, the (impulse, fell) of every case.
     let of = |w: usize| -> Vec<(f64, bool)> {
