@@ -3,7 +3,8 @@
 
 python3 oracle.py union FILE...          oracle over the pairs of several files (same cases)
 python3 oracle.py reflex TRAIN JUDGE     a reflex choosing its pair by the push's gait phase and
-                                         impulse, chosen on TRAIN's cases, judged on JUDGE's
+                                         impulse (bins: none, one or both, 2 or 3 each), chosen
+                                         on TRAIN's cases, judged on JUDGE's
 
 I50: maximum-likelihood logistic fit of fell ~ impulse, -a/b (as the library's, without its
 fallbacks: every file here has falls and survivals over its range).
@@ -117,6 +118,8 @@ if __name__ == "__main__":
     if sys.argv[1] == "union":
         union(sys.argv[2:])
     elif sys.argv[1] == "reflex":
-        reflex(sys.argv[2], sys.argv[3])
+        for phase_edges, impulse_edges in [((), ()), ((), (1.0,)), ((0.2,), ()), ((0.2,), (1.0,)),
+                                           ((0.15, 0.3), (0.9, 1.1))]:
+            reflex(sys.argv[2], sys.argv[3], phase_edges, impulse_edges)
     else:
         sys.exit(__doc__)

@@ -5,7 +5,8 @@
 //! `--hold` seconds (zero before and after; dF positive is a longer step in the push's
 //! direction, dT negative a sooner step).
 //!
-//! Each run's row gives the case's gait phase at the push (time since the last touch-down).
+//! Each run's row gives its pair (dF in the push's direction) and the case's gait phase at the
+//! push (time since the last touch-down).
 //! Per direction it prints the I50 (logistic fit over the cases, as experiment C's) of:
 //! - the model;
 //! - each pair of the grid (a fixed reflex that knows when a push came and its direction);
@@ -181,6 +182,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Some(k) if k < grid => ("pair".to_string(), pairs[k]),
             Some(k) => ("null".to_string(), pairs[k]),
         };
+        // dF in the push's direction, as the grid was given.
+        let dx = dx * sign;
         println!("{case},{j:.4},{name},{dx},{dt},{},{phase:.3}", fell as u8);
     }
     // Per walker, the (impulse, fell) of every case.
