@@ -291,6 +291,15 @@ pub struct MotionConfig {
     /// ground up to it; the extra lift follows the lift's own profile, so the foot still
     /// lands at the step's end.
     pub tilt_lift: f64,
+    /// [`Swing::Tracking`]: the ankle strategy's gain (rad of support-foot angle per rad of the
+    /// trunk's tilt deviation, as the tracking swing measures it beyond its dead band; in
+    /// [-2, 2]; default 0: off, and every result is as without it). Every tick the support
+    /// foot's sole is commanded `ankle_gain` times that deviation (roll and pitch, each clamped
+    /// to +-[`ANKLE_LIMIT`]) away from flat, so that the position-controlled ankle presses one
+    /// edge of the sole into the ground and moves the centre of pressure under it: positive,
+    /// a forward tilt presses the toes. Left out of written configs at 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub ankle_gain: f64,
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -318,6 +327,9 @@ const HELD_PHASE: f64 = 1.0 - 1e-8;
 
 /// The largest extra trunk pitch of the hip strategy ([`MotionConfig::hip_gain`], rad).
 pub const HIP_PITCH_LIMIT: f64 = 0.5;
+
+/// The largest support-foot angle of the ankle strategy ([`MotionConfig::ankle_gain`], rad).
+pub const ANKLE_LIMIT: f64 = 0.3;
 
 impl Default for MotionConfig {
     fn default() -> Self {
@@ -351,6 +363,7 @@ impl Default for MotionConfig {
             landing_wait_s: 0.0,
             early_landing_phase: 0.5,
             tilt_lift: 0.3,
+            ankle_gain: 0.0,
         }
     }
 }
@@ -368,7 +381,8 @@ impl MotionConfig {
         config::in_range("hip_return_s", self.hip_return_s, 0.01, 10.0)?;
         config::in_range("landing_wait_s", self.landing_wait_s, 0.0, 1.0)?;
         config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)?;
-        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)
+        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)?;
+        config::in_range("ankle_gain", self.ankle_gain, -2.0, 2.0)
     }
 
     /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
@@ -783,6 +797,14 @@ impl MotionGenerator {
             {
                 // Land the sole flat on the ground.
                 foot = [-s * roll, -lean - s * (pitch - lean)];
+            } else if side != swing
+                && c.ankle_gain != 0.0
+                && let Some(tilt) = self.tilt
+            {
+                // The ankle strategy: press the sole's edge on the side of the tilt.
+                let [roll, pitch] =
+                    tilt.map(|t| (c.ankle_gain * t).clamp(-ANKLE_LIMIT, ANKLE_LIMIT));
+                foot = [roll, -lean + pitch];
             }
             let mut angle = [0.0; 3];
             for k in 0..3 {

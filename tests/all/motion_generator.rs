@@ -504,3 +504,61 @@ fn hip_rate_settings_out_of_range_are_refused() {
         assert!(err.contains(key), "{err}");
     }
 }
+
+#[test]
+fn the_ankle_strategy_tilts_the_support_sole_with_the_trunks_tilt_and_leaves_the_swing_alone() {
+    let config = MotionConfig {
+        ankle_gain: 0.5,
+        ..MotionConfig::default()
+    };
+    let band = config.tilt_dead_band;
+    let mut off = generator_with(MotionConfig::default());
+    let mut on = generator_with(config);
+    // Upright it changes nothing.
+    tilted_ticks(&mut off, 0.0, 0.0, 200);
+    tilted_ticks(&mut on, 0.0, 0.0, 200);
+    assert_eq!(off.legs(), on.legs());
+    // Tilted forward beyond the dead band: the support sole pitches by the gain times the
+    // tilt beyond the band (the deviation from the settled tilt, which has barely moved in one
+    // tick), the swing leg is as without it.
+    tilted_ticks(&mut off, 0.1, 0.0, 1);
+    tilted_ticks(&mut on, 0.1, 0.0, 1);
+    let support = on.swing().other().index();
+    let swing = on.swing().index();
+    assert_eq!(off.legs()[swing], on.legs()[swing]);
+    let extra = on.legs()[support].foot[1] - off.legs()[support].foot[1];
+    assert!(extra > 0.0, "a forward tilt presses the toes: {extra}");
+    assert!(extra <= 0.5 * (0.1 - band) + 1e-12, "{extra}");
+    assert!(extra > 0.4 * (0.1 - band), "{extra}");
+    assert_eq!(on.legs()[support].foot[0], off.legs()[support].foot[0]);
+    // A large tilt is clamped.
+    let mut big = generator_with(MotionConfig {
+        ankle_gain: 2.0,
+        ..MotionConfig::default()
+    });
+    let mut plain = generator_with(MotionConfig::default());
+    for g in [&mut big, &mut plain] {
+        tilted_ticks(g, 0.0, 0.0, 200);
+        tilted_ticks(g, -0.5, 0.0, 1);
+    }
+    let support = big.swing().other().index();
+    let extra = big.legs()[support].foot[1] - plain.legs()[support].foot[1];
+    assert!(
+        (extra + steplearn::control::motion::ANKLE_LIMIT).abs() < 1e-12,
+        "{extra}"
+    );
+    // Off it is left out of written configs, on it is written, and out of range it is refused.
+    let text = toml::to_string(&MotionConfig::default()).unwrap();
+    assert!(!text.contains("ankle_gain"), "{text}");
+    assert!(toml::to_string(&config).unwrap().contains("ankle_gain"));
+    for bad in [2.5, -2.5, f64::NAN, f64::INFINITY] {
+        let err = MotionConfig {
+            ankle_gain: bad,
+            ..MotionConfig::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("ankle_gain"), "{err}");
+    }
+}
