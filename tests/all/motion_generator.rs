@@ -407,6 +407,17 @@ fn tilted_ticks(g: &mut MotionGenerator, tilt: f64, rate: f64, ticks: usize) {
     }
 }
 
+/// Generators with the defaults and with `config`, stepped in place upright for 200 ticks,
+/// where `config`'s settings must change nothing.
+fn upright_with_and_without(config: MotionConfig) -> (MotionGenerator, MotionGenerator) {
+    let mut off = generator_with(MotionConfig::default());
+    let mut on = generator_with(config);
+    tilted_ticks(&mut off, 0.0, 0.0, 200);
+    tilted_ticks(&mut on, 0.0, 0.0, 200);
+    assert_eq!(off.legs(), on.legs(), "upright it changes nothing");
+    (off, on)
+}
+
 #[test]
 fn the_hip_rate_law_jumps_with_a_tilt_rate_pulse_and_returns_with_its_time_constant() {
     let config = MotionConfig {
@@ -435,11 +446,7 @@ fn the_hip_rate_law_jumps_with_a_tilt_rate_pulse_and_returns_with_its_time_const
     tilted_ticks(&mut g, 0.1, -1.0, 1);
     assert_eq!(g.hip_pitch(), 0.0);
     // The extra pitch leans the legs: the joint targets differ from the law's off.
-    let mut off = generator_with(MotionConfig::default());
-    let mut on = generator_with(config);
-    tilted_ticks(&mut off, 0.0, 0.0, 200);
-    tilted_ticks(&mut on, 0.0, 0.0, 200);
-    assert_eq!(off.legs(), on.legs());
+    let (mut off, mut on) = upright_with_and_without(config);
     tilted_ticks(&mut off, 0.1, 1.0, 1);
     tilted_ticks(&mut on, 0.1, 1.0, 1);
     assert_ne!(off.legs(), on.legs());
@@ -512,12 +519,7 @@ fn the_ankle_strategy_tilts_the_support_sole_with_the_trunks_tilt_and_leaves_the
         ..MotionConfig::default()
     };
     let band = config.tilt_dead_band;
-    let mut off = generator_with(MotionConfig::default());
-    let mut on = generator_with(config);
-    // Upright it changes nothing.
-    tilted_ticks(&mut off, 0.0, 0.0, 200);
-    tilted_ticks(&mut on, 0.0, 0.0, 200);
-    assert_eq!(off.legs(), on.legs());
+    let (mut off, mut on) = upright_with_and_without(config);
     // Tilted forward beyond the dead band: the support sole pitches by the gain times the
     // tilt beyond the band (the deviation from the settled tilt, which has barely moved in one
     // tick), the swing leg is as without it.
