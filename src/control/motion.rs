@@ -294,10 +294,10 @@ pub struct MotionConfig {
     /// [`Swing::Tracking`]: the ankle strategy's gain (rad of support-foot angle per rad of the
     /// trunk's tilt deviation, as the tracking swing measures it beyond its dead band; in
     /// [-2, 2]; default 0: off, and every result is as without it). Every tick the support
-    /// foot's sole is commanded `ankle_gain` times that deviation (roll and pitch, each clamped
+    /// foot's angle (roll, pitch) is commanded `ankle_gain` times that deviation (each clamped
     /// to +-[`ANKLE_LIMIT`]) away from flat, so that the position-controlled ankle presses one
-    /// edge of the sole into the ground and moves the centre of pressure under it: positive,
-    /// a forward tilt presses the toes. Left out of written configs at 0.
+    /// edge of the sole into the ground and moves the centre of pressure towards it. Left out
+    /// of written configs at 0.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub ankle_gain: f64,
 }
@@ -801,7 +801,7 @@ impl MotionGenerator {
                 && c.ankle_gain != 0.0
                 && let Some(tilt) = self.tilt
             {
-                // The ankle strategy: press the sole's edge on the side of the tilt.
+                // The ankle strategy: turn the support sole with the tilt.
                 let [roll, pitch] =
                     tilt.map(|t| (c.ankle_gain * t).clamp(-ANKLE_LIMIT, ANKLE_LIMIT));
                 foot = [roll, -lean + pitch];
