@@ -106,11 +106,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         settle: 4.0,
         gap: (0.0, 1.0),
     };
-    // Walkers: None is the model; then the grid's pairs, then the null pairs.
+    // Walkers: None is the model; then the grid's pairs, then the null pairs (dF in the push's
+    // direction).
     let mut pairs: Vec<[f64; 2]> = Vec::new();
     for &dx in &args.dx {
         for &dt in &args.dt {
-            pairs.push([dx * sign, dt]);
+            pairs.push([dx, dt]);
         }
     }
     let grid = pairs.len();
@@ -119,7 +120,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     for k in 1..=args.chaos {
         let side = if k % 2 == 1 { 1.0 } else { -1.0 };
-        pairs.push([k.div_ceil(2) as f64 * args.chaos_step * side * sign, 0.0]);
+        pairs.push([k.div_ceil(2) as f64 * args.chaos_step * side, 0.0]);
     }
     let mut runs = Vec::new();
     for case in args.first_case..args.first_case + args.cases {
@@ -128,7 +129,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             runs.push((case, Some(k)));
         }
     }
-    // (impulse, fell) per run.
+    // (impulse, fell, gait phase at the push) per run.
     let outcomes: Vec<Result<(f64, bool, f64), String>> = runs
         .par_iter()
         .map(|&(case, pair)| {
@@ -146,7 +147,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     let mut out = PerParameter::default();
                     let t = clock.get();
                     if t >= from && t < from + hold {
-                        out[StepParameter::StepX] = offsets[0];
+                        out[StepParameter::StepX] = offsets[0] * sign;
                         out[StepParameter::StepTime] = offsets[1];
                     }
                     out
@@ -171,25 +172,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Ok((p.impulse, p.fell, clock.phase.unwrap_or(f64::NAN)))
         })
         .collect();
-    let with_phase: Vec<(f64, bool, f64)> = outcomes.into_iter().collect::<Result<_, _>>()?;
-    let outcomes: Vec<(f64, bool)> = with_phase.iter().map(|o| (o.0, o.1)).collect();
+    let outcomes: Vec<(f64, bool, f64)> = outcomes.into_iter().collect::<Result<_, _>>()?;
     let walkers = pairs.len() + 1;
     println!("case,impulse_ns,walker,dx,dt,fell,phase_s");
     for (r, &(case, pair)) in runs.iter().enumerate() {
-        let (j, fell, phase) = with_phase[r];
+        let (j, fell, phase) = outcomes[r];
         let (name, [dx, dt]) = match pair {
             None => ("model".to_string(), [0.0, 0.0]),
             Some(k) if k < grid => ("pair".to_string(), pairs[k]),
             Some(k) => ("null".to_string(), pairs[k]),
         };
-        // dF in the push's direction, as the grid was given.
-        let dx = dx * sign;
         println!("{case},{j:.4},{name},{dx},{dt},{},{phase:.3}", fell as u8);
     }
     // Per walker, the (impulse, fell) of every case.
     let of = |w: usize| -> Vec<(f64, bool)> {
         (0..args.cases as usize)
-            .map(|c| outcomes[c * walkers + w])
+            .map(|c| {
+                let (j, fell, _) = outcomes[c * walkers + w];
+                (j, fell)
+            })
             .collect()
     };
     let i50 = |samples: &[(f64, bool)]| -> Result<f64, Box<dyn std::error::Error>> {
@@ -215,7 +216,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     line("model", &of(0))?;
     for (k, pair) in pairs[..grid].iter().enumerate() {
         line(
-            &format!("pair dx {:+} dt {:+}", pair[0] * sign, pair[1]),
+            &format!("pair dx {:+} dt {:+}", pair[0], pair[1]),
             &of(k + 1),
         )?;
     }
