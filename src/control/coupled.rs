@@ -110,11 +110,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
         let [df, dw] = self.query(inputs[StepParameter::StepX], inputs[StepParameter::StepY])?;
         // Each offset weighted by its parameter's gate in its own plane.
         let gate = |p: StepParameter, plane| gate_weight(self.settings().gate(p), plane, inputs);
-        Ok(PerParameter([
-            gate(StepParameter::StepX, Plane::Sagittal) * df,
-            gate(StepParameter::StepY, Plane::Frontal) * dw,
-            0.0,
-        ]))
+        let mut out = PerParameter::default();
+        out[StepParameter::StepX] = gate(StepParameter::StepX, Plane::Sagittal) * df;
+        out[StepParameter::StepY] = gate(StepParameter::StepY, Plane::Frontal) * dw;
+        Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         for (plane, p) in PLANE_PARAMETERS.into_iter().enumerate() {
@@ -128,12 +127,12 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
         outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
         let [s, l] = self.touch_down_all(PLANE_PARAMETERS.map(|p| &outcomes[p]))?;
-        Ok(PerParameter([Some(s), Some(l), None]))
+        Ok(plane_reports([s, l]))
     }
     fn fall(&mut self, outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         Ok(
             match self.fall_all(PLANE_PARAMETERS.map(|p| &outcomes[p]))? {
-                Some([s, l]) => PerParameter([Some(s), Some(l), None]),
+                Some(both) => plane_reports(both),
                 None => StepReports::default(),
             },
         )
@@ -141,4 +140,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
     fn discard_step(&mut self) {
         OffsetLearner::discard_step(self)
     }
+}
+
+/// Both planes' reports as the walker's, at their parameters.
+fn plane_reports(reports: [TouchDownReport; PLANES]) -> StepReports {
+    let mut out = StepReports::default();
+    for (p, r) in PLANE_PARAMETERS.into_iter().zip(reports) {
+        out[p] = Some(r);
+    }
+    out
 }

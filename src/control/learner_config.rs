@@ -134,6 +134,13 @@ pub struct LearnerConfig {
         skip_serializing_if = "ParameterSettings::is_empty"
     )]
     pub step_time: ParameterSettings,
+    /// `[settings.learner.ankle-pitch]`: what the `ankle-pitch` offset changes (default:
+    /// nothing).
+    #[serde(
+        rename = "ankle-pitch",
+        skip_serializing_if = "ParameterSettings::is_empty"
+    )]
+    pub ankle_pitch: ParameterSettings,
 }
 
 /// The settings one learned parameter may set apart from the others
@@ -428,6 +435,7 @@ impl Default for LearnerConfig {
             step_x: ParameterSettings::default(),
             step_y: ParameterSettings::default_step_y(),
             step_time: ParameterSettings::default(),
+            ankle_pitch: ParameterSettings::default(),
         }
     }
 }
@@ -459,6 +467,7 @@ impl LearnerConfig {
             StepParameter::StepX => &self.step_x,
             StepParameter::StepY => &self.step_y,
             StepParameter::StepTime => &self.step_time,
+            StepParameter::AnklePitch => &self.ankle_pitch,
         }
     }
 
@@ -467,6 +476,7 @@ impl LearnerConfig {
             StepParameter::StepX => &mut self.step_x,
             StepParameter::StepY => &mut self.step_y,
             StepParameter::StepTime => &mut self.step_time,
+            StepParameter::AnklePitch => &mut self.ankle_pitch,
         }
     }
 
@@ -665,7 +675,7 @@ pub const MAX_OFFSET_INPUTS: usize = 9;
 const SHARED_OFFSET_KEYS: [&str; 4] = ["eta", "dead_zone", "leakage", "max_offset"];
 
 /// The same keys in each parameter's table, in [`StepParameter::ALL`]'s order.
-const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
+const PARAMETER_OFFSET_KEYS: [[&str; 4]; StepParameter::COUNT] = [
     [
         "step-x.eta",
         "step-x.dead_zone",
@@ -684,16 +694,32 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; 3] = [
         "step-time.leakage",
         "step-time.max_offset",
     ],
+    [
+        "ankle-pitch.eta",
+        "ankle-pitch.dead_zone",
+        "ankle-pitch.leakage",
+        "ankle-pitch.max_offset",
+    ],
 ];
 
 /// The `frontal` table of each parameter's table, in [`StepParameter::ALL`]'s order.
-const FRONTAL_KEYS: [&str; 3] = ["step-x.frontal", "step-y.frontal", "step-time.frontal"];
+const FRONTAL_KEYS: [&str; StepParameter::COUNT] = [
+    "step-x.frontal",
+    "step-y.frontal",
+    "step-time.frontal",
+    "ankle-pitch.frontal",
+];
 
 /// The key of the frontal part's dead zone (only the step time is learned in both planes).
 const FRONTAL_DEAD_ZONE_KEY: &str = "step-time.frontal.dead_zone";
 
 /// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
-pub(crate) const PLANE_KEYS: [&str; 3] = ["step-x.plane", "step-y.plane", "step-time.plane"];
+pub(crate) const PLANE_KEYS: [&str; StepParameter::COUNT] = [
+    "step-x.plane",
+    "step-y.plane",
+    "step-time.plane",
+    "ankle-pitch.plane",
+];
 
 /// Checks one offset's settings; an error names the value by its key in `keys` (eta, dead
 /// zone, leakage, clamp), so a value from a parameter's table is named with its table.

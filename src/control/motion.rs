@@ -146,6 +146,11 @@ pub struct StepCommand {
     /// [`MotionConfig::landing_wait_s`]. `None`: unknown, the step ends on time.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub swing_landed: Option<bool>,
+    /// A learned pitch offset of the support sole (rad, toe down positive), added to the ankle
+    /// strategy's ([`MotionConfig::ankle_gain`]); the sum is clamped to +-[`ANKLE_LIMIT`].
+    /// 0: the sole as the generator alone turns it.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub ankle_pitch: f64,
 }
 
 /// How the swing leg reaches its placement.
@@ -451,6 +456,10 @@ pub struct MotionGenerator {
     /// Time since the last exchange of legs (or the start) (s).
     #[serde(default)]
     step_elapsed: f64,
+    /// The last command's learned pitch offset of the support sole (rad,
+    /// [`StepCommand::ankle_pitch`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    ankle_pitch: f64,
 }
 
 /// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
@@ -484,6 +493,7 @@ impl MotionGenerator {
             hip_rate: 0.0,
             waited: 0.0,
             step_elapsed: 0.0,
+            ankle_pitch: 0.0,
         };
         g.legs = [g.halt_pose(); 2];
         g
@@ -585,6 +595,7 @@ impl MotionGenerator {
             gait_x: step_x,
             tilt: None,
             swing_landed: None,
+            ankle_pitch: 0.0,
         }
     }
 
@@ -671,6 +682,9 @@ impl MotionGenerator {
             }
             self.hip = (position + self.hip_rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
         }
+        if command.ankle_pitch.is_finite() {
+            self.ankle_pitch = command.ankle_pitch;
+        }
         self.step_elapsed += dt;
         let landed_early = c.early_landing_phase < 1.0
             && command.swing_landed == Some(true)
@@ -711,6 +725,17 @@ impl MotionGenerator {
         let y = self.config.sway * (std::f64::consts::PI * (p + self.config.sway_lead)).sin();
         // Hips move towards the support side: feet move away from it relative to the hips.
         -self.support.sign() * (y / d).clamp(-0.5, 0.5).asin()
+    }
+
+    /// The ankle strategy's support-sole angle `[roll, pitch]` at the last update (rad; 0
+    /// without [`MotionConfig::ankle_gain`] or without a measured tilt).
+    pub fn ankle_strategy(&self) -> [f64; 2] {
+        match self.tilt {
+            Some(tilt) if self.config.ankle_gain != 0.0 => {
+                tilt.map(|t| (self.config.ankle_gain * t).clamp(-ANKLE_LIMIT, ANKLE_LIMIT))
+            }
+            _ => [0.0; 2],
+        }
     }
 
     /// The placement angles and the full leg poses at the current phase.
@@ -797,14 +822,14 @@ impl MotionGenerator {
             {
                 // Land the sole flat on the ground.
                 foot = [-s * roll, -lean - s * (pitch - lean)];
-            } else if side != swing
-                && c.ankle_gain != 0.0
-                && let Some(tilt) = self.tilt
-            {
-                // The ankle strategy: turn the support sole with the tilt.
-                let [roll, pitch] =
-                    tilt.map(|t| (c.ankle_gain * t).clamp(-ANKLE_LIMIT, ANKLE_LIMIT));
-                foot = [roll, -lean + pitch];
+            } else if side != swing {
+                // The ankle strategy turns the support sole with the tilt; a learned pitch
+                // offset adds to it.
+                let [roll, pitch] = self.ankle_strategy();
+                if roll != 0.0 || pitch != 0.0 || self.ankle_pitch != 0.0 {
+                    let pitch = (pitch + self.ankle_pitch).clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
+                    foot = [roll, -lean + pitch];
+                }
             }
             let mut angle = [0.0; 3];
             for k in 0..3 {

@@ -221,7 +221,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         // Each part's reach is the parameter's less the other parts' (weighted) offsets; a
         // part weighted below 1 keeps that reach, which bounds its weighted offset too (the
         // reach holds 0).
-        let mut total = PerParameter([0.0; 3]);
+        let mut total = PerParameter([0.0; StepParameter::COUNT]);
         for s in &self.slots {
             total[s.parameter] += s.weight * s.learner.last_offset();
         }
@@ -254,7 +254,7 @@ mod tests {
     use crate::approx::{AnyApproximator, ApproxKind};
     use crate::control::learner::{InputGrid, LearnerConfig};
     use crate::control::step_parameter::Gate;
-    use crate::rules::{PendulumCart, StepTime};
+    use crate::rules::{AnklePitch, PendulumCart, StepTime};
 
     fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
         learner_with(p, LearnerConfig::default())
@@ -274,6 +274,7 @@ mod tests {
         match (p, plane) {
             (StepParameter::StepTime, Plane::Sagittal) => Box::new(StepTime::default()),
             (StepParameter::StepTime, Plane::Frontal) => Box::new(StepTime::frontal(0.2)),
+            (StepParameter::AnklePitch, _) => Box::new(AnklePitch::default()),
             _ => Box::new(PendulumCart::default()),
         }
     }
@@ -313,7 +314,14 @@ mod tests {
 
     fn inputs(k: usize) -> PerParameter<LearnerInput> {
         let x = LearnerInput::new(0.01 * k as f64, 0.1, 0.0);
-        PerParameter([x, LearnerInput::new(-0.02, 0.0, 0.0), x])
+        PerParameter::from_planes(x, LearnerInput::new(-0.02, 0.0, 0.0))
+    }
+
+    /// Every reach [-1, 1], the step time's `time`.
+    fn reach_of_time(time: [f64; 2]) -> PerParameter<[f64; 2]> {
+        let mut reach = PerParameter::splat([-1.0, 1.0]);
+        reach[StepParameter::StepTime] = time;
+        reach
     }
 
     fn outcome(theta_e: f64) -> PerParameter<StepOutcome> {
@@ -323,31 +331,41 @@ mod tests {
             f_e: 0.2,
             f_r: 0.0,
         };
-        PerParameter([o, o, o])
+        PerParameter::splat(o)
     }
 
     #[test]
     fn each_parameter_learns_with_its_own_rule_and_the_rest_stay_zero() {
         let mut l = StepLearner::new(vec![
+            (
+                StepParameter::AnklePitch,
+                learner(StepParameter::AnklePitch),
+            ),
             (StepParameter::StepTime, learner(StepParameter::StepTime)),
             (StepParameter::StepX, learner(StepParameter::StepX)),
         ])
         .unwrap();
-        assert_eq!(l.learns().to_string(), "step-x,step-time");
-        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        assert_eq!(l.learns().to_string(), "step-x,step-time,ankle-pitch");
+        let reach = PerParameter::splat([-1.0, 1.0]);
         for k in 0..5 {
             let o = l.offsets(&inputs(k)).unwrap();
             assert_eq!(o[StepParameter::StepY], 0.0);
             l.set_reach(&reach).unwrap();
         }
         let r = l.touch_down(&outcome(0.3)).unwrap();
-        // Leaning forward after a long step: a longer step (G > 0) and a sooner one (G_T < 0).
-        assert!(r[StepParameter::StepX].unwrap().gradient > 0.0);
+        // Leaning forward after a long step: a longer step (G > 0), a sooner one (G_T < 0) and
+        // the toe pressed harder (G_A > 0, a third of G).
+        let g = r[StepParameter::StepX].unwrap().gradient;
+        assert!(g > 0.0);
         assert!(r[StepParameter::StepTime].unwrap().gradient < 0.0);
+        let g_a = r[StepParameter::AnklePitch].unwrap().gradient;
+        assert!((g_a - AnklePitch::default().factor() * g).abs() < 1e-12);
         assert!(r[StepParameter::StepY].is_none());
         let o = l.offsets(&inputs(2)).unwrap();
         assert!(
-            o[StepParameter::StepX] > 0.0 && o[StepParameter::StepTime] < 0.0,
+            o[StepParameter::StepX] > 0.0
+                && o[StepParameter::StepTime] < 0.0
+                && o[StepParameter::AnklePitch] > 0.0,
             "{o:?}"
         );
     }
@@ -375,7 +393,7 @@ mod tests {
             (StepParameter::StepTime, time),
         ])
         .unwrap();
-        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        let reach = PerParameter::splat([-1.0, 1.0]);
         for k in 0..3 {
             l.offsets(&inputs(k)).unwrap();
             l.set_reach(&reach).unwrap();
@@ -407,7 +425,7 @@ mod tests {
                 (StepParameter::StepTime, Plane::Frontal),
             ]
         );
-        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        let reach = PerParameter::splat([-1.0, 1.0]);
         for k in 0..3 {
             l.offsets(&inputs(k)).unwrap();
             l.set_reach(&reach).unwrap();
@@ -521,11 +539,9 @@ mod tests {
         }
         let total = l.offsets(&inputs(0)).unwrap()[StepParameter::StepTime];
         assert!(total < 0.0);
-        l.set_reach(&PerParameter([[-1.0, 1.0], [-1.0, 1.0], [total, 1.0]]))
-            .unwrap();
+        l.set_reach(&reach_of_time([total, 1.0])).unwrap();
         let before = l.offsets(&inputs(0)).unwrap()[StepParameter::StepTime];
-        l.set_reach(&PerParameter([[-1.0, 1.0], [-1.0, 1.0], [total, 1.0]]))
-            .unwrap();
+        l.set_reach(&reach_of_time([total, 1.0])).unwrap();
         l.touch_down(&o).unwrap();
         let after = l.offsets(&inputs(0)).unwrap()[StepParameter::StepTime];
         assert!(after >= before - 1e-12, "{before} -> {after}");
@@ -547,7 +563,7 @@ mod tests {
             (StepParameter::StepTime, learner(StepParameter::StepTime)),
         ])
         .unwrap();
-        let reach = PerParameter([[-1.0, 1.0]; 3]);
+        let reach = PerParameter::splat([-1.0, 1.0]);
         for k in 0..4 {
             a.offsets(&inputs(k)).unwrap();
             a.set_reach(&reach).unwrap();

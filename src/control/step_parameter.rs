@@ -3,7 +3,9 @@
 //! The Capture Step controller decides three things about the next step: where it lands
 //! sagittally (`F`), laterally (`W`), and when (`T`). A learner adds an offset to any set of
 //! them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
-//! [`StepParameter::StepTime`] a step-time offset dT. [`PerParameter`] holds one value per
+//! [`StepParameter::StepTime`] a step-time offset dT. Beside the step, the body itself:
+//! [`StepParameter::AnklePitch`] turns the support sole (an ankle strategy, learned).
+//! [`PerParameter`] holds one value per
 //! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns;
 //! [`Plane`] is the plane whose state and outcome a parameter's learner reads, [`Planes`] the
 //! planes a parameter is learned in (the step time may be learned in both at once).
@@ -37,11 +39,20 @@ pub enum StepParameter {
     StepY,
     /// The step-time offset dT (s, later positive).
     StepTime,
+    /// The support sole's pitch offset dA (rad, toe down positive): a learned ankle strategy.
+    /// The position-controlled ankle presses the toe (positive) or the heel (negative) into
+    /// the ground, moving the centre of pressure under the support foot while the catch step
+    /// is still in the air.
+    AnklePitch,
 }
 
 impl StepParameter {
+    /// How many parameters there are.
+    pub const COUNT: usize = 4;
+
     /// Every parameter, in their fixed order.
-    pub const ALL: [StepParameter; 3] = [Self::StepX, Self::StepY, Self::StepTime];
+    pub const ALL: [StepParameter; Self::COUNT] =
+        [Self::StepX, Self::StepY, Self::StepTime, Self::AnklePitch];
 
     /// Whether this is the paper's `step-x`.
     pub fn is_step_x(&self) -> bool {
@@ -53,22 +64,25 @@ impl StepParameter {
         self as usize
     }
 
-    /// The name on the command line and in config files (`step-x`, `step-y`, `step-time`).
+    /// The name on the command line and in config files (`step-x`, `step-y`, `step-time`,
+    /// `ankle-pitch`).
     pub fn name(self) -> &'static str {
         self.into()
     }
 
-    /// The plane this parameter is learned in unless its settings name another: `step-x` and
-    /// `step-time` the sagittal, `step-y` the frontal.
+    /// The plane this parameter is learned in unless its settings name another: `step-x`,
+    /// `step-time` and `ankle-pitch` the sagittal, `step-y` the frontal.
     pub fn default_plane(self) -> Plane {
         match self {
-            StepParameter::StepX | StepParameter::StepTime => Plane::Sagittal,
+            StepParameter::StepX | StepParameter::StepTime | StepParameter::AnklePitch => {
+                Plane::Sagittal
+            }
             StepParameter::StepY => Plane::Frontal,
         }
     }
 
-    /// Whether this parameter may be learned in `planes`: a footstep offset only in its own
-    /// plane, the step time (which moves the capture point in both) in either or both.
+    /// Whether this parameter may be learned in `planes`: a footstep offset and the sole's
+    /// pitch only in their own plane, the step time (which moves the capture point in both) in either or both.
     pub fn allows(self, planes: Planes) -> bool {
         self == StepParameter::StepTime || planes == Planes::from(self.default_plane())
     }
@@ -181,7 +195,24 @@ impl Gate {
 
 /// One value per step parameter, indexed by [`StepParameter`].
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct PerParameter<T>(pub [T; 3]);
+pub struct PerParameter<T>(pub [T; StepParameter::COUNT]);
+
+impl<T: Copy> PerParameter<T> {
+    /// `value` for every parameter.
+    pub fn splat(value: T) -> Self {
+        PerParameter([value; StepParameter::COUNT])
+    }
+
+    /// Each parameter's value from its default plane's ([`StepParameter::default_plane`]):
+    /// `sagittal` for `step-x`, `step-time` and `ankle-pitch`, `frontal` for `step-y` (the
+    /// walker's inputs and outcomes).
+    pub fn from_planes(sagittal: T, frontal: T) -> Self {
+        PerParameter(StepParameter::ALL.map(|p| match p.default_plane() {
+            Plane::Sagittal => sagittal,
+            Plane::Frontal => frontal,
+        }))
+    }
+}
 
 impl<T> PerParameter<T> {
     /// The value of `p`.
@@ -229,14 +260,14 @@ impl<T> std::ops::IndexMut<StepParameter> for PerParameter<T> {
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum LearnSetError {
     /// A name that is not a step parameter.
-    #[error("unknown step parameter {0:?} (expected step-x, step-y or step-time)")]
+    #[error("unknown step parameter {0:?} (expected step-x, step-y, step-time or ankle-pitch)")]
     Unknown(String),
     /// A parameter named twice.
     #[error("step parameter {0} named twice")]
     Repeated(StepParameter),
     /// No parameter at all.
     #[error(
-        "the set of learned step parameters is empty (expected one or more of step-x, step-y, step-time)"
+        "the set of learned step parameters is empty (expected one or more of step-x, step-y, step-time, ankle-pitch)"
     )]
     Empty,
 }
@@ -246,7 +277,7 @@ pub enum LearnSetError {
 /// in the order of [`StepParameter::ALL`]. The default is the paper's `step-x`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(try_from = "Vec<String>", into = "Vec<String>")]
-pub struct LearnSet([bool; 3]);
+pub struct LearnSet([bool; StepParameter::COUNT]);
 
 impl Default for LearnSet {
     fn default() -> Self {
@@ -257,7 +288,7 @@ impl Default for LearnSet {
 impl LearnSet {
     /// The set of `parameters` (each at most once, at least one).
     pub fn of(parameters: &[StepParameter]) -> Result<Self, LearnSetError> {
-        let mut set = [false; 3];
+        let mut set = [false; StepParameter::COUNT];
         for &p in parameters {
             if std::mem::replace(&mut set[p.index()], true) {
                 return Err(LearnSetError::Repeated(p));
@@ -335,6 +366,26 @@ mod tests {
         assert!(s.contains(StepParameter::StepTime) && !s.contains(StepParameter::StepY));
         assert_eq!(LearnSet::default().to_string(), "step-x");
         assert!(LearnSet::default().is_paper() && !s.is_paper());
+        let all: LearnSet = "ankle-pitch,step-time,step-y,step-x".parse().unwrap();
+        assert_eq!(all.to_string(), "step-x,step-y,step-time,ankle-pitch");
+        assert!(StepParameter::AnklePitch.allows(Planes::Sagittal));
+        assert!(!StepParameter::AnklePitch.allows(Planes::Both));
+    }
+
+    #[test]
+    fn per_parameter_values_come_from_their_default_planes() {
+        let v = PerParameter::from_planes(1, 2);
+        assert_eq!(v.0, [1, 2, 1, 1]);
+        for p in StepParameter::ALL {
+            let want = if p.default_plane() == Plane::Sagittal {
+                1
+            } else {
+                2
+            };
+            assert_eq!(v[p], want);
+            assert_eq!(*v.in_plane(p, p.default_plane()), want);
+        }
+        assert_eq!(PerParameter::splat(7).0, [7; StepParameter::COUNT]);
     }
 
     #[test]

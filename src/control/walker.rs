@@ -23,7 +23,7 @@ use super::capture_step::{
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
 use super::learner::{LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
-use super::motion::{MotionConfig, MotionGenerator, StepCommand, smooth};
+use super::motion::{ANKLE_LIMIT, MotionConfig, MotionGenerator, StepCommand, smooth};
 use super::step_parameter::{PerParameter, StepParameter};
 use crate::config::{self, ConfigError};
 use crate::robot::kinematics::LegGeometry;
@@ -204,6 +204,9 @@ pub struct Tick {
     /// The learned step-time offset added to the step time this tick (s; 0 without a
     /// step-time learner).
     pub time_offset: f64,
+    /// The learned pitch offset of the support sole this tick (rad, toe down positive; 0
+    /// without an `ankle-pitch` learner).
+    pub ankle_offset: f64,
     /// The step that ended this tick, if a touch-down was detected.
     pub step: Option<StepOutcome>,
     /// The same step in the frontal plane, mirrored to the side of the leg that landed (see
@@ -215,6 +218,8 @@ pub struct Tick {
     pub lateral_learning: Option<TouchDownReport>,
     /// What the step-time learner did with it, if there is one and it learned.
     pub time_learning: Option<TouchDownReport>,
+    /// What the `ankle-pitch` learner did with it, if there is one and it learned.
+    pub ankle_learning: Option<TouchDownReport>,
 }
 
 /// The walker: estimator, balance controller and motion generator, ticked together.
@@ -342,11 +347,13 @@ impl Walker {
             learned_offset: offsets[StepParameter::StepX],
             lateral_offset: offsets[StepParameter::StepY],
             time_offset: offsets[StepParameter::StepTime],
+            ankle_offset: offsets[StepParameter::AnklePitch],
             step,
             lateral_step,
             learning: reports[StepParameter::StepX],
             lateral_learning: reports[StepParameter::StepY],
             time_learning: reports[StepParameter::StepTime],
+            ankle_learning: reports[StepParameter::AnklePitch],
         })
     }
 
@@ -372,7 +379,7 @@ impl Walker {
         let mut reports = StepReports::default();
         if let (Some(outcome), Some(lateral), Some(p)) = (&step, &lateral_step, policy) {
             if self.learner_engaged() {
-                reports = p.touch_down(&per_parameter(*outcome, *lateral))?;
+                reports = p.touch_down(&PerParameter::from_planes(*outcome, *lateral))?;
             } else {
                 p.discard_step();
             }
@@ -419,7 +426,7 @@ impl Walker {
         let [lean, lean_rate] = lean_towards(estimate, support.other());
         let width_r = self.width_reference(support.other()) - self.reference_width();
         if let Some(p) = policy.as_deref_mut() {
-            let learned = p.offsets(&per_parameter(
+            let learned = p.offsets(&PerParameter::from_planes(
                 LearnerInput::new(estimate.theta_e, estimate.theta_e_rate, f_r),
                 LearnerInput::new(lean, lean_rate, width_r),
             ))?;
@@ -482,13 +489,15 @@ impl Walker {
                 estimate.support == support.other()
                     && estimate.time_on_support < self.generator.step_elapsed(),
             ),
+            ankle_pitch: offsets[StepParameter::AnklePitch],
         };
         Ok((command, d))
     }
 
     /// The offsets that can still change the step, per parameter: beyond the step range's
     /// ends (and the controller's largest step) an offset would be clamped away, as would a
-    /// width beyond the generator's width range; `time_reach` is the controller's.
+    /// width beyond the generator's width range, or a sole's pitch beyond [`ANKLE_LIMIT`]
+    /// with the ankle strategy's; `time_reach` is the controller's.
     fn reach(
         &self,
         base_step: f64,
@@ -500,10 +509,12 @@ impl Walker {
         let lo = m.step_x_range[0].max(-cap);
         let hi = m.step_x_range[1].min(cap);
         let [w_lo, w_hi] = m.step_y_range;
+        let [_, ankle] = self.generator.ankle_strategy();
         PerParameter([
             [lo - base_step, hi - base_step],
             [w_lo - base_width, w_hi - base_width],
             time_reach,
+            [-ANKLE_LIMIT - ankle, ANKLE_LIMIT - ankle],
         ])
     }
 
@@ -555,7 +566,7 @@ impl Walker {
     /// ([`Self::outcome_at`] and [`Self::lateral_outcome_at`]): what a trial hands the policy
     /// at a fall.
     pub fn outcomes_at(&self, estimate: &Estimate, f_r: f64) -> PerParameter<StepOutcome> {
-        per_parameter(
+        PerParameter::from_planes(
             Self::outcome_at(estimate, f_r),
             self.lateral_outcome_at(estimate),
         )
@@ -585,12 +596,6 @@ impl Walker {
             f_r,
         }
     }
-}
-
-/// The inputs or outcomes of every step parameter from the sagittal and the (mirrored)
-/// frontal plane's: the step time learns from the sagittal plane.
-fn per_parameter<T: Copy>(sagittal: T, lateral: T) -> PerParameter<T> {
-    PerParameter([sagittal, lateral, sagittal])
 }
 
 /// The trunk's lean towards `side` and its rate (rad, rad/s): the roll mirrored to that side

@@ -20,7 +20,7 @@ use crate::control::step_parameter::{LearnSet, Plane, StepParameter};
 use crate::control::walker::WalkerConfig;
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::ReportError;
-use crate::rules::{LearningRule, StepTime};
+use crate::rules::{AnklePitch, LearningRule, StepTime};
 use std::path::Path;
 
 pub use super::push_options::{PushOptions, PushOptionsError};
@@ -72,7 +72,8 @@ pub fn learner_bounds() -> Result<InputBox, ApproxError> {
 
 /// A fresh, untrained learner of `parameter` with `config` from `components`: an approximator
 /// over [`learner_bounds`], the components' rule for `step-x` and `step-y` and the LIPM
-/// step-time rule ([`StepTime`]) for `step-time`, in the plane `config` names for it (the
+/// step-time rule ([`StepTime`]) for `step-time` and the LIPM ankle rule ([`AnklePitch`]) for
+/// `ankle-pitch`, in the plane `config` names for it (the
 /// frontal one for the stance width of `walker`). Its rule is not reseeded
 /// ([`RunContext::make_parameter_learner`] reseeds it with the run's seed). A learner reads
 /// one plane: `config` learning `parameter` in both is an error (see
@@ -90,6 +91,7 @@ pub fn parameter_learner(
             // Refused with the reason by the learner.
             None => Box::new(StepTime::default()),
         },
+        StepParameter::AnklePitch => Box::new(ankle_pitch_rule(walker)),
     };
     learner_with_rule(components, parameter, config, rule)
 }
@@ -100,6 +102,16 @@ pub fn step_time_rule(plane: Plane, walker: &WalkerConfig) -> StepTime {
     match plane {
         Plane::Sagittal => StepTime::default(),
         Plane::Frontal => StepTime::frontal(walker.stance_width()),
+    }
+}
+
+/// The LIPM ankle rule ([`AnklePitch`]) for `walker`: its controller's `C`, its gait's period
+/// as the time the centre of pressure acts.
+pub fn ankle_pitch_rule(walker: &WalkerConfig) -> AnklePitch {
+    AnklePitch {
+        c: walker.capture_step.c,
+        step_time: walker.motion.period,
+        ..AnklePitch::default()
     }
 }
 

@@ -23,6 +23,7 @@
 //! [`RuleConfig`] is the serde form of any of them (selected by a [`RuleKind`] name on the
 //! command line) and builds a validated `Box<dyn LearningRule>`.
 
+mod ankle_pitch;
 mod balance_only;
 mod config;
 mod linear;
@@ -32,6 +33,7 @@ mod rate_damped;
 mod step_time;
 mod tracking_only;
 
+pub use ankle_pitch::AnklePitch;
 pub use balance_only::BalanceOnly;
 pub use config::{RuleConfig, RuleError, RuleKind};
 pub use linear::Linear;

@@ -540,6 +540,54 @@ fn learn_names_the_step_parameters_of_a_run() {
     }
 }
 
+/// The sole's pitch is learned like any step parameter: from `--learn`, with its own table in
+/// a config (recorded in the run's identity), and refused in the frontal plane by its key.
+#[test]
+fn the_soles_pitch_is_learned_from_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ankle");
+    let config = dir.path().join("ankle.toml");
+    std::fs::write(
+        &config,
+        "[settings.learner.ankle-pitch]\nmax_offset = 0.05\n",
+    )
+    .unwrap();
+    let run = |config: &std::path::Path| {
+        two_pushes(
+            &out,
+            &[
+                "--learn",
+                "ankle-pitch,step-x",
+                "--config",
+                config.to_str().unwrap(),
+            ],
+        )
+    };
+    let o = run(&config);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        summary["learn"],
+        serde_json::json!(["step-x", "ankle-pitch"])
+    );
+    let identity = std::fs::read_to_string(out.join("run-config.toml")).unwrap();
+    assert!(
+        identity.contains("[settings.learner.ankle-pitch]")
+            && identity.contains("max_offset = 0.05"),
+        "{identity}"
+    );
+    std::fs::write(
+        &config,
+        "[settings.learner.ankle-pitch]\nplane = \"frontal\"\n",
+    )
+    .unwrap();
+    let o = run(&config);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("ankle-pitch.plane"), "{err}");
+}
+
 /// The step time learned in both planes runs from the shipped config: the run's identity
 /// records the planes, and a footstep offset in both planes is refused before anything runs,
 /// naming the key.

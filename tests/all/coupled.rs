@@ -188,13 +188,13 @@ fn as_a_policy_it_learns_both_planes_and_not_the_step_time() {
         ..LearnerConfig::default()
     });
     assert_eq!(learner.learns().to_string(), "step-x,step-y");
-    let inputs = PerParameter([SAGITTAL, LATERAL, SAGITTAL]);
+    let inputs = PerParameter::from_planes(SAGITTAL, LATERAL);
     let offsets = learner.offsets(&inputs).unwrap();
     let both = learner.predict(&at(SAGITTAL, LATERAL)).unwrap();
-    assert_eq!(offsets.0, [both[0], both[1], 0.0]);
+    assert_eq!(offsets.0, [both[0], both[1], 0.0, 0.0]);
     let reports = FootstepPolicy::touch_down(
         &mut learner,
-        &PerParameter([outcome(0.1, 0.0), outcome(0.0, 0.0), outcome(0.1, 0.0)]),
+        &PerParameter::from_planes(outcome(0.1, 0.0), outcome(0.0, 0.0)),
     )
     .unwrap();
     let s = reports[StepParameter::StepX].unwrap();
@@ -204,7 +204,7 @@ fn as_a_policy_it_learns_both_planes_and_not_the_step_time() {
     learner.offsets(&inputs).unwrap();
     let reports = FootstepPolicy::fall(
         &mut learner,
-        &PerParameter([outcome(2.0, 0.0), outcome(-2.0, 0.0), outcome(2.0, 0.0)]),
+        &PerParameter::from_planes(outcome(2.0, 0.0), outcome(-2.0, 0.0)),
     )
     .unwrap();
     // Learning from falls clamps theta_E to the fall limit before the rule sees it.
@@ -507,18 +507,14 @@ fn a_gate_weights_each_coupled_offset_by_its_planes_share() {
     // Teach both outputs something other than zero.
     for _ in 0..5 {
         learner
-            .offsets(&PerParameter([SAGITTAL, LATERAL, SAGITTAL]))
+            .offsets(&PerParameter::from_planes(SAGITTAL, LATERAL))
             .unwrap();
-        FootstepPolicy::touch_down(
-            &mut learner,
-            &PerParameter([outcome(0.1, 0.0), outcome(0.1, 0.0), outcome(0.1, 0.0)]),
-        )
-        .unwrap();
+        FootstepPolicy::touch_down(&mut learner, &PerParameter::splat(outcome(0.1, 0.0))).unwrap();
     }
     let both = learner.predict(&at(SAGITTAL, LATERAL)).unwrap();
     assert!(both[0].abs() > 1e-6 && both[1].abs() > 1e-6, "{both:?}");
     let offsets = learner
-        .offsets(&PerParameter([SAGITTAL, LATERAL, SAGITTAL]))
+        .offsets(&PerParameter::from_planes(SAGITTAL, LATERAL))
         .unwrap();
     let (rs, rf) = (SAGITTAL.theta_e_dot, LATERAL.theta_e_dot);
     let want = [

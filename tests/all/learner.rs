@@ -1152,6 +1152,27 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
                 ..LearnerConfig::default()
             },
         ),
+        // The sole's pitch is learned in the sagittal plane only, with its own table.
+        (
+            "ankle-pitch.plane",
+            LearnerConfig {
+                ankle_pitch: ParameterSettings {
+                    plane: Some(steplearn::control::Planes::Frontal),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
+        (
+            "ankle-pitch.max_offset",
+            LearnerConfig {
+                ankle_pitch: ParameterSettings {
+                    max_offset: Some(f64::INFINITY),
+                    ..ParameterSettings::default()
+                },
+                ..LearnerConfig::default()
+            },
+        ),
     ];
     for (key, cfg) in cases {
         match cfg.check() {
@@ -1351,7 +1372,7 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
     let mut learner = ctx.make_step_learner().unwrap();
     let input = |sagittal_rate: f64, frontal_rate: f64| {
         let x = LearnerInput::new(0.0, sagittal_rate, 0.0);
-        PerParameter([x, LearnerInput::new(0.05, frontal_rate, 0.0), x])
+        PerParameter::from_planes(x, LearnerInput::new(0.05, frontal_rate, 0.0))
     };
     // Teach the lateral offset at a lean towards the swing leg, sideways rate only.
     let outcome = StepOutcome {
@@ -1362,7 +1383,7 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
     };
     for _ in 0..20 {
         learner.offsets(&input(0.0, 0.2)).unwrap();
-        learner.touch_down(&PerParameter([outcome; 3])).unwrap();
+        learner.touch_down(&PerParameter::splat(outcome)).unwrap();
     }
     let sideways = learner.offsets(&input(0.0, 0.2)).unwrap()[y];
     assert!(sideways.abs() > 1e-4, "{sideways}");

@@ -285,11 +285,11 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
         &mut self,
         _: &PerParameter<steplearn::control::learner::LearnerInput>,
     ) -> Result<PerParameter<f64>, steplearn::control::learner::LearnerError> {
-        Ok(PerParameter([
-            self.offset,
-            self.lateral.unwrap_or(0.0),
-            self.time.unwrap_or(0.0),
-        ]))
+        let mut out = PerParameter::splat(0.0);
+        out[StepParameter::StepX] = self.offset;
+        out[StepParameter::StepY] = self.lateral.unwrap_or(0.0);
+        out[StepParameter::StepTime] = self.time.unwrap_or(0.0);
+        Ok(out)
     }
     fn set_reach(
         &mut self,
@@ -303,17 +303,15 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
         &mut self,
         _: &PerParameter<steplearn::rules::StepOutcome>,
     ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
-        Ok(PerParameter([
-            Some(steplearn::control::learner::TouchDownReport {
-                gradient: 0.0,
-                samples: 0,
-                response: 0.0,
-                gain: 0.0,
-                scale: 1.0,
-            }),
-            None,
-            None,
-        ]))
+        let mut out = StepReports::default();
+        out[StepParameter::StepX] = Some(steplearn::control::learner::TouchDownReport {
+            gradient: 0.0,
+            samples: 0,
+            response: 0.0,
+            gain: 0.0,
+            scale: 1.0,
+        });
+        Ok(out)
     }
     fn fall(
         &mut self,
@@ -473,4 +471,133 @@ fn a_step_time_offset_shortens_the_steps_and_its_reach_is_reported() {
         "{open} of {}",
         policy.time_reach.len()
     );
+}
+
+/// Holds a sole pitch offset from the `from`-th query on (0 before) and records the reach the
+/// walker reports for it; learns nothing.
+struct AnkleFrom {
+    from: usize,
+    value: f64,
+    queries: usize,
+    reach: Vec<[f64; 2]>,
+}
+
+impl steplearn::control::walker::FootstepPolicy for AnkleFrom {
+    fn learns(&self) -> LearnSet {
+        LearnSet::of(&[StepParameter::AnklePitch]).unwrap()
+    }
+    fn offsets(
+        &mut self,
+        _: &PerParameter<steplearn::control::learner::LearnerInput>,
+    ) -> Result<PerParameter<f64>, steplearn::control::learner::LearnerError> {
+        self.queries += 1;
+        let mut out = PerParameter::splat(0.0);
+        if self.queries > self.from {
+            out[StepParameter::AnklePitch] = self.value;
+        }
+        Ok(out)
+    }
+    fn set_reach(
+        &mut self,
+        reach: &PerParameter<[f64; 2]>,
+    ) -> Result<(), steplearn::control::learner::LearnerError> {
+        self.reach.push(reach[StepParameter::AnklePitch]);
+        Ok(())
+    }
+    fn touch_down(
+        &mut self,
+        _: &PerParameter<steplearn::rules::StepOutcome>,
+    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
+        Ok(StepReports::default())
+    }
+    fn fall(
+        &mut self,
+        _: &PerParameter<steplearn::rules::StepOutcome>,
+    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
+        Ok(StepReports::default())
+    }
+    fn discard_step(&mut self) {}
+}
+
+/// What happened after a sole pitch offset was switched on stepping in place.
+struct AnkleSwitch {
+    /// The support foot's mean centre of pressure over the single-support ticks of the first
+    /// 0.25 s (m forward of the foot's frame).
+    cop: f64,
+    /// The trunk's estimated pitch 0.3 s after the switch (rad).
+    pitch: f64,
+    /// The offset the walker applied, every tick.
+    applied: Vec<f64>,
+    /// The reach reported for it, every tick.
+    reach: Vec<[f64; 2]>,
+}
+
+/// Stepping in place, the sole's pitch offset `value` switched on at the first tick after 3 s
+/// (the learner's engagement has ramped in by then).
+fn after_an_ankle_switch(value: f64) -> AnkleSwitch {
+    let mut robot = Humanoid::new(SimConfig::default()).unwrap();
+    let mut walker = Walker::new(
+        WalkerConfig::new(WalkerMode::CaptureStep),
+        robot.body().leg_geometry(),
+    )
+    .unwrap();
+    let mut policy = AnkleFrom {
+        from: usize::MAX,
+        value,
+        queries: 0,
+        reach: vec![],
+    };
+    let (mut cops, mut pitch, mut applied) = (vec![], f64::NAN, vec![]);
+    while robot.time() < 3.3 {
+        let sensors = robot.sensors();
+        if sensors.time >= 3.0 && policy.from == usize::MAX {
+            policy.from = policy.queries;
+        }
+        let tick = walker.tick(&sensors, 0.0, Some(&mut policy)).unwrap();
+        applied.push(tick.ankle_offset);
+        let since = sensors.time - 3.0;
+        let [a, b] = sensors.feet;
+        if (0.0..0.25).contains(&since) && a.in_contact != b.in_contact {
+            cops.push(if a.in_contact { a.cop[0] } else { b.cop[0] });
+        }
+        pitch = tick.estimate.pitch;
+        robot.step(&tick.targets).unwrap();
+        assert!(robot.fall().is_none(), "fell at {:.2} s", robot.time());
+    }
+    assert!(cops.len() > 10, "{} single-support ticks", cops.len());
+    AnkleSwitch {
+        cop: cops.iter().sum::<f64>() / cops.len() as f64,
+        pitch,
+        applied,
+        reach: policy.reach,
+    }
+}
+
+/// The learned sole pitch reaches the support foot: switched on stepping in place, +0.02 rad
+/// (toe down) moves the support foot's centre of pressure forward at once and turns the trunk
+/// back, -0.02 rad (heel down) the other way round (measured: about 0.04 m either way in the
+/// first 0.25 s, the lever `AnklePitch::lever` stands for); the walker applies exactly the
+/// policy's offset and reports the ankle's limit as its reach.
+#[test]
+fn an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure() {
+    let [toe, flat, heel] = [0.02, 0.0, -0.02].map(after_an_ankle_switch);
+    assert!(
+        toe.cop > flat.cop + 0.015 && flat.cop > heel.cop + 0.015,
+        "centre of pressure: toe down {:.4} m, flat {:.4} m, heel down {:.4} m",
+        toe.cop,
+        flat.cop,
+        heel.cop
+    );
+    assert!(
+        toe.pitch < flat.pitch && flat.pitch < heel.pitch,
+        "trunk pitch: toe down {:.4}, flat {:.4}, heel down {:.4}",
+        toe.pitch,
+        flat.pitch,
+        heel.pitch
+    );
+    let switched = toe.applied.iter().filter(|&&a| a == 0.02).count();
+    assert!(switched > 20 && toe.applied[..10].iter().all(|&a| a == 0.0));
+    let limit = steplearn::control::motion::ANKLE_LIMIT;
+    assert!(!toe.reach.is_empty());
+    assert!(toe.reach.iter().all(|r| *r == [-limit, limit]));
 }

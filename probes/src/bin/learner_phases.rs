@@ -78,7 +78,11 @@ impl FootstepPolicy for NoiseOffset {
         &mut self,
         _inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
-        Ok(PerParameter([self.current, 0.0, 0.0]))
+        {
+            let mut out = PerParameter::splat(0.0);
+            out[StepParameter::StepX] = self.current;
+            Ok(out)
+        }
     }
     fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         Ok(())
@@ -88,7 +92,7 @@ impl FootstepPolicy for NoiseOffset {
         _outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
         self.redraw();
-        Ok(PerParameter([Some(TouchDownReport::default()), None, None]))
+        Ok(step_x_report())
     }
     fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         self.redraw();
@@ -132,7 +136,7 @@ impl<P: FootstepPolicy> FootstepPolicy for Phased<P> {
         self.seen += 1;
         if self.seen > self.learn_steps {
             self.inner.discard_step();
-            return Ok(PerParameter([Some(TouchDownReport::default()), None, None]));
+            return Ok(step_x_report());
         }
         self.inner.touch_down(outcomes)
     }
@@ -286,4 +290,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
+}
+
+/// A report for `step-x` alone.
+fn step_x_report() -> StepReports {
+    let mut out = StepReports::default();
+    out[StepParameter::StepX] = Some(TouchDownReport::default());
+    out
 }

@@ -1,0 +1,134 @@
+//! The ankle rule: the pendulum-cart gradient carried over to the support sole's pitch through
+//! the LIPM.
+//!
+//! Derivation (sagittal LIPM, `C = sqrt(g/h)`): at touch-down the pendulum-cart error
+//! `G = theta_E - p_theta tanh(p_F F_E)` of eq. (5), read as a capture-point error, is
+//! `e = h G` (m, positive: the capture point lies ahead of where the foot landed). During the
+//! step the capture point moves away from the centre of pressure `z` under the support foot as
+//! `d xi / dt = C (xi - z)`, so a shift `dz` of the centre of pressure held over a step of
+//! duration `T` leaves the capture point `(e^(C T) - 1) dz` less far ahead at touch-down. The
+//! sole's pitch offset `dA` (toe down positive) shifts the centre of pressure forward by about
+//! `l dA` while it stays inside the sole (`l`, the sole's lever, m per rad). So
+//! `de / d(dA) = -(e^(C T) - 1) l`, and the offset that would have cancelled the error (the
+//! Gauss-Newton step on `e^2 / 2`, as eq. (6)'s dF moves by about the step error `h G` that
+//! `G` stands for) is
+//!
+//! `G_A = h G / ((e^(C T) - 1) l)` (rad, per unit learning rate),
+//!
+//! which the learner adds as eq. (6) adds `G` to dF: a trunk still falling forward at
+//! touch-down (`G > 0`) asks to press the toe harder in that state next time, one falling
+//! backward (`G < 0`) the heel. It has the sign of the paper's G, scaled: within the sole the
+//! centre of pressure does what a longer step does beyond it. On the humanoid the lever is
+//! steep (0.02 rad moves the centre of pressure about 0.04 m at first, then the body leans
+//! away and it comes back halfway within 0.15 s; test
+//! `an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure`) and the sole's edges
+//! are near (0.2 m ahead of the ankle, 0.1 m behind it), so `G_A` is about a third of `G`.
+
+use super::{LearningRule, PendulumCart, StepOutcome};
+use serde::{Deserialize, Serialize};
+
+/// Standard gravity (m/s^2).
+const G0: f64 = 9.81;
+
+/// `G_A = h G / ((e^(C T) - 1) l)`, `G` the pendulum-cart gradient, `h = g / C^2` (see the
+/// module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AnklePitch {
+    /// LIPM constant `C = sqrt(g/h)` (1/s): the controller's.
+    pub c: f64,
+    /// The pendulum-cart error's trunk-angle tolerance (rad; eq. 5).
+    pub p_theta: f64,
+    /// The pendulum-cart error's step-error gain (1/m; eq. 5).
+    pub p_f: f64,
+    /// The step duration the centre of pressure acts over (s): the gait's period.
+    pub step_time: f64,
+    /// The sole's lever: how far the centre of pressure moves per radian of the sole's pitch
+    /// offset within the sole (m/rad, > 0).
+    pub lever: f64,
+    /// Scale of `G_A` (1: the LIPM's step as written); with the learner's eta, the learning
+    /// rate of the sole's pitch.
+    pub scale: f64,
+}
+
+impl Default for AnklePitch {
+    /// The Capture Step controller's `C` (2.95 1/s), the paper's `p_theta` 0.15 and `p_F` 30,
+    /// the default gait's period 0.4 s and the humanoid's lever, 1.5 m/rad (see the module
+    /// docs).
+    fn default() -> Self {
+        let pc = PendulumCart::default();
+        AnklePitch {
+            c: 2.95,
+            p_theta: pc.p_theta,
+            p_f: pc.p_f,
+            step_time: 0.4,
+            lever: 1.5,
+            scale: 1.0,
+        }
+    }
+}
+
+impl AnklePitch {
+    /// The pendulum height `h = g / C^2` (m).
+    pub fn height(&self) -> f64 {
+        G0 / (self.c * self.c)
+    }
+
+    /// `h / ((e^(C T) - 1) l)`: rad of `G_A` per unit of the pendulum-cart `G` (before
+    /// `scale`).
+    pub fn factor(&self) -> f64 {
+        self.height() / ((self.c * self.step_time).exp_m1() * self.lever)
+    }
+}
+
+impl LearningRule for AnklePitch {
+    fn gradient(&self, step: &StepOutcome) -> f64 {
+        let g = PendulumCart {
+            p_theta: self.p_theta,
+            p_f: self.p_f,
+        }
+        .gradient(step);
+        self.scale * self.factor() * g
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn outcome(theta_e: f64, f_e: f64) -> StepOutcome {
+        StepOutcome {
+            theta_e,
+            theta_e_dot: 0.0,
+            f_e,
+            f_r: 0.0,
+        }
+    }
+
+    #[test]
+    fn falling_forward_presses_the_toe_and_backward_the_heel() {
+        let r = AnklePitch::default();
+        assert!(r.gradient(&outcome(0.2, 0.3)) > 0.0);
+        assert!(r.gradient(&outcome(-0.2, -0.3)) < 0.0);
+        assert_eq!(r.gradient(&outcome(0.0, 0.0)), 0.0);
+    }
+
+    #[test]
+    fn the_gradient_is_the_pendulum_carts_times_the_lipm_factor() {
+        let r = AnklePitch::default();
+        let s = outcome(0.1, 0.02);
+        let g = PendulumCart::default().gradient(&s);
+        let factor = (9.81 / (2.95 * 2.95)) / (((2.95f64 * 0.4).exp() - 1.0) * 1.5);
+        assert!(factor > 0.3 && factor < 0.35);
+        assert!((r.factor() - factor).abs() < 1e-12);
+        assert!((r.gradient(&s) - factor * g).abs() < 1e-12);
+        let doubled = AnklePitch { scale: 2.0, ..r };
+        assert!((doubled.gradient(&s) - 2.0 * r.gradient(&s)).abs() < 1e-12);
+        // A longer step lets the centre of pressure act longer: less pitch does as much.
+        let longer = AnklePitch {
+            step_time: 0.5,
+            ..r
+        };
+        assert!(longer.factor() < r.factor());
+    }
+}
