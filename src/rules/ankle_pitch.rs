@@ -24,11 +24,8 @@
 //! `an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure`) and the sole's edges
 //! are near (0.2 m ahead of the ankle, 0.1 m behind it), so `G_A` is about a third of `G`.
 
-use super::{LearningRule, PendulumCart, StepOutcome};
+use super::{LearningRule, PendulumCart, StepOutcome, pendulum_height};
 use serde::{Deserialize, Serialize};
-
-/// Standard gravity (m/s^2).
-const G0: f64 = 9.81;
 
 /// `G_A = h G / ((e^(C T) - 1) l)`, `G` the pendulum-cart gradient, `h = g / C^2` (see the
 /// module docs).
@@ -71,7 +68,7 @@ impl Default for AnklePitch {
 impl AnklePitch {
     /// The pendulum height `h = g / C^2` (m).
     pub fn height(&self) -> f64 {
-        G0 / (self.c * self.c)
+        pendulum_height(self.c)
     }
 
     /// `h / ((e^(C T) - 1) l)`: rad of `G_A` per unit of the pendulum-cart `G` (before

@@ -28,11 +28,8 @@
 //! capture point coming back inside; pushed beyond the support foot (`h G < -W`) sooner
 //! again.
 
-use super::{LearningRule, PendulumCart, StepOutcome};
+use super::{LearningRule, PendulumCart, StepOutcome, pendulum_height};
 use serde::{Deserialize, Serialize};
-
-/// Standard gravity (m/s^2).
-const G0: f64 = 9.81;
 
 /// `G_T = -C h G (F_hat + h G)`, `G` the pendulum-cart gradient, `h = g / C^2` (see the module
 /// docs).
@@ -79,7 +76,7 @@ impl StepTime {
 
     /// The pendulum height `h = g / C^2` (m).
     pub fn height(&self) -> f64 {
-        G0 / (self.c * self.c)
+        pendulum_height(self.c)
     }
 }
 

@@ -251,15 +251,20 @@ fn pushes_delayed_by_a_fall_wait_for_the_gait_and_trials_end_after_the_last_push
     );
 }
 
-/// A policy with one fixed sagittal offset and, if given, one fixed lateral width offset and
-/// one fixed step-time offset; it records the sagittal and the step-time reach the walker
-/// reports and learns nothing.
+/// A policy with one fixed sagittal offset and, if given, one fixed lateral width offset, one
+/// fixed step-time offset and one fixed sole pitch, all held from its `from_query`-th query on
+/// (0 before); it records the sagittal, the step-time and the sole's reach the walker reports
+/// and learns nothing.
 pub(crate) struct FixedOffset {
     pub(crate) offset: f64,
     pub(crate) lateral: Option<f64>,
     pub(crate) time: Option<f64>,
+    pub(crate) ankle: Option<f64>,
+    pub(crate) from_query: usize,
+    pub(crate) queries: usize,
     pub(crate) reach: Vec<[f64; 2]>,
     pub(crate) time_reach: Vec<[f64; 2]>,
+    pub(crate) ankle_reach: Vec<[f64; 2]>,
 }
 
 impl FixedOffset {
@@ -268,8 +273,12 @@ impl FixedOffset {
             offset,
             lateral: None,
             time: None,
+            ankle: None,
+            from_query: 0,
+            queries: 0,
             reach: vec![],
             time_reach: vec![],
+            ankle_reach: vec![],
         }
     }
 }
@@ -279,16 +288,21 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
         let mut set = vec![StepParameter::StepX];
         set.extend(self.lateral.map(|_| StepParameter::StepY));
         set.extend(self.time.map(|_| StepParameter::StepTime));
+        set.extend(self.ankle.map(|_| StepParameter::AnklePitch));
         LearnSet::of(&set).unwrap()
     }
     fn offsets(
         &mut self,
         _: &PerParameter<steplearn::control::learner::LearnerInput>,
     ) -> Result<PerParameter<f64>, steplearn::control::learner::LearnerError> {
+        self.queries += 1;
         let mut out = PerParameter::splat(0.0);
-        out[StepParameter::StepX] = self.offset;
-        out[StepParameter::StepY] = self.lateral.unwrap_or(0.0);
-        out[StepParameter::StepTime] = self.time.unwrap_or(0.0);
+        if self.queries > self.from_query {
+            out[StepParameter::StepX] = self.offset;
+            out[StepParameter::StepY] = self.lateral.unwrap_or(0.0);
+            out[StepParameter::StepTime] = self.time.unwrap_or(0.0);
+            out[StepParameter::AnklePitch] = self.ankle.unwrap_or(0.0);
+        }
         Ok(out)
     }
     fn set_reach(
@@ -297,6 +311,7 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
     ) -> Result<(), steplearn::control::learner::LearnerError> {
         self.reach.push(reach[StepParameter::StepX]);
         self.time_reach.push(reach[StepParameter::StepTime]);
+        self.ankle_reach.push(reach[StepParameter::AnklePitch]);
         Ok(())
     }
     fn touch_down(
@@ -473,52 +488,6 @@ fn a_step_time_offset_shortens_the_steps_and_its_reach_is_reported() {
     );
 }
 
-/// Holds a sole pitch offset from the `from`-th query on (0 before) and records the reach the
-/// walker reports for it; learns nothing.
-struct AnkleFrom {
-    from: usize,
-    value: f64,
-    queries: usize,
-    reach: Vec<[f64; 2]>,
-}
-
-impl steplearn::control::walker::FootstepPolicy for AnkleFrom {
-    fn learns(&self) -> LearnSet {
-        LearnSet::of(&[StepParameter::AnklePitch]).unwrap()
-    }
-    fn offsets(
-        &mut self,
-        _: &PerParameter<steplearn::control::learner::LearnerInput>,
-    ) -> Result<PerParameter<f64>, steplearn::control::learner::LearnerError> {
-        self.queries += 1;
-        let mut out = PerParameter::splat(0.0);
-        if self.queries > self.from {
-            out[StepParameter::AnklePitch] = self.value;
-        }
-        Ok(out)
-    }
-    fn set_reach(
-        &mut self,
-        reach: &PerParameter<[f64; 2]>,
-    ) -> Result<(), steplearn::control::learner::LearnerError> {
-        self.reach.push(reach[StepParameter::AnklePitch]);
-        Ok(())
-    }
-    fn touch_down(
-        &mut self,
-        _: &PerParameter<steplearn::rules::StepOutcome>,
-    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
-        Ok(StepReports::default())
-    }
-    fn fall(
-        &mut self,
-        _: &PerParameter<steplearn::rules::StepOutcome>,
-    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
-        Ok(StepReports::default())
-    }
-    fn discard_step(&mut self) {}
-}
-
 /// What happened after a sole pitch offset was switched on stepping in place.
 struct AnkleSwitch {
     /// The support foot's mean centre of pressure over the single-support ticks of the first
@@ -541,17 +510,16 @@ fn after_an_ankle_switch(value: f64) -> AnkleSwitch {
         robot.body().leg_geometry(),
     )
     .unwrap();
-    let mut policy = AnkleFrom {
-        from: usize::MAX,
-        value,
-        queries: 0,
-        reach: vec![],
+    let mut policy = FixedOffset {
+        ankle: Some(value),
+        from_query: usize::MAX,
+        ..FixedOffset::sagittal(0.0)
     };
     let (mut cops, mut pitch, mut applied) = (vec![], f64::NAN, vec![]);
     while robot.time() < 3.3 {
         let sensors = robot.sensors();
-        if sensors.time >= 3.0 && policy.from == usize::MAX {
-            policy.from = policy.queries;
+        if sensors.time >= 3.0 && policy.from_query == usize::MAX {
+            policy.from_query = policy.queries;
         }
         let tick = walker.tick(&sensors, 0.0, Some(&mut policy)).unwrap();
         applied.push(tick.ankle_offset);
@@ -569,7 +537,7 @@ fn after_an_ankle_switch(value: f64) -> AnkleSwitch {
         cop: cops.iter().sum::<f64>() / cops.len() as f64,
         pitch,
         applied,
-        reach: policy.reach,
+        reach: policy.ankle_reach,
     }
 }
 

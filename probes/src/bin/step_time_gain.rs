@@ -9,17 +9,22 @@
 //! Prints, per reference F_R and offset dT: the touch-downs counted, falls, mean G_T and its
 //! standard error; then the least-squares slope per F_R and the limits it implies.
 //!
-//! `cargo run --release -p steplearn-probes --bin step_time_gain -- --seconds 40 [--plane frontal]`
+//! `--parameter ankle-pitch` measures the same for the support sole's pitch offset dA and its
+//! rule (`rules::AnklePitch`, G_A): the slope k_A = -dG_A/d(dA) bounds the gain of
+//! dA <- dA + gain G_A the same way.
+//!
+//! `cargo run --release -p steplearn-probes --bin step_time_gain -- --seconds 40 [--plane frontal]
+//! [--parameter ankle-pitch]`
 
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::control::learner::{LearnerError, LearnerInput, TouchDownReport};
 use steplearn::control::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
-use steplearn::experiments::experiment::step_time_rule;
+use steplearn::experiments::experiment::{ankle_pitch_rule, step_time_rule};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::run_trial;
-use steplearn::rules::{LearningRule, StepOutcome, StepTime};
+use steplearn::rules::{LearningRule, StepOutcome};
 use steplearn::stats::MeanStd;
 
 #[derive(Parser)]
@@ -53,26 +58,31 @@ struct Args {
     /// `[settings.learner.step-time] plane`).
     #[arg(long, default_value = "sagittal")]
     plane: Plane,
+    /// The parameter held fixed and whose gradient is measured: `step-time` (G_T) or
+    /// `ankle-pitch` (G_A, sagittal only; offsets in rad).
+    #[arg(long, default_value = "step-time")]
+    parameter: StepParameter,
 }
 
-/// A fixed step-time offset that records G_T at every touch-down after `settle`.
+/// A fixed offset of one parameter that records its rule's gradient at every touch-down.
 struct FixedTime {
+    parameter: StepParameter,
     offset: f64,
-    rule: StepTime,
+    rule: Box<dyn LearningRule>,
     plane: Plane,
     gradients: Vec<f64>,
 }
 
 impl FootstepPolicy for FixedTime {
     fn learns(&self) -> LearnSet {
-        LearnSet::of(&[StepParameter::StepTime]).expect("one parameter")
+        LearnSet::of(&[self.parameter]).expect("one parameter")
     }
     fn offsets(
         &mut self,
         _inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
         let mut out = PerParameter::default();
-        out[StepParameter::StepTime] = self.offset;
+        out[self.parameter] = self.offset;
         Ok(out)
     }
     fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
@@ -82,10 +92,10 @@ impl FootstepPolicy for FixedTime {
         &mut self,
         outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
-        let outcome = outcomes.in_plane(StepParameter::StepTime, self.plane);
+        let outcome = outcomes.in_plane(self.parameter, self.plane);
         self.gradients.push(self.rule.gradient(outcome));
         let mut out = StepReports::default();
-        out[StepParameter::StepTime] = Some(TouchDownReport::default());
+        out[self.parameter] = Some(TouchDownReport::default());
         Ok(out)
     }
     fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
@@ -102,8 +112,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if args.offsets.len() < 2 || args.offsets.iter().any(|o| !o.is_finite()) {
         return Err("--offsets needs at least two finite values".into());
     }
+    let rule = |settings: &steplearn::experiments::settings::Settings| -> Result<Box<dyn LearningRule>, String> {
+        match (args.parameter, args.plane) {
+            (StepParameter::StepTime, plane) => Ok(Box::new(step_time_rule(plane, &settings.walker))),
+            (StepParameter::AnklePitch, Plane::Sagittal) => {
+                Ok(Box::new(ankle_pitch_rule(&settings.walker)))
+            }
+            (p, plane) => Err(format!("--parameter {p} in the {plane} plane is not measured here")),
+        }
+    };
     let settings = steplearn_probes::settings(args.config.as_deref()).map_err(|e| e.to_string())?;
-    println!("f_r_m,offset_s,touch_downs,falls,mean_g_t,se_g_t");
+    rule(&settings)?;
+    // The offset's symbol and unit in the printed lines.
+    let (x, unit) = match args.parameter {
+        StepParameter::AnklePitch => ("A", "rad"),
+        _ => ("T", "s"),
+    };
+    let g = format!("g_{}", x.to_lowercase());
+    println!("f_r_m,offset_{unit},touch_downs,falls,mean_{g},se_{g}");
     for &f_r in &args.references {
         let mut points = Vec::new();
         for &offset in &args.offsets {
@@ -115,8 +141,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 args.seconds,
             );
             let mut policy = FixedTime {
+                parameter: args.parameter,
                 offset,
-                rule: step_time_rule(args.plane, &settings.walker),
+                rule: rule(&settings)?,
                 plane: args.plane,
                 gradients: Vec::new(),
             };
@@ -144,11 +171,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for w in points.windows(2) {
             let k = -(w[1].1 - w[0].1) / (w[1].0 - w[0].0);
             println!(
-                "# F_R {f_r}: dT {} to {}: k_T {k:.4} per s{}",
+                "# F_R {f_r}: d{x} {} to {}: k_{x} {k:.4} per {unit}{}",
                 w[0].0,
                 w[1].0,
                 if k < 0.0 {
-                    " (G_T grows with dT: the iteration runs away from here whatever the gain)"
+                    " (the gradient grows with the offset: the iteration runs away from here whatever the gain)"
                 } else {
                     ""
                 }
@@ -163,14 +190,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let k = -sxy / sxx;
             if k > 0.0 {
                 println!(
-                    "# F_R {f_r}: fitted k_T = -dG_T/d(dT) = {k:.4} per s; monotone below gain \
-                     {:.3}, stable below {:.3} (s per unit of G_T)",
+                    "# F_R {f_r}: fitted k_{x} = -dG_{x}/d(d{x}) = {k:.4} per {unit}; monotone below gain \
+                     {:.3}, stable below {:.3} ({unit} per unit of G_{x})",
                     1.0 / k,
                     2.0 / k
                 );
             } else {
                 println!(
-                    "# F_R {f_r}: fitted k_T = {k:.4} per s: G_T grows with dT, no gain is stable"
+                    "# F_R {f_r}: fitted k_{x} = {k:.4} per {unit}: G_{x} grows with d{x}, no gain is stable"
                 );
             }
         }
