@@ -148,9 +148,9 @@ impl RunContext<'_> {
     }
 
     /// A fresh learner of one step parameter with `config`: the run's approximator over the
-    /// learner's inputs, the run's rule for `step-x` and `step-y` and the LIPM step-time rule
-    /// ([`StepTime`]) for `step-time` in its plane, the parameter's own settings
-    /// ([`LearnerConfig::offset`]).
+    /// learner's inputs, the run's rule for `step-x` and `step-y`, the LIPM step-time rule
+    /// ([`StepTime`]) for `step-time` in its plane and the LIPM ankle rule ([`AnklePitch`]) for
+    /// `ankle-pitch`, the parameter's own settings ([`LearnerConfig::offset`]).
     pub fn make_parameter_learner(
         &self,
         parameter: StepParameter,

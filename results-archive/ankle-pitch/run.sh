@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The learned sole pitch in experiment C (the protocol's 400 pushes), forward and backward:
+# the model and the walker learning TAG's set. Seeds 0-4 pair with ../learner-levers/C-default-*,
+# seeds 5-9 with ../judge-sets-landing/C-step-x,step-time-* (step-x,step-time with the
+# defaults, same pushes); `python3 table.py TAG...` prints the table.
+#   cargo build --release && cd results-archive/ankle-pitch
+#   TAG=v1 LEARN=step-x,step-time,ankle-pitch SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=v2 LEARN=step-x,step-time,ankle-pitch CONFIG=m05.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=v3 LEARN=step-x,step-time,ankle-pitch CONFIG=dz02.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=v1 LEARN=step-x,step-time,ankle-pitch SEEDS="5 6 7 8 9" bash run.sh
+set -euo pipefail
+bin=../../target/release/steplearn
+for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-backward forward}; do
+  out=C-$TAG-$dir-s$s
+  [ -f $out/summary.json ] && continue
+  $bin experiment stability --seed $s --push-direction $dir --learn $LEARN \
+    ${CONFIG:+--config $CONFIG} --out $out > /dev/null
+done; done
