@@ -241,23 +241,23 @@ fn a_checkpoint_keeps_the_parameter_its_learner_learns() {
     };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("learner.json");
-    let time = FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default())
-        .unwrap()
-        .as_parameter(StepParameter::StepTime)
-        .unwrap();
-    time.save(&path).unwrap();
-    assert!(
-        std::fs::read_to_string(&path)
-            .unwrap()
-            .contains("\"step-time\"")
-    );
-    let loaded: FootstepLearner<AnyApproximator, PendulumCart> =
-        FootstepLearner::load(&path, PendulumCart::default()).unwrap();
-    assert_eq!(loaded.parameter(), StepParameter::StepTime);
-    assert_eq!(
-        loaded.settings().offset(StepParameter::StepTime),
-        time.settings().offset(StepParameter::StepTime)
-    );
+    for p in [StepParameter::StepTime, StepParameter::AnklePitch] {
+        let learner =
+            FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default())
+                .unwrap()
+                .as_parameter(p)
+                .unwrap();
+        learner.save(&path).unwrap();
+        assert!(
+            std::fs::read_to_string(&path)
+                .unwrap()
+                .contains(&format!("\"{p}\""))
+        );
+        let loaded: FootstepLearner<AnyApproximator, PendulumCart> =
+            FootstepLearner::load(&path, PendulumCart::default()).unwrap();
+        assert_eq!(loaded.parameter(), p);
+        assert_eq!(loaded.settings().offset(p), learner.settings().offset(p));
+    }
     // The paper's step-x is left out of the file, so files from before read as step-x.
     let paper =
         FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default()).unwrap();
