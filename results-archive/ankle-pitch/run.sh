@@ -7,6 +7,7 @@
 #   TAG=v1 LEARN=step-x,step-time,ankle-pitch SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=v2 LEARN=step-x,step-time,ankle-pitch CONFIG=m05.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=v3 LEARN=step-x,step-time,ankle-pitch CONFIG=dz02.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=v4 LEARN=step-x,step-time,ankle-pitch CONFIG=leak01.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=v1 LEARN=step-x,step-time,ankle-pitch SEEDS="5 6 7 8 9" bash run.sh
 set -euo pipefail
 bin=../../target/release/steplearn
