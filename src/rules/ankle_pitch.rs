@@ -24,7 +24,7 @@
 //! `an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure`) and the sole's edges
 //! are near (0.2 m ahead of the ankle, 0.1 m behind it), so `G_A` is about a third of `G`.
 
-use super::{LearningRule, PendulumCart, StepOutcome, pendulum_height};
+use super::{LearningRule, PendulumCart, StepOutcome, StepTime, pendulum_height};
 use serde::{Deserialize, Serialize};
 
 /// `G_A = h G / ((e^(C T) - 1) l)`, `G` the pendulum-cart gradient, `h = g / C^2` (see the
@@ -53,11 +53,14 @@ impl Default for AnklePitch {
     /// the default gait's period 0.4 s and the humanoid's lever, 1.5 m/rad (see the module
     /// docs).
     fn default() -> Self {
-        let pc = PendulumCart::default();
+        // The LIPM and the pendulum-cart error as the step-time rule reads them.
+        let StepTime {
+            c, p_theta, p_f, ..
+        } = StepTime::default();
         AnklePitch {
-            c: 2.95,
-            p_theta: pc.p_theta,
-            p_f: pc.p_f,
+            c,
+            p_theta,
+            p_f,
             step_time: 0.4,
             lever: 1.5,
             scale: 1.0,
@@ -66,26 +69,17 @@ impl Default for AnklePitch {
 }
 
 impl AnklePitch {
-    /// The pendulum height `h = g / C^2` (m).
-    pub fn height(&self) -> f64 {
-        pendulum_height(self.c)
-    }
-
     /// `h / ((e^(C T) - 1) l)`: rad of `G_A` per unit of the pendulum-cart `G` (before
-    /// `scale`).
+    /// `scale`), `h` the pendulum height ([`pendulum_height`]).
     pub fn factor(&self) -> f64 {
-        self.height() / ((self.c * self.step_time).exp_m1() * self.lever)
+        pendulum_height(self.c) / ((self.c * self.step_time).exp_m1() * self.lever)
     }
 }
 
 impl LearningRule for AnklePitch {
     fn gradient(&self, step: &StepOutcome) -> f64 {
-        let g = PendulumCart {
-            p_theta: self.p_theta,
-            p_f: self.p_f,
-        }
-        .gradient(step);
-        self.scale * self.factor() * g
+        let (p_theta, p_f) = (self.p_theta, self.p_f);
+        self.scale * self.factor() * PendulumCart { p_theta, p_f }.gradient(step)
     }
 }
 

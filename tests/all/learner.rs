@@ -1152,29 +1152,30 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
                 ..LearnerConfig::default()
             },
         ),
-        // The sole's pitch is learned in the sagittal plane only, with its own table.
+    ];
+    // The sole's pitch is learned in the sagittal plane only, with its own table.
+    let ankle = |ankle_pitch| LearnerConfig {
+        ankle_pitch,
+        ..LearnerConfig::default()
+    };
+    let frontal = Some(steplearn::control::Planes::Frontal);
+    let ankle_cases = [
         (
             "ankle-pitch.plane",
-            LearnerConfig {
-                ankle_pitch: ParameterSettings {
-                    plane: Some(steplearn::control::Planes::Frontal),
-                    ..ParameterSettings::default()
-                },
-                ..LearnerConfig::default()
-            },
+            ankle(ParameterSettings {
+                plane: frontal,
+                ..ParameterSettings::default()
+            }),
         ),
         (
             "ankle-pitch.max_offset",
-            LearnerConfig {
-                ankle_pitch: ParameterSettings {
-                    max_offset: Some(f64::INFINITY),
-                    ..ParameterSettings::default()
-                },
-                ..LearnerConfig::default()
-            },
+            ankle(ParameterSettings {
+                max_offset: Some(f64::INFINITY),
+                ..ParameterSettings::default()
+            }),
         ),
     ];
-    for (key, cfg) in cases {
+    for (key, cfg) in cases.into_iter().chain(ankle_cases) {
         match cfg.check() {
             Err(LearnerError::InvalidConfig { param, .. }) => assert_eq!(param, key),
             other => panic!("{key}: expected a refusal, got {other:?}"),
