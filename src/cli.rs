@@ -169,9 +169,9 @@ struct BenchArgs {
     #[arg(long, value_delimiter = ',')]
     experiments: Vec<String>,
     /// A set of step parameters the learners learn, comma-separated: step-x (the paper's
-    /// dF), step-y (the lateral dW), step-time (dT), ankle-pitch (dA). Give it several times to bench several
-    /// sets side by side (`--learn step-x --learn step-x,step-time`) [default: the
-    /// config's, step-x].
+    /// dF), step-y (the lateral dW), step-time (dT), ankle-pitch (the support sole's pitch
+    /// dA). Give it several times to bench several sets side by side (`--learn step-x
+    /// --learn step-x,step-time`) [default: the config's, step-x].
     #[arg(long)]
     learn: Vec<LearnSet>,
     /// Number of seeds: FIRST..FIRST+N.
