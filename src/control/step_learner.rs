@@ -221,7 +221,7 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         // Each part's reach is the parameter's less the other parts' (weighted) offsets; a
         // part weighted below 1 keeps that reach, which bounds its weighted offset too (the
         // reach holds 0).
-        let mut total = PerParameter([0.0; StepParameter::COUNT]);
+        let mut total = PerParameter::splat(0.0);
         for s in &self.slots {
             total[s.parameter] += s.weight * s.learner.last_offset();
         }

@@ -214,6 +214,16 @@ impl<T: Copy> PerParameter<T> {
     }
 }
 
+impl<T: Default> PerParameter<T> {
+    /// `value` for `p`, the default (0, `None`) for every other parameter: a policy's offsets
+    /// or reports for the one parameter it learns.
+    pub fn only(p: StepParameter, value: T) -> Self {
+        let mut out = PerParameter::default();
+        out[p] = value;
+        out
+    }
+}
+
 impl<T> PerParameter<T> {
     /// The value of `p`.
     pub fn get(&self, p: StepParameter) -> &T {
@@ -386,6 +396,8 @@ mod tests {
             assert_eq!(*v.in_plane(p, p.default_plane()), want);
         }
         assert_eq!(PerParameter::splat(7).0, [7; StepParameter::COUNT]);
+        let one = PerParameter::only(StepParameter::StepTime, Some(3));
+        assert_eq!(one.0, [None, None, Some(3), None]);
     }
 
     #[test]

@@ -78,11 +78,7 @@ impl FootstepPolicy for NoiseOffset {
         &mut self,
         _inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
-        {
-            let mut out = PerParameter::splat(0.0);
-            out[StepParameter::StepX] = self.current;
-            Ok(out)
-        }
+        Ok(PerParameter::only(StepParameter::StepX, self.current))
     }
     fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         Ok(())
@@ -92,7 +88,10 @@ impl FootstepPolicy for NoiseOffset {
         _outcomes: &PerParameter<StepOutcome>,
     ) -> Result<StepReports, LearnerError> {
         self.redraw();
-        Ok(step_x_report())
+        Ok(PerParameter::only(
+            StepParameter::StepX,
+            Some(TouchDownReport::default()),
+        ))
     }
     fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         self.redraw();
@@ -136,7 +135,10 @@ impl<P: FootstepPolicy> FootstepPolicy for Phased<P> {
         self.seen += 1;
         if self.seen > self.learn_steps {
             self.inner.discard_step();
-            return Ok(step_x_report());
+            return Ok(PerParameter::only(
+                StepParameter::StepX,
+                Some(TouchDownReport::default()),
+            ));
         }
         self.inner.touch_down(outcomes)
     }
@@ -290,11 +292,4 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
-}
-
-/// A report for `step-x` alone.
-fn step_x_report() -> StepReports {
-    let mut out = StepReports::default();
-    out[StepParameter::StepX] = Some(TouchDownReport::default());
-    out
 }

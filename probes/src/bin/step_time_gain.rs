@@ -81,9 +81,7 @@ impl FootstepPolicy for FixedTime {
         &mut self,
         _inputs: &PerParameter<LearnerInput>,
     ) -> Result<PerParameter<f64>, LearnerError> {
-        let mut out = PerParameter::default();
-        out[self.parameter] = self.offset;
-        Ok(out)
+        Ok(PerParameter::only(self.parameter, self.offset))
     }
     fn set_reach(&mut self, _reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {
         Ok(())
@@ -94,9 +92,10 @@ impl FootstepPolicy for FixedTime {
     ) -> Result<StepReports, LearnerError> {
         let outcome = outcomes.in_plane(self.parameter, self.plane);
         self.gradients.push(self.rule.gradient(outcome));
-        let mut out = StepReports::default();
-        out[self.parameter] = Some(TouchDownReport::default());
-        Ok(out)
+        Ok(PerParameter::only(
+            self.parameter,
+            Some(TouchDownReport::default()),
+        ))
     }
     fn fall(&mut self, _outcomes: &PerParameter<StepOutcome>) -> Result<StepReports, LearnerError> {
         Ok(StepReports::default())
