@@ -104,8 +104,8 @@ struct ReproduceArgs {
     #[arg(long)]
     quick: bool,
     /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
-    /// step-y (the lateral dW), step-time (dT), ankle-pitch (the support sole's pitch dA)
-    /// [default: the config's, step-x].
+    /// step-y (the lateral dW), step-time (dT), ankle-pitch (the support sole's pitch dA),
+    /// ankle-roll (its roll dR) [default: the config's, step-x].
     #[arg(long)]
     learn: Option<LearnSet>,
     /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
@@ -139,8 +139,8 @@ struct ExperimentArgs {
     #[arg(long, value_parser = parse_push_direction, allow_hyphen_values = true)]
     push_direction: Option<[f64; 3]>,
     /// The step parameters the learner learns, comma-separated: step-x (the paper's dF),
-    /// step-y (the lateral dW), step-time (dT), ankle-pitch (the support sole's pitch dA)
-    /// [default: the config's, step-x].
+    /// step-y (the lateral dW), step-time (dT), ankle-pitch (the support sole's pitch dA),
+    /// ankle-roll (its roll dR) [default: the config's, step-x].
     #[arg(long)]
     learn: Option<LearnSet>,
     /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
@@ -170,7 +170,7 @@ struct BenchArgs {
     experiments: Vec<String>,
     /// A set of step parameters the learners learn, comma-separated: step-x (the paper's
     /// dF), step-y (the lateral dW), step-time (dT), ankle-pitch (the support sole's pitch
-    /// dA). Give it several times to bench several sets side by side (`--learn step-x
+    /// dA), ankle-roll (its roll dR). Give it several times to bench several sets side by side (`--learn step-x
     /// --learn step-x,step-time`) [default: the config's, step-x].
     #[arg(long)]
     learn: Vec<LearnSet>,

@@ -143,6 +143,13 @@ pub struct LearnerConfig {
         skip_serializing_if = "ParameterSettings::is_empty"
     )]
     pub ankle_pitch: ParameterSettings,
+    /// `[settings.learner.ankle-roll]`: what the `ankle-roll` offset changes (default:
+    /// nothing).
+    #[serde(
+        rename = "ankle-roll",
+        skip_serializing_if = "ParameterSettings::is_empty"
+    )]
+    pub ankle_roll: ParameterSettings,
 }
 
 /// The settings one learned parameter may set apart from the others
@@ -438,6 +445,7 @@ impl Default for LearnerConfig {
             step_y: ParameterSettings::default_step_y(),
             step_time: ParameterSettings::default(),
             ankle_pitch: ParameterSettings::default(),
+            ankle_roll: ParameterSettings::default(),
         }
     }
 }
@@ -470,6 +478,7 @@ impl LearnerConfig {
             StepParameter::StepY => &self.step_y,
             StepParameter::StepTime => &self.step_time,
             StepParameter::AnklePitch => &self.ankle_pitch,
+            StepParameter::AnkleRoll => &self.ankle_roll,
         }
     }
 
@@ -479,6 +488,7 @@ impl LearnerConfig {
             StepParameter::StepY => &mut self.step_y,
             StepParameter::StepTime => &mut self.step_time,
             StepParameter::AnklePitch => &mut self.ankle_pitch,
+            StepParameter::AnkleRoll => &mut self.ankle_roll,
         }
     }
 
@@ -702,6 +712,12 @@ const PARAMETER_OFFSET_KEYS: [[&str; 4]; StepParameter::COUNT] = [
         "ankle-pitch.leakage",
         "ankle-pitch.max_offset",
     ],
+    [
+        "ankle-roll.eta",
+        "ankle-roll.dead_zone",
+        "ankle-roll.leakage",
+        "ankle-roll.max_offset",
+    ],
 ];
 
 /// The `frontal` table of each parameter's table, in [`StepParameter::ALL`]'s order.
@@ -710,6 +726,7 @@ const FRONTAL_KEYS: [&str; StepParameter::COUNT] = [
     "step-y.frontal",
     "step-time.frontal",
     "ankle-pitch.frontal",
+    "ankle-roll.frontal",
 ];
 
 /// The key of the frontal part's dead zone (only the step time is learned in both planes).
@@ -721,6 +738,7 @@ pub(crate) const PLANE_KEYS: [&str; StepParameter::COUNT] = [
     "step-y.plane",
     "step-time.plane",
     "ankle-pitch.plane",
+    "ankle-roll.plane",
 ];
 
 /// Checks one offset's settings; an error names the value by its key in `keys` (eta, dead

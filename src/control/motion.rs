@@ -151,6 +151,12 @@ pub struct StepCommand {
     /// 0: the sole as the generator alone turns it.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub ankle_pitch: f64,
+    /// A learned roll offset of the support sole (rad, positive rolls it as the ankle strategy
+    /// does for a trunk whose top tilts to the right: the sole's right edge presses down),
+    /// added to the ankle strategy's; the sum is clamped to +-[`ANKLE_LIMIT`]. 0: the sole as
+    /// the generator alone turns it.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub ankle_roll: f64,
 }
 
 /// How the swing leg reaches its placement.
@@ -460,6 +466,10 @@ pub struct MotionGenerator {
     /// [`StepCommand::ankle_pitch`]).
     #[serde(default, skip_serializing_if = "is_zero")]
     ankle_pitch: f64,
+    /// The last command's learned roll offset of the support sole (rad,
+    /// [`StepCommand::ankle_roll`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    ankle_roll: f64,
 }
 
 /// Cosine ramp from 0 at `x <= 0` to 1 at `x >= 1`.
@@ -494,6 +504,7 @@ impl MotionGenerator {
             waited: 0.0,
             step_elapsed: 0.0,
             ankle_pitch: 0.0,
+            ankle_roll: 0.0,
         };
         g.legs = [g.halt_pose(); 2];
         g
@@ -596,6 +607,7 @@ impl MotionGenerator {
             tilt: None,
             swing_landed: None,
             ankle_pitch: 0.0,
+            ankle_roll: 0.0,
         }
     }
 
@@ -684,6 +696,9 @@ impl MotionGenerator {
         }
         if command.ankle_pitch.is_finite() {
             self.ankle_pitch = command.ankle_pitch;
+        }
+        if command.ankle_roll.is_finite() {
+            self.ankle_roll = command.ankle_roll;
         }
         self.step_elapsed += dt;
         let landed_early = c.early_landing_phase < 1.0
@@ -823,10 +838,12 @@ impl MotionGenerator {
                 // Land the sole flat on the ground.
                 foot = [-s * roll, -lean - s * (pitch - lean)];
             } else if side != swing {
-                // The ankle strategy turns the support sole with the tilt; a learned pitch
-                // offset adds to it.
+                // The ankle strategy turns the support sole with the tilt; learned offsets
+                // of its roll and pitch add to it.
                 let [roll, pitch] = self.ankle_strategy();
-                if roll != 0.0 || pitch != 0.0 || self.ankle_pitch != 0.0 {
+                if roll != 0.0 || pitch != 0.0 || self.ankle_pitch != 0.0 || self.ankle_roll != 0.0
+                {
+                    let roll = (roll + self.ankle_roll).clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
                     let pitch = (pitch + self.ankle_pitch).clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
                     foot = [roll, -lean + pitch];
                 }

@@ -254,7 +254,7 @@ mod tests {
     use crate::approx::{AnyApproximator, ApproxKind};
     use crate::control::learner::{InputGrid, LearnerConfig};
     use crate::control::step_parameter::Gate;
-    use crate::rules::{AnklePitch, PendulumCart, StepTime};
+    use crate::rules::{PendulumCart, SoleTilt, StepTime};
 
     fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
         learner_with(p, LearnerConfig::default())
@@ -274,7 +274,8 @@ mod tests {
         match (p, plane) {
             (StepParameter::StepTime, Plane::Sagittal) => Box::new(StepTime::default()),
             (StepParameter::StepTime, Plane::Frontal) => Box::new(StepTime::frontal(0.2)),
-            (StepParameter::AnklePitch, _) => Box::new(AnklePitch::default()),
+            (StepParameter::AnklePitch, _) => Box::new(SoleTilt::pitch()),
+            (StepParameter::AnkleRoll, _) => Box::new(SoleTilt::roll()),
             _ => Box::new(PendulumCart::default()),
         }
     }
@@ -359,7 +360,7 @@ mod tests {
         assert!(g > 0.0);
         assert!(r[StepParameter::StepTime].unwrap().gradient < 0.0);
         let g_a = r[StepParameter::AnklePitch].unwrap().gradient;
-        assert!((g_a - AnklePitch::default().factor() * g).abs() < 1e-12);
+        assert!((g_a - SoleTilt::pitch().factor() * g).abs() < 1e-12);
         assert!(r[StepParameter::StepY].is_none());
         let o = l.offsets(&inputs(2)).unwrap();
         assert!(

@@ -4,7 +4,8 @@
 //! sagittally (`F`), laterally (`W`), and when (`T`). A learner adds an offset to any set of
 //! them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
 //! [`StepParameter::StepTime`] a step-time offset dT. Beside the step, the body itself:
-//! [`StepParameter::AnklePitch`] turns the support sole (an ankle strategy, learned).
+//! [`StepParameter::AnklePitch`] and [`StepParameter::AnkleRoll`] turn the support sole (an
+//! ankle strategy, learned, in each plane).
 //! [`PerParameter`] holds one value per
 //! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns;
 //! [`Plane`] is the plane whose state and outcome a parameter's learner reads, [`Planes`] the
@@ -44,15 +45,24 @@ pub enum StepParameter {
     /// the ground, moving the centre of pressure under the support foot while the catch step
     /// is still in the air.
     AnklePitch,
+    /// The support sole's roll offset dR (rad, positive presses the sole's edge on the swing
+    /// leg's side): the frontal-plane ankle strategy, learned. It moves the centre of pressure
+    /// under the support foot sideways, towards the swing leg's side when positive.
+    AnkleRoll,
 }
 
 impl StepParameter {
     /// How many parameters there are.
-    pub const COUNT: usize = 4;
+    pub const COUNT: usize = 5;
 
     /// Every parameter, in their fixed order.
-    pub const ALL: [StepParameter; Self::COUNT] =
-        [Self::StepX, Self::StepY, Self::StepTime, Self::AnklePitch];
+    pub const ALL: [StepParameter; Self::COUNT] = [
+        Self::StepX,
+        Self::StepY,
+        Self::StepTime,
+        Self::AnklePitch,
+        Self::AnkleRoll,
+    ];
 
     /// Whether this is the paper's `step-x`.
     pub fn is_step_x(&self) -> bool {
@@ -65,24 +75,24 @@ impl StepParameter {
     }
 
     /// The name on the command line and in config files (`step-x`, `step-y`, `step-time`,
-    /// `ankle-pitch`).
+    /// `ankle-pitch`, `ankle-roll`).
     pub fn name(self) -> &'static str {
         self.into()
     }
 
     /// The plane this parameter is learned in unless its settings name another: `step-x`,
-    /// `step-time` and `ankle-pitch` the sagittal, `step-y` the frontal.
+    /// `step-time` and `ankle-pitch` the sagittal, `step-y` and `ankle-roll` the frontal.
     pub fn default_plane(self) -> Plane {
         match self {
             StepParameter::StepX | StepParameter::StepTime | StepParameter::AnklePitch => {
                 Plane::Sagittal
             }
-            StepParameter::StepY => Plane::Frontal,
+            StepParameter::StepY | StepParameter::AnkleRoll => Plane::Frontal,
         }
     }
 
     /// Whether this parameter may be learned in `planes`: a footstep offset and the sole's
-    /// pitch only in their own plane, the step time (which moves the capture point in both) in either or both.
+    /// pitch or roll only in their own plane, the step time (which moves the capture point in both) in either or both.
     pub fn allows(self, planes: Planes) -> bool {
         self == StepParameter::StepTime || planes == Planes::from(self.default_plane())
     }
@@ -204,8 +214,8 @@ impl<T: Copy> PerParameter<T> {
     }
 
     /// Each parameter's value from its default plane's ([`StepParameter::default_plane`]):
-    /// `sagittal` for `step-x`, `step-time` and `ankle-pitch`, `frontal` for `step-y` (the
-    /// walker's inputs and outcomes).
+    /// `sagittal` for `step-x`, `step-time` and `ankle-pitch`, `frontal` for `step-y` and
+    /// `ankle-roll` (the walker's inputs and outcomes).
     pub fn from_planes(sagittal: T, frontal: T) -> Self {
         PerParameter(StepParameter::ALL.map(|p| match p.default_plane() {
             Plane::Sagittal => sagittal,
@@ -270,14 +280,16 @@ impl<T> std::ops::IndexMut<StepParameter> for PerParameter<T> {
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum LearnSetError {
     /// A name that is not a step parameter.
-    #[error("unknown step parameter {0:?} (expected step-x, step-y, step-time or ankle-pitch)")]
+    #[error(
+        "unknown step parameter {0:?} (expected step-x, step-y, step-time, ankle-pitch or ankle-roll)"
+    )]
     Unknown(String),
     /// A parameter named twice.
     #[error("step parameter {0} named twice")]
     Repeated(StepParameter),
     /// No parameter at all.
     #[error(
-        "the set of learned step parameters is empty (expected one or more of step-x, step-y, step-time, ankle-pitch)"
+        "the set of learned step parameters is empty (expected one or more of step-x, step-y, step-time, ankle-pitch, ankle-roll)"
     )]
     Empty,
 }
@@ -376,16 +388,24 @@ mod tests {
         assert!(s.contains(StepParameter::StepTime) && !s.contains(StepParameter::StepY));
         assert_eq!(LearnSet::default().to_string(), "step-x");
         assert!(LearnSet::default().is_paper() && !s.is_paper());
-        let all: LearnSet = "ankle-pitch,step-time,step-y,step-x".parse().unwrap();
-        assert_eq!(all.to_string(), "step-x,step-y,step-time,ankle-pitch");
+        let all: LearnSet = "ankle-roll,ankle-pitch,step-time,step-y,step-x"
+            .parse()
+            .unwrap();
+        assert_eq!(
+            all.to_string(),
+            "step-x,step-y,step-time,ankle-pitch,ankle-roll"
+        );
         assert!(StepParameter::AnklePitch.allows(Planes::Sagittal));
         assert!(!StepParameter::AnklePitch.allows(Planes::Both));
+        assert!(StepParameter::AnkleRoll.allows(Planes::Frontal));
+        assert!(!StepParameter::AnkleRoll.allows(Planes::Sagittal));
+        assert!(!StepParameter::AnkleRoll.allows(Planes::Both));
     }
 
     #[test]
     fn per_parameter_values_come_from_their_default_planes() {
         let v = PerParameter::from_planes(1, 2);
-        assert_eq!(v.0, [1, 2, 1, 1]);
+        assert_eq!(v.0, [1, 2, 1, 1, 2]);
         for p in StepParameter::ALL {
             let want = if p.default_plane() == Plane::Sagittal {
                 1
@@ -397,7 +417,7 @@ mod tests {
         }
         assert_eq!(PerParameter::splat(7).0, [7; StepParameter::COUNT]);
         let one = PerParameter::only(StepParameter::StepTime, Some(3));
-        assert_eq!(one.0, [None, None, Some(3), None]);
+        assert_eq!(one.0, [None, None, Some(3), None, None]);
     }
 
     #[test]

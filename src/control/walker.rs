@@ -207,6 +207,10 @@ pub struct Tick {
     /// The learned pitch offset of the support sole this tick (rad, toe down positive; 0
     /// without an `ankle-pitch` learner).
     pub ankle_offset: f64,
+    /// Every learned offset used this tick, per step parameter (0 for one not learned), as
+    /// the generator and controller got it: `step-y` positive to the left, `ankle-roll` in
+    /// the sole's roll ([`StepCommand::ankle_roll`]).
+    pub offsets: PerParameter<f64>,
     /// The step that ended this tick, if a touch-down was detected.
     pub step: Option<StepOutcome>,
     /// The same step in the frontal plane, mirrored to the side of the leg that landed (see
@@ -220,6 +224,8 @@ pub struct Tick {
     pub time_learning: Option<TouchDownReport>,
     /// What the `ankle-pitch` learner did with it, if there is one and it learned.
     pub ankle_learning: Option<TouchDownReport>,
+    /// What each parameter's learner did with it, per step parameter.
+    pub reports: StepReports,
 }
 
 /// The walker: estimator, balance controller and motion generator, ticked together.
@@ -348,12 +354,14 @@ impl Walker {
             lateral_offset: offsets[StepParameter::StepY],
             time_offset: offsets[StepParameter::StepTime],
             ankle_offset: offsets[StepParameter::AnklePitch],
+            offsets,
             step,
             lateral_step,
             learning: reports[StepParameter::StepX],
             lateral_learning: reports[StepParameter::StepY],
             time_learning: reports[StepParameter::StepTime],
             ankle_learning: reports[StepParameter::AnklePitch],
+            reports,
         })
     }
 
@@ -433,6 +441,7 @@ impl Walker {
             let engagement = self.engagement();
             *offsets = learned.map(|v| v * engagement);
             offsets[StepParameter::StepY] *= swing_sign;
+            offsets[StepParameter::AnkleRoll] *= sole_roll_towards(support.other());
         }
         let learned_offset = offsets[StepParameter::StepX];
         let lateral_offset = offsets[StepParameter::StepY];
@@ -490,14 +499,16 @@ impl Walker {
                     && estimate.time_on_support < self.generator.step_elapsed(),
             ),
             ankle_pitch: offsets[StepParameter::AnklePitch],
+            ankle_roll: offsets[StepParameter::AnkleRoll],
         };
         Ok((command, d))
     }
 
     /// The offsets that can still change the step, per parameter: beyond the step range's
     /// ends (and the controller's largest step) an offset would be clamped away, as would a
-    /// width beyond the generator's width range, or a sole's pitch beyond [`ANKLE_LIMIT`]
-    /// with the ankle strategy's; `time_reach` is the controller's.
+    /// width beyond the generator's width range, or a sole's pitch or roll beyond
+    /// [`ANKLE_LIMIT`] with the ankle strategy's (the roll towards the swing leg's side);
+    /// `time_reach` is the controller's.
     fn reach(
         &self,
         base_step: f64,
@@ -509,12 +520,14 @@ impl Walker {
         let lo = m.step_x_range[0].max(-cap);
         let hi = m.step_x_range[1].min(cap);
         let [w_lo, w_hi] = m.step_y_range;
-        let [_, ankle] = self.generator.ankle_strategy();
+        let [roll, pitch] = self.generator.ankle_strategy();
+        let roll = sole_roll_towards(self.generator.support().other()) * roll;
         PerParameter([
             [lo - base_step, hi - base_step],
             [w_lo - base_width, w_hi - base_width],
             time_reach,
-            [-ANKLE_LIMIT - ankle, ANKLE_LIMIT - ankle],
+            [-ANKLE_LIMIT - pitch, ANKLE_LIMIT - pitch],
+            [-ANKLE_LIMIT - roll, ANKLE_LIMIT - roll],
         ])
     }
 
@@ -605,6 +618,12 @@ fn lean_towards(estimate: &Estimate, side: Side) -> [f64; 2] {
         -side.sign() * estimate.roll,
         -side.sign() * estimate.roll_rate,
     ]
+}
+
+/// The sign that turns a sole roll pressing the edge on `side` into the sole's roll
+/// ([`StepCommand::ankle_roll`], positive pressing the right edge), and back.
+fn sole_roll_towards(side: Side) -> f64 {
+    -side.sign()
 }
 
 /// The CoM state relative to the sole of `support` (the motion generator's support leg, which

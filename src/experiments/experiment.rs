@@ -20,7 +20,7 @@ use crate::control::step_parameter::{LearnSet, Plane, StepParameter};
 use crate::control::walker::WalkerConfig;
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::ReportError;
-use crate::rules::{AnklePitch, LearningRule, StepTime};
+use crate::rules::{LearningRule, SoleTilt, StepTime};
 use std::path::Path;
 
 pub use super::push_options::{PushOptions, PushOptionsError};
@@ -72,8 +72,8 @@ pub fn learner_bounds() -> Result<InputBox, ApproxError> {
 
 /// A fresh, untrained learner of `parameter` with `config` from `components`: an approximator
 /// over [`learner_bounds`], the components' rule for `step-x` and `step-y` and the LIPM
-/// step-time rule ([`StepTime`]) for `step-time` and the LIPM ankle rule ([`AnklePitch`]) for
-/// `ankle-pitch`, in the plane `config` names for it (the
+/// step-time rule ([`StepTime`]) for `step-time` and the LIPM ankle rule ([`SoleTilt`]) for
+/// `ankle-pitch` and `ankle-roll`, in the plane `config` names for it (the
 /// frontal one for the stance width of `walker`). Its rule is not reseeded
 /// ([`RunContext::make_parameter_learner`] reseeds it with the run's seed). A learner reads
 /// one plane: `config` learning `parameter` in both is an error (see
@@ -91,7 +91,9 @@ pub fn parameter_learner(
             // Refused with the reason by the learner.
             None => Box::new(StepTime::default()),
         },
-        StepParameter::AnklePitch => Box::new(ankle_pitch_rule(walker)),
+        StepParameter::AnklePitch | StepParameter::AnkleRoll => {
+            Box::new(sole_tilt_rule(parameter, walker))
+        }
     };
     learner_with_rule(components, parameter, config, rule)
 }
@@ -105,13 +107,18 @@ pub fn step_time_rule(plane: Plane, walker: &WalkerConfig) -> StepTime {
     }
 }
 
-/// The LIPM ankle rule ([`AnklePitch`]) for `walker`: its controller's `C`, its gait's period
-/// as the time the centre of pressure acts.
-pub fn ankle_pitch_rule(walker: &WalkerConfig) -> AnklePitch {
-    AnklePitch {
+/// The LIPM ankle rule ([`SoleTilt`]) of `parameter` for `walker`: the roll's
+/// ([`SoleTilt::roll`]) for `ankle-roll`, else the pitch's, with its controller's `C` and its
+/// gait's period as the time the centre of pressure acts.
+pub fn sole_tilt_rule(parameter: StepParameter, walker: &WalkerConfig) -> SoleTilt {
+    let rule = match parameter {
+        StepParameter::AnkleRoll => SoleTilt::roll(),
+        _ => SoleTilt::pitch(),
+    };
+    SoleTilt {
         c: walker.capture_step.c,
         step_time: walker.motion.period,
-        ..AnklePitch::default()
+        ..rule
     }
 }
 
@@ -149,8 +156,8 @@ impl RunContext<'_> {
 
     /// A fresh learner of one step parameter with `config`: the run's approximator over the
     /// learner's inputs, the run's rule for `step-x` and `step-y`, the LIPM step-time rule
-    /// ([`StepTime`]) for `step-time` in its plane and the LIPM ankle rule ([`AnklePitch`]) for
-    /// `ankle-pitch`, the parameter's own settings ([`LearnerConfig::offset`]).
+    /// ([`StepTime`]) for `step-time` in its plane and the LIPM ankle rule ([`SoleTilt`]) for
+    /// `ankle-pitch` and `ankle-roll`, the parameter's own settings ([`LearnerConfig::offset`]).
     pub fn make_parameter_learner(
         &self,
         parameter: StepParameter,

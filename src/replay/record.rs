@@ -6,6 +6,7 @@
 //! trial produced. Every number is rounded to [`DECIMALS`] decimals when it is recorded, so the
 //! JSON a page embeds parses back to exactly the recorded values.
 
+use crate::control::step_parameter::StepParameter;
 use crate::control::walker::Tick;
 use crate::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord};
 use crate::robot::Side;
@@ -40,6 +41,14 @@ pub struct Frame {
     pub d_w: f64,
     /// The learned step-time offset dT used this tick (s).
     pub d_t: f64,
+    /// The learned pitch offset dA of the support sole used this tick (rad, toe down
+    /// positive; left out when 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub d_a: f64,
+    /// The learned roll offset dR of the support sole used this tick (rad, positive pressing
+    /// its right edge; left out when 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub d_r: f64,
     /// Trunk deviation angle theta_E (rad, positive leaning forward).
     pub lean: f64,
 }
@@ -115,7 +124,14 @@ struct Pending {
     d_f: f64,
     d_w: f64,
     d_t: f64,
+    d_a: f64,
+    d_r: f64,
     lean: f64,
+}
+
+/// Whether a rounded offset is 0 (it is then left out of the frame).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// Gravity used for the capture point (m/s^2).
@@ -221,6 +237,8 @@ impl Observer for Recorder {
                 d_f: tick.learned_offset,
                 d_w: tick.lateral_offset,
                 d_t: tick.time_offset,
+                d_a: tick.offsets[StepParameter::AnklePitch],
+                d_r: tick.offsets[StepParameter::AnkleRoll],
                 lean: tick.estimate.theta_e,
             },
         ));
@@ -315,6 +333,8 @@ impl Observer for Recorder {
             d_f: round(p.d_f),
             d_w: round(p.d_w),
             d_t: round(p.d_t),
+            d_a: round(p.d_a),
+            d_r: round(p.d_r),
             lean: round(p.lean),
         });
     }

@@ -120,8 +120,10 @@ function main() {
   // --- timeline ----------------------------------------------------------------------
   const tl = document.getElementById('timeline');
   const ctx = tl.getContext('2d');
-  const has = (key) => walks.some((w) => w.frames.some((f) => f[key] !== 0));
-  const series = [['d_f', 'dF (m)', []], ['d_w', 'dW (m)', [6, 3]], ['d_t', 'dT (s)', [2, 3]], ['lean', 'trunk lean θE (rad)', [10, 3, 2, 3]]]
+  // A frame leaves out the sole's offsets when they are 0.
+  const val = (f, key) => f[key] || 0;
+  const has = (key) => walks.some((w) => w.frames.some((f) => val(f, key) !== 0));
+  const series = [['d_f', 'dF (m)', []], ['d_w', 'dW (m)', [6, 3]], ['d_t', 'dT (s)', [2, 3]], ['d_a', 'sole pitch dA (rad)', [1, 2]], ['d_r', 'sole roll dR (rad)', [4, 2, 1, 2]], ['lean', 'trunk lean θE (rad)', [10, 3, 2, 3]]]
     .filter(([k]) => k === 'lean' || k === 'd_f' || has(k));
   document.getElementById('legend').innerHTML =
     actors.map((a) => `<span class="key" style="background:${css(a.color)}"></span>${a.w.name}` +
@@ -135,7 +137,7 @@ function main() {
     if (tl.height !== H) tl.height = H;
     ctx.clearRect(0, 0, W, H);
     let lo = 0, hi = 0;
-    for (const w of walks) for (const f of w.frames) for (const [k] of series) { lo = Math.min(lo, f[k]); hi = Math.max(hi, f[k]); }
+    for (const w of walks) for (const f of w.frames) for (const [k] of series) { lo = Math.min(lo, val(f, k)); hi = Math.max(hi, val(f, k)); }
     if (hi - lo < 1e-6) { hi += 0.05; lo -= 0.05; }
     const x = (s) => 40 + (W - 50) * (s - t0) / Math.max(1e-9, t1 - t0);
     const y = (v) => H - 15 - (H - 25) * (v - lo) / (hi - lo);
@@ -151,7 +153,7 @@ function main() {
       for (const [k, , dash] of series) {
         ctx.strokeStyle = css(a.color); ctx.lineWidth = 1.5; ctx.setLineDash(dash);
         ctx.beginPath();
-        a.w.frames.forEach((f, i) => (i ? ctx.lineTo(x(f.t), y(f[k])) : ctx.moveTo(x(f.t), y(f[k]))));
+        a.w.frames.forEach((f, i) => (i ? ctx.lineTo(x(f.t), y(val(f, k))) : ctx.moveTo(x(f.t), y(val(f, k)))));
         ctx.stroke();
       }
     }

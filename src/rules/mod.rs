@@ -23,23 +23,23 @@
 //! [`RuleConfig`] is the serde form of any of them (selected by a [`RuleKind`] name on the
 //! command line) and builds a validated `Box<dyn LearningRule>`.
 
-mod ankle_pitch;
 mod balance_only;
 mod config;
 mod linear;
 mod pendulum_cart;
 mod policy_gradient;
 mod rate_damped;
+mod sole_tilt;
 mod step_time;
 mod tracking_only;
 
-pub use ankle_pitch::AnklePitch;
 pub use balance_only::BalanceOnly;
 pub use config::{RuleConfig, RuleError, RuleKind};
 pub use linear::Linear;
 pub use pendulum_cart::PendulumCart;
 pub use policy_gradient::{PolicyGradient, PolicyGradientParams, PolicyGradientState};
 pub use rate_damped::RateDamped;
+pub use sole_tilt::{AnklePitch, SoleTilt};
 pub use step_time::StepTime;
 pub use tracking_only::TrackingOnly;
 
@@ -129,7 +129,7 @@ const G0: f64 = 9.81;
 
 /// The LIPM's pendulum height `h = g / C^2` (m) for its constant `C = sqrt(g/h)` (1/s): what
 /// turns the pendulum-cart error G into a capture-point error `h G` for the rules derived from
-/// the LIPM ([`StepTime`], [`AnklePitch`]).
+/// the LIPM ([`StepTime`], [`SoleTilt`]).
 pub fn pendulum_height(c: f64) -> f64 {
     G0 / (c * c)
 }

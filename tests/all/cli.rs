@@ -540,16 +540,18 @@ fn learn_names_the_step_parameters_of_a_run() {
     }
 }
 
-/// The sole's pitch is learned like any step parameter: from `--learn`, with its own table in
-/// a config (recorded in the run's identity), and refused in the frontal plane by its key.
+/// The sole's pitch and roll are learned like any step parameter: from `--learn`, each with
+/// its own table in a config (recorded in the run's identity), and each refused outside its
+/// plane by its key.
 #[test]
-fn the_soles_pitch_is_learned_from_the_command_line() {
+fn the_soles_pitch_and_roll_are_learned_from_the_command_line() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ankle");
     let config = dir.path().join("ankle.toml");
     std::fs::write(
         &config,
-        "[settings.learner.ankle-pitch]\nmax_offset = 0.05\n",
+        "[settings.learner.ankle-pitch]\nmax_offset = 0.05\n\
+         [settings.learner.ankle-roll]\ndead_zone = 0.01\n",
     )
     .unwrap();
     let run = |config: &std::path::Path| {
@@ -557,7 +559,7 @@ fn the_soles_pitch_is_learned_from_the_command_line() {
             &out,
             &[
                 "--learn",
-                "ankle-pitch,step-x",
+                "ankle-roll,ankle-pitch,step-x",
                 "--config",
                 config.to_str().unwrap(),
             ],
@@ -569,23 +571,27 @@ fn the_soles_pitch_is_learned_from_the_command_line() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(
         summary["learn"],
-        serde_json::json!(["step-x", "ankle-pitch"])
+        serde_json::json!(["step-x", "ankle-pitch", "ankle-roll"])
     );
     let identity = std::fs::read_to_string(out.join("run-config.toml")).unwrap();
     assert!(
         identity.contains("[settings.learner.ankle-pitch]")
-            && identity.contains("max_offset = 0.05"),
+            && identity.contains("max_offset = 0.05")
+            && identity.contains("[settings.learner.ankle-roll]")
+            && identity.contains("dead_zone = 0.01"),
         "{identity}"
     );
-    std::fs::write(
-        &config,
-        "[settings.learner.ankle-pitch]\nplane = \"frontal\"\n",
-    )
-    .unwrap();
-    let o = run(&config);
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("ankle-pitch.plane"), "{err}");
+    for (table, plane) in [("ankle-pitch", "frontal"), ("ankle-roll", "sagittal")] {
+        std::fs::write(
+            &config,
+            format!("[settings.learner.{table}]\nplane = \"{plane}\"\n"),
+        )
+        .unwrap();
+        let o = run(&config);
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(&format!("{table}.plane")), "{err}");
+    }
 }
 
 /// The step time learned in both planes runs from the shipped config: the run's identity

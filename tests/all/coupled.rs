@@ -191,7 +191,7 @@ fn as_a_policy_it_learns_both_planes_and_not_the_step_time() {
     let inputs = PerParameter::from_planes(SAGITTAL, LATERAL);
     let offsets = learner.offsets(&inputs).unwrap();
     let both = learner.predict(&at(SAGITTAL, LATERAL)).unwrap();
-    assert_eq!(offsets.0, [both[0], both[1], 0.0, 0.0]);
+    assert_eq!(offsets.0, [both[0], both[1], 0.0, 0.0, 0.0]);
     let reports = FootstepPolicy::touch_down(
         &mut learner,
         &PerParameter::from_planes(outcome(0.1, 0.0), outcome(0.0, 0.0)),

@@ -1153,12 +1153,19 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
             },
         ),
     ];
-    // The sole's pitch is learned in the sagittal plane only, with its own table.
+    // The sole's pitch is learned in the sagittal plane only, its roll in the frontal plane
+    // only, each with its own table.
     let ankle = |ankle_pitch| LearnerConfig {
         ankle_pitch,
         ..LearnerConfig::default()
     };
+    let roll = |ankle_roll| LearnerConfig {
+        ankle_roll,
+        ..LearnerConfig::default()
+    };
     let frontal = Some(steplearn::control::Planes::Frontal);
+    let sagittal = Some(steplearn::control::Planes::Sagittal);
+    let both = Some(steplearn::control::Planes::Both);
     let ankle_cases = [
         (
             "ankle-pitch.plane",
@@ -1171,6 +1178,27 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
             "ankle-pitch.max_offset",
             ankle(ParameterSettings {
                 max_offset: Some(f64::INFINITY),
+                ..ParameterSettings::default()
+            }),
+        ),
+        (
+            "ankle-roll.plane",
+            roll(ParameterSettings {
+                plane: sagittal,
+                ..ParameterSettings::default()
+            }),
+        ),
+        (
+            "ankle-roll.plane",
+            roll(ParameterSettings {
+                plane: both,
+                ..ParameterSettings::default()
+            }),
+        ),
+        (
+            "ankle-roll.eta",
+            roll(ParameterSettings {
+                eta: Some(f64::NAN),
                 ..ParameterSettings::default()
             }),
         ),

@@ -61,6 +61,7 @@ fn steps_take_the_commanded_time_and_alternate() {
             tilt: None,
             swing_landed: None,
             ankle_pitch: 0.0,
+            ankle_roll: 0.0,
         };
         g.update(&cmd, dt);
         t += dt;
@@ -142,6 +143,7 @@ fn bad_command_values_are_ignored() {
         tilt: Some([[f64::NAN, 0.0], [0.0, f64::INFINITY]]),
         swing_landed: None,
         ankle_pitch: 0.0,
+        ankle_roll: 0.0,
     };
     for _ in 0..100 {
         let t = g.update(&cmd, 0.01);
@@ -171,6 +173,7 @@ fn first_exchange(g: &mut MotionGenerator, step_time: f64, landed_at: Option<f64
             tilt: None,
             swing_landed: landed_at.map(|at| t >= at - 1e-9),
             ankle_pitch: 0.0,
+            ankle_roll: 0.0,
         };
         g.update(&cmd, dt);
         t += dt;
@@ -218,6 +221,7 @@ fn a_held_swing_leg_straightens_towards_the_ground() {
             tilt: None,
             swing_landed: Some(false),
             ankle_pitch: 0.0,
+            ankle_roll: 0.0,
         };
         g.update(&cmd, dt);
         extensions.push(g.legs()[swing.index()].extension);
@@ -311,6 +315,7 @@ fn swing_poses(config: MotionConfig, tilt: f64, step_x: f64) -> Vec<LegPose> {
         tilt: Some([[0.0, 0.0], [0.0, 0.0]]),
         swing_landed: None,
         ankle_pitch: 0.0,
+        ankle_roll: 0.0,
     };
     while g.time_since_start() < 2.0 || g.phase() > 0.0 {
         let left = (1.0 - g.phase()) * 0.4;
@@ -408,6 +413,7 @@ fn tilted_ticks(g: &mut MotionGenerator, tilt: f64, rate: f64, ticks: usize) {
             tilt: Some([[0.0, tilt], [0.0, rate]]),
             swing_landed: None,
             ankle_pitch: 0.0,
+            ankle_roll: 0.0,
         };
         g.update(&cmd, dt);
     }

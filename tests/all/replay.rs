@@ -147,6 +147,49 @@ fn assert_push_as_logged(r: &steplearn::replay::Replay, table: &Path, names: &[(
     }
 }
 
+/// A replay of a walker that learns the sole's pitch and roll shows their offsets (`d_a`,
+/// `d_r`) as the run applied them, and the model's frames leave them out.
+#[test]
+fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("sole.toml");
+    std::fs::write(
+        &config,
+        "[settings.learner.ankle-pitch]\ndead_zone = 0.0\n[settings.learner.ankle-roll]\ndead_zone = 0.0\n",
+    )
+    .unwrap();
+    let dir = tmp.path().join("run");
+    let o = Command::new(env!("CARGO_BIN_EXE_steplearn"))
+        .args(["experiment", "stability", "--seed", "2", "--pushes", "2"])
+        .args(["--learn", "step-x,ankle-pitch,ankle-roll", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = record(&Registry::builtin(), &dir, 2).unwrap();
+    let learned = r.walks.iter().find(|w| w.name == "learned").unwrap();
+    let model = r.walks.iter().find(|w| w.name == "model").unwrap();
+    let moved = |f: fn(&steplearn::replay::Frame) -> f64| {
+        learned.frames.iter().filter(|fr| f(fr) != 0.0).count()
+    };
+    assert!(moved(|f| f.d_a) > 10 && moved(|f| f.d_r) > 10);
+    let limit = steplearn::control::motion::ANKLE_LIMIT;
+    assert!(
+        learned
+            .frames
+            .iter()
+            .all(|f| f.d_a.abs() <= limit && f.d_r.abs() <= limit)
+    );
+    assert!(model.frames.iter().all(|f| f.d_a == 0.0 && f.d_r == 0.0));
+    let json = serde_json::to_string(&model.frames[0]).unwrap();
+    assert!(!json.contains("d_a") && !json.contains("d_r"), "{json}");
+    // The page's timeline draws them.
+    let html = page(&r).unwrap();
+    assert!(html.contains("sole roll dR"));
+}
+
 #[test]
 fn a_stability_replay_ends_each_push_as_the_run_logged_it() {
     let dir = stability_dir();

@@ -5,6 +5,7 @@ use steplearn::control::walker::{StepReports, Walker, WalkerConfig, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{TrialError, run_trial};
+use steplearn::robot::Side;
 use steplearn::sim::{Humanoid, SimConfig};
 
 #[test]
@@ -252,14 +253,15 @@ fn pushes_delayed_by_a_fall_wait_for_the_gait_and_trials_end_after_the_last_push
 }
 
 /// A policy with one fixed sagittal offset and, if given, one fixed lateral width offset, one
-/// fixed step-time offset and one fixed sole pitch, all held from its `from_query`-th query on
-/// (0 before); it records the sagittal, the step-time and the sole's reach the walker reports
-/// and learns nothing.
+/// fixed step-time offset and one fixed sole pitch or roll, all held from its `from_query`-th
+/// query on (0 before); it records the sagittal, the step-time and the sole's reach the walker
+/// reports (the pitch's, or the roll's if it holds a roll) and learns nothing.
 pub(crate) struct FixedOffset {
     pub(crate) offset: f64,
     pub(crate) lateral: Option<f64>,
     pub(crate) time: Option<f64>,
     pub(crate) ankle: Option<f64>,
+    pub(crate) roll: Option<f64>,
     pub(crate) from_query: usize,
     pub(crate) queries: usize,
     pub(crate) reach: Vec<[f64; 2]>,
@@ -274,6 +276,7 @@ impl FixedOffset {
             lateral: None,
             time: None,
             ankle: None,
+            roll: None,
             from_query: 0,
             queries: 0,
             reach: vec![],
@@ -289,6 +292,7 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
         set.extend(self.lateral.map(|_| StepParameter::StepY));
         set.extend(self.time.map(|_| StepParameter::StepTime));
         set.extend(self.ankle.map(|_| StepParameter::AnklePitch));
+        set.extend(self.roll.map(|_| StepParameter::AnkleRoll));
         LearnSet::of(&set).unwrap()
     }
     fn offsets(
@@ -302,6 +306,7 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
             out[StepParameter::StepY] = self.lateral.unwrap_or(0.0);
             out[StepParameter::StepTime] = self.time.unwrap_or(0.0);
             out[StepParameter::AnklePitch] = self.ankle.unwrap_or(0.0);
+            out[StepParameter::AnkleRoll] = self.roll.unwrap_or(0.0);
         }
         Ok(out)
     }
@@ -311,7 +316,12 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
     ) -> Result<(), steplearn::control::learner::LearnerError> {
         self.reach.push(reach[StepParameter::StepX]);
         self.time_reach.push(reach[StepParameter::StepTime]);
-        self.ankle_reach.push(reach[StepParameter::AnklePitch]);
+        let sole = if self.roll.is_some() {
+            StepParameter::AnkleRoll
+        } else {
+            StepParameter::AnklePitch
+        };
+        self.ankle_reach.push(reach[sole]);
         Ok(())
     }
     fn touch_down(
@@ -488,22 +498,23 @@ fn a_step_time_offset_shortens_the_steps_and_its_reach_is_reported() {
     );
 }
 
-/// What happened after a sole pitch offset was switched on stepping in place.
+/// What happened after a sole tilt offset was switched on stepping in place.
 struct AnkleSwitch {
     /// The support foot's mean centre of pressure over the single-support ticks of the first
-    /// 0.25 s (m forward of the foot's frame).
+    /// 0.25 s (m forward of the foot's frame) for the pitch, of the first 0.6 s (two steps, m
+    /// towards the swing leg's side) for the roll.
     cop: f64,
-    /// The trunk's estimated pitch 0.3 s after the switch (rad).
+    /// The trunk's estimated pitch 0.05 s after the centre of pressure's window (rad).
     pitch: f64,
-    /// The offset the walker applied, every tick.
+    /// The offset of the switched parameter the walker applied, every tick.
     applied: Vec<f64>,
     /// The reach reported for it, every tick.
     reach: Vec<[f64; 2]>,
 }
 
-/// Stepping in place, the sole's pitch offset `value` switched on at the first tick after 3 s
-/// (the learner's engagement has ramped in by then).
-fn after_an_ankle_switch(value: f64) -> AnkleSwitch {
+/// Stepping in place, the sole's pitch (`ankle-pitch`) or roll (`ankle-roll`) offset `value`
+/// switched on at the first tick after 3 s (the learner's engagement has ramped in by then).
+fn after_an_ankle_switch(sole: StepParameter, value: f64) -> AnkleSwitch {
     let mut robot = Humanoid::new(SimConfig::default()).unwrap();
     let mut walker = Walker::new(
         WalkerConfig::new(WalkerMode::CaptureStep),
@@ -511,22 +522,36 @@ fn after_an_ankle_switch(value: f64) -> AnkleSwitch {
     )
     .unwrap();
     let mut policy = FixedOffset {
-        ankle: Some(value),
+        ankle: (sole == StepParameter::AnklePitch).then_some(value),
+        roll: (sole == StepParameter::AnkleRoll).then_some(value),
         from_query: usize::MAX,
         ..FixedOffset::sagittal(0.0)
     };
+    let window = if sole == StepParameter::AnkleRoll {
+        0.6
+    } else {
+        0.25
+    };
     let (mut cops, mut pitch, mut applied) = (vec![], f64::NAN, vec![]);
-    while robot.time() < 3.3 {
+    while robot.time() < 3.05 + window {
         let sensors = robot.sensors();
         if sensors.time >= 3.0 && policy.from_query == usize::MAX {
             policy.from_query = policy.queries;
         }
         let tick = walker.tick(&sensors, 0.0, Some(&mut policy)).unwrap();
-        applied.push(tick.ankle_offset);
+        applied.push(tick.offsets[sole]);
         let since = sensors.time - 3.0;
         let [a, b] = sensors.feet;
-        if (0.0..0.25).contains(&since) && a.in_contact != b.in_contact {
-            cops.push(if a.in_contact { a.cop[0] } else { b.cop[0] });
+        if (0.0..window).contains(&since) && a.in_contact != b.in_contact {
+            let (support, foot) = if a.in_contact {
+                (Side::Left, a)
+            } else {
+                (Side::Right, b)
+            };
+            cops.push(match sole {
+                StepParameter::AnkleRoll => support.other().sign() * foot.cop[1],
+                _ => foot.cop[0],
+            });
         }
         pitch = tick.estimate.pitch;
         robot.step(&tick.targets).unwrap();
@@ -544,11 +569,12 @@ fn after_an_ankle_switch(value: f64) -> AnkleSwitch {
 /// The learned sole pitch reaches the support foot: switched on stepping in place, +0.02 rad
 /// (toe down) moves the support foot's centre of pressure forward at once and turns the trunk
 /// back, -0.02 rad (heel down) the other way round (measured: about 0.04 m either way in the
-/// first 0.25 s, the lever `AnklePitch::lever` stands for); the walker applies exactly the
+/// first 0.25 s, the lever `SoleTilt::lever` stands for); the walker applies exactly the
 /// policy's offset and reports the ankle's limit as its reach.
 #[test]
 fn an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure() {
-    let [toe, flat, heel] = [0.02, 0.0, -0.02].map(after_an_ankle_switch);
+    let [toe, flat, heel] =
+        [0.02, 0.0, -0.02].map(|a| after_an_ankle_switch(StepParameter::AnklePitch, a));
     assert!(
         toe.cop > flat.cop + 0.015 && flat.cop > heel.cop + 0.015,
         "centre of pressure: toe down {:.4} m, flat {:.4} m, heel down {:.4} m",
@@ -568,4 +594,35 @@ fn an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure() {
     let limit = steplearn::control::motion::ANKLE_LIMIT;
     assert!(!toe.reach.is_empty());
     assert!(toe.reach.iter().all(|r| *r == [-limit, limit]));
+}
+
+/// The learned sole roll reaches the support foot: switched on stepping in place, +0.02 rad
+/// (the edge on the swing leg's side down) moves the support foot's centre of pressure towards
+/// the swing leg's side, -0.02 rad away from it, on whichever foot the walker stands; the
+/// walker applies the policy's offset, mirrored to the side of each step's swing leg
+/// (`Tick::offsets` holds the sole's roll, positive pressing its right edge), and reports the
+/// ankle's limit as its reach.
+#[test]
+fn an_ankle_roll_offset_moves_the_support_soles_centre_of_pressure_sideways() {
+    let [inner, flat, outer] =
+        [0.02, 0.0, -0.02].map(|r| after_an_ankle_switch(StepParameter::AnkleRoll, r));
+    assert!(
+        inner.cop > flat.cop + 0.005 && flat.cop > outer.cop + 0.005,
+        "centre of pressure towards the swing side: +0.02 {:.4} m, flat {:.4} m, -0.02 {:.4} m",
+        inner.cop,
+        flat.cop,
+        outer.cop
+    );
+    let switched: Vec<f64> = inner
+        .applied
+        .iter()
+        .copied()
+        .filter(|a| *a != 0.0)
+        .collect();
+    assert!(switched.len() > 20 && inner.applied[..10].iter().all(|&a| a == 0.0));
+    assert!(switched.iter().all(|a| a.abs() == 0.02));
+    assert!(switched.contains(&0.02) && switched.contains(&-0.02));
+    let limit = steplearn::control::motion::ANKLE_LIMIT;
+    assert!(!inner.reach.is_empty());
+    assert!(inner.reach.iter().all(|r| *r == [-limit, limit]));
 }

@@ -10,18 +10,19 @@
 //! standard error; then the least-squares slope per F_R and the limits it implies.
 //!
 //! `--parameter ankle-pitch` measures the same for the support sole's pitch offset dA and its
-//! rule (`rules::AnklePitch`, G_A): the slope k_A = -dG_A/d(dA) bounds the gain of
-//! dA <- dA + gain G_A the same way.
+//! rule (`rules::SoleTilt`, G_A): the slope k_A = -dG_A/d(dA) bounds the gain of
+//! dA <- dA + gain G_A the same way; `--parameter ankle-roll --plane frontal` for its roll dR
+//! (G_R, the frontal plane's).
 //!
 //! `cargo run --release -p steplearn-probes --bin step_time_gain -- --seconds 40 [--plane frontal]
-//! [--parameter ankle-pitch]`
+//! [--parameter ankle-pitch | ankle-roll]`
 
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::control::learner::{LearnerError, LearnerInput, TouchDownReport};
 use steplearn::control::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
 use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
-use steplearn::experiments::experiment::{ankle_pitch_rule, step_time_rule};
+use steplearn::experiments::experiment::{sole_tilt_rule, step_time_rule};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::run_trial;
 use steplearn::rules::{LearningRule, StepOutcome};
@@ -58,8 +59,9 @@ struct Args {
     /// `[settings.learner.step-time] plane`).
     #[arg(long, default_value = "sagittal")]
     plane: Plane,
-    /// The parameter held fixed and whose gradient is measured: `step-time` (G_T) or
-    /// `ankle-pitch` (G_A, sagittal only; offsets in rad).
+    /// The parameter held fixed and whose gradient is measured: `step-time` (G_T),
+    /// `ankle-pitch` (G_A, sagittal only; offsets in rad) or `ankle-roll` (G_R, frontal only;
+    /// offsets in rad).
     #[arg(long, default_value = "step-time")]
     parameter: StepParameter,
 }
@@ -114,8 +116,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let rule = |settings: &steplearn::experiments::settings::Settings| -> Result<Box<dyn LearningRule>, String> {
         match (args.parameter, args.plane) {
             (StepParameter::StepTime, plane) => Ok(Box::new(step_time_rule(plane, &settings.walker))),
-            (StepParameter::AnklePitch, Plane::Sagittal) => {
-                Ok(Box::new(ankle_pitch_rule(&settings.walker)))
+            (p @ StepParameter::AnklePitch, Plane::Sagittal)
+            | (p @ StepParameter::AnkleRoll, Plane::Frontal) => {
+                Ok(Box::new(sole_tilt_rule(p, &settings.walker)))
             }
             (p, plane) => Err(format!("--parameter {p} in the {plane} plane is not measured here")),
         }
@@ -125,6 +128,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The offset's symbol and unit in the printed lines.
     let (x, unit) = match args.parameter {
         StepParameter::AnklePitch => ("A", "rad"),
+        StepParameter::AnkleRoll => ("R", "rad"),
         _ => ("T", "s"),
     };
     let g = format!("g_{}", x.to_lowercase());

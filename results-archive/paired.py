@@ -1,0 +1,33 @@
+"""Shared by the archive's table scripts: the mean of per-seed values with its Student-t 95%
+interval, and a run's summary. `sys.path.insert(0, "..")` from a directory here, then
+`from paired import interval, summary, i50`."""
+import json
+import math
+import os
+
+# Two-sided 97.5% quantiles of Student's t by degrees of freedom.
+T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306,
+        9: 2.262, 10: 2.228, 11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131,
+        16: 2.120, 17: 2.110, 18: 2.101, 19: 2.093}
+
+
+def interval(xs):
+    """`mean [low, high]`, the 95% interval of the mean over `xs` (just the mean for one)."""
+    n = len(xs)
+    m = sum(xs) / n
+    if n < 2:
+        return f"{m:.3f}"
+    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1))
+    h = T975[n - 1] * sd / math.sqrt(n)
+    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
+
+
+def summary(path):
+    """The run's summary.json."""
+    with open(os.path.join(path, "summary.json")) as f:
+        return json.load(f)
+
+
+def i50(s, walker):
+    """`walker`'s I50 (Ns) in the summary `s`."""
+    return s["controllers"][walker]["impulse_at_50pct_fall_ns"]
