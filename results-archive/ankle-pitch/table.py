@@ -6,32 +6,17 @@ mean and Student-t 95% interval of the learner's I50 over the model's in the sam
 is the default one: no setting here changes it), the same for `step-x,step-time` on the same
 seeds, and their paired difference; then the fall causes summed over the group.
 """
-import json
-import math
 import os
 import sys
 
-T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
-
-
-def summary(path):
-    with open(os.path.join(path, "summary.json")) as f:
-        return json.load(f)
+HERE = os.path.dirname(os.path.abspath(__file__))
+os.chdir(HERE)
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import i50, interval, summary  # noqa: E402
 
 
 def ratio(s):
-    c = s["controllers"]
-    return c["learned"]["impulse_at_50pct_fall_ns"] / c["model"]["impulse_at_50pct_fall_ns"]
-
-
-def interval(xs):
-    n = len(xs)
-    m = sum(xs) / n
-    if n < 2:
-        return f"{m:.3f}"
-    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1))
-    h = T975[n - 1] * sd / math.sqrt(n)
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
+    return i50(s, "learned") / i50(s, "model")
 
 
 def base_run(seed, direction):
