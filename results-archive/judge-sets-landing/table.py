@@ -1,28 +1,27 @@
 # Experiment C on seeds 5-9 with the default swing (run.sh): per learned set and direction, the
 # model's I50 and catch step reach, and the learned walker's I50 over the model's on the same
 # pushes, paired by seed (mean and 95% Student-t interval).
-import json, math, os, statistics as st
+import json, os, statistics as st, sys
 HERE = os.path.dirname(os.path.abspath(__file__))
-T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import i50, mean_h, summary  # noqa: E402
 NAMES = ["step-x,step-time", "step-x,step-y,step-time"]
 SETS = [(name, os.path.join(HERE, "C-" + name + "-{d}-s{s}")) for name in NAMES]
 # The defaults until 2026-11-28 (steps on time), on the same seeds and pushes.
 BEFORE = {name: os.path.join(HERE, "..", "judge-sets", "C-" + name + "-{d}-s{s}") for name in NAMES}
 
 def ci(xs):
-    m = st.mean(xs)
-    h = T[len(xs)] * st.stdev(xs) / math.sqrt(len(xs)) if len(xs) > 1 else float("nan")
+    m, h = mean_h(xs)  # h is nan for one value
     return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
 
 def runs(pattern, d):
     out = {}
     for s in range(5, 10):
-        f = pattern.format(d=d, s=s) + "/summary.json"
-        if os.path.exists(f):
-            j = json.load(open(f))
-            c, r = j["controllers"], j["catch_step_reach"]
-            out[s] = (c["model"]["impulse_at_50pct_fall_ns"], c["learned"]["impulse_at_50pct_fall_ns"],
-                      r["model"], r["learned"])
+        run = pattern.format(d=d, s=s)
+        if os.path.exists(run + "/summary.json"):
+            j = summary(run)
+            r = j["catch_step_reach"]
+            out[s] = (i50(j, "model"), i50(j, "learned"), r["model"], r["learned"])
     return out
 
 print("| learned set | pushes | seeds | model I50 (Ns) | reach, model | reach, learned | learned / model I50 "

@@ -1,18 +1,14 @@
 # Judge, seeds 5-9, C (400 pushes), --learn step-x,step-time, against the default (results-archive/catch-step-reach):
 # python3 judge.py (configs/landing.toml, dirs judge-*) or python3 judge.py judge-lift0.3 (lift0.3.toml)
-import json,os,sys,statistics as st,math
+import os,sys,statistics as st
 HERE=os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0,os.path.dirname(HERE))
+from paired import i50,mean_h as ci,summary  # noqa: E402  (ci: mean and 95% half-width, nan for one)
 A=os.path.join(HERE,'..','catch-step-reach')
 PREFIX=sys.argv[1] if len(sys.argv)>1 else 'judge'
 def get(d):
-    f=json.load(open(os.path.join(d,'summary.json')))
-    c=f['controllers']; r=f['catch_step_reach']
-    return r['model'], c['model']['impulse_at_50pct_fall_ns'], r['learned'], c['learned']['impulse_at_50pct_fall_ns']
-def ci(xs):
-    m=st.mean(xs); 
-    if len(xs)<2: return m,float('nan')
-    t={2:12.706,3:4.303,4:3.182,5:2.776}[len(xs)]
-    return m, t*st.stdev(xs)/math.sqrt(len(xs))
+    f=summary(d); r=f['catch_step_reach']
+    return r['model'], i50(f,'model'), r['learned'], i50(f,'learned')
 for dir in ['forward','backward']:
     rows=[]
     for s in range(5,10):

@@ -4,18 +4,12 @@
 # falls by cause (summed), and the learner's sideways I50 over that of the same set's default
 # learner (SET-default) on the same seeds. The model is the same walker in every lever.
 #   python3 levers.py [SEEDS] (default "0 1 2 3 4"; "5 6 7 8 9" for the judge runs)
-import glob, json, math, os, re, statistics as st, sys
+import glob, os, re, statistics as st, sys
 from collections import Counter, defaultdict
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
-
-def interval(v):
-    m = st.mean(v)
-    if len(v) < 2:
-        return f"{m:.3f}"
-    h = T[len(v)] * st.stdev(v) / math.sqrt(len(v))
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import interval, summary  # noqa: E402  (forward.py, diagonal/table.py import interval from here)
 
 def main():
     seeds = [int(s) for s in (sys.argv[1] if len(sys.argv) > 1 else "0 1 2 3 4").split()]
@@ -25,7 +19,7 @@ def main():
         m = re.match(r"C-(.+)-(left|right)-s(\d+)$", os.path.basename(d))
         if not m or int(m[3]) not in seeds or not os.path.exists(os.path.join(d, "summary.json")):
             continue
-        runs[m[1]][(m[2], int(m[3]))] = json.load(open(os.path.join(d, "summary.json")))
+        runs[m[1]][(m[2], int(m[3]))] = summary(d)
     for lever, r in runs.items():
         i50 = lambda k, w: r[k]["controllers"][w]["impulse_at_50pct_fall_ns"]
         parts = []

@@ -3,20 +3,15 @@
 # Student-t interval, and the learner's catch step reach. The model is the same in every lever.
 #   python3 levers.py [LEVER ...] (default: every lever run here; the first is the reference)
 # judge.py judges levers on seeds 5-9 with the same helpers.
-import json, math, os, statistics as st, sys
+import os, statistics as st, sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-T = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import i50, interval, summary  # noqa: E402  (judge.py imports interval from here)
 
 def get(d):
-    f = json.load(open(os.path.join(d, "summary.json")))
-    c = f["controllers"]
-    return (c["model"]["impulse_at_50pct_fall_ns"], c["learned"]["impulse_at_50pct_fall_ns"],
-            f["catch_step_reach"]["learned"])
-
-def interval(v):
-    m = st.mean(v); h = T[len(v)] * st.stdev(v) / math.sqrt(len(v))
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
+    f = summary(d)
+    return i50(f, "model"), i50(f, "learned"), f["catch_step_reach"]["learned"]
 
 def main():
     levers = sys.argv[1:] or ["default", "nofalls", "leak0.02", "maxoff0.05", "share0.5"]

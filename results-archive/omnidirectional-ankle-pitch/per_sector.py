@@ -4,21 +4,17 @@ paired over seeds 5-9 (mean of the per-seed ratios, 95% Student-t interval), the
 (90 and 270 degrees); beside it the same for step-x,step-y,step-time on the same pushes
 (../omnidirectional-default/, the same model bit for bit) and the paired difference.
 Run: python3 per_sector.py (in this directory)."""
-import glob, json, math
+import glob, json, os, sys
 
-T95 = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776, 6: 2.571, 7: 2.447, 8: 2.365, 9: 2.306, 10: 2.262}
+HERE = os.path.dirname(os.path.abspath(__file__))
+os.chdir(HERE)
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import interval as ci  # noqa: E402
 ours = [json.load(open(f)) for f in sorted(glob.glob("omni*/summary.json"))]
 base = [json.load(open(f)) for f in sorted(glob.glob("../omnidirectional-default/omni*/summary.json"))]
 assert [r["seed"] for r in ours] == [r["seed"] for r in base]
 for a, b in zip(ours, base):
     assert a["i50_ns"]["model"] == b["i50_ns"]["model"], "the model differs"
-
-
-def ci(xs):
-    n = len(xs)
-    m = sum(xs) / n
-    h = T95[n] * math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1)) / math.sqrt(n)
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
 
 
 def rows(f):

@@ -2,17 +2,13 @@
 the per-seed ratios, 95% Student-t interval), the sectors' mean (ratio of the sectors' mean I50s,
 as the experiment defines it) and the two lateral sectors' (90 and 270 degrees).
 Run: python3 per_sector.py (in this directory)."""
-import glob, json, math
+import glob, json, os, sys
 
-T95 = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776, 6: 2.571, 7: 2.447, 8: 2.365, 9: 2.306, 10: 2.262}
+HERE = os.path.dirname(os.path.abspath(__file__))
+os.chdir(HERE)
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import interval as ci  # noqa: E402
 runs = [json.load(open(f)) for f in sorted(glob.glob("omni*/summary.json"))]
-
-
-def ci(xs):
-    n = len(xs)
-    m = sum(xs) / n
-    h = T95[n] * math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1)) / math.sqrt(n)
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
 
 
 sectors = runs[0]["sectors_deg"]

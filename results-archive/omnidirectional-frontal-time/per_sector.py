@@ -3,23 +3,15 @@ bench's seeds (mean of the per-seed ratios, 95% Student-t interval), the sectors
 the sectors' mean I50s, as the experiment defines it), the two lateral sectors' (90 and 270
 degrees), and the same walker over REF's `learned` on the same seeds (the same model).
 Run: python3 per_sector.py [DIR] [REF] (defaults: this directory, ../omnidirectional-default)."""
-import glob, json, math, os, sys
+import glob, json, os, sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-T95 = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776}
+sys.path.insert(0, os.path.dirname(HERE))
+from paired import interval as ci  # noqa: E402
 
 
 def load(d):
     return {r["seed"]: r for r in (json.load(open(f)) for f in glob.glob(os.path.join(d, "omni*/summary.json")))}
-
-
-def ci(xs):
-    n = len(xs)
-    m = sum(xs) / n
-    if n < 2:
-        return f"{m:.3f}"
-    h = T95[n] * math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1)) / math.sqrt(n)
-    return f"{m:.3f} [{m - h:.3f}, {m + h:.3f}]"
 
 
 def main():
