@@ -11,17 +11,23 @@ const PUSHES: usize = 3;
 
 /// A short run of `experiment` with `pushes` pushes, made with the real command.
 fn make_run(experiment: &str, seed: u64, pushes: usize) -> (tempfile::TempDir, PathBuf) {
+    let (seed, pushes) = (seed.to_string(), pushes.to_string());
+    run_experiment(&[experiment, "--seed", &seed, "--pushes", &pushes], None)
+}
+
+/// `steplearn experiment ARGS [--config FILE] --out DIR` in a fresh temporary directory, the
+/// config's text (if any) written to FILE there; the run must succeed.
+fn run_experiment(args: &[&str], config: Option<&str>) -> (tempfile::TempDir, PathBuf) {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("run");
-    let o = Command::new(env!("CARGO_BIN_EXE_steplearn"))
-        .args(["experiment", experiment, "--seed"])
-        .arg(seed.to_string())
-        .arg("--pushes")
-        .arg(pushes.to_string())
-        .arg("--out")
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_steplearn"));
+    command.arg("experiment").args(args);
+    if let Some(text) = config {
+        let file = tmp.path().join("config.toml");
+        std::fs::write(&file, text).unwrap();
+        command.arg("--config").arg(file);
+    }
+    let o = command.arg("--out").arg(&dir).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     (tmp, dir)
 }
@@ -48,19 +54,10 @@ fn disturbance_dir() -> &'static Path {
 fn tracking_dir() -> &'static Path {
     static DIR: OnceLock<(tempfile::TempDir, PathBuf)> = OnceLock::new();
     &DIR.get_or_init(|| {
-        let tmp = tempfile::tempdir().unwrap();
-        let config = tmp.path().join("tiny.toml");
-        std::fs::write(&config, "[settings]\nscale = 0.05\n").unwrap();
-        let dir = tmp.path().join("run");
-        let o = Command::new(env!("CARGO_BIN_EXE_steplearn"))
-            .args(["experiment", "tracking", "--seed", "3", "--config"])
-            .arg(&config)
-            .arg("--out")
-            .arg(&dir)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        (tmp, dir)
+        run_experiment(
+            &["tracking", "--seed", "3"],
+            Some("[settings]\nscale = 0.05\n"),
+        )
     })
     .1
 }
@@ -151,23 +148,21 @@ fn assert_push_as_logged(r: &steplearn::replay::Replay, table: &Path, names: &[(
 /// `d_r`) as the run applied them, and the model's frames leave them out.
 #[test]
 fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
-    let tmp = tempfile::tempdir().unwrap();
-    let config = tmp.path().join("sole.toml");
-    std::fs::write(
-        &config,
-        "[settings.learner.ankle-pitch]\ndead_zone = 0.0\n[settings.learner.ankle-roll]\ndead_zone = 0.0\n",
-    )
-    .unwrap();
-    let dir = tmp.path().join("run");
-    let o = Command::new(env!("CARGO_BIN_EXE_steplearn"))
-        .args(["experiment", "stability", "--seed", "2", "--pushes", "2"])
-        .args(["--learn", "step-x,ankle-pitch,ankle-roll", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (_tmp, dir) = run_experiment(
+        &[
+            "stability",
+            "--seed",
+            "2",
+            "--pushes",
+            "2",
+            "--learn",
+            "step-x,ankle-pitch,ankle-roll",
+        ],
+        Some(
+            "[settings.learner.ankle-pitch]\ndead_zone = 0.0\n\
+             [settings.learner.ankle-roll]\ndead_zone = 0.0\n",
+        ),
+    );
     let r = record(&Registry::builtin(), &dir, 2).unwrap();
     let learned = r.walks.iter().find(|w| w.name == "learned").unwrap();
     let model = r.walks.iter().find(|w| w.name == "model").unwrap();

@@ -566,6 +566,25 @@ fn after_an_ankle_switch(sole: StepParameter, value: f64) -> AnkleSwitch {
     }
 }
 
+/// The switches of `sole` to +0.02, 0 and -0.02 rad; each moves the centre of pressure by at
+/// least `margin` (m) beyond the next.
+fn ankle_switches(sole: StepParameter, margin: f64) -> [AnkleSwitch; 3] {
+    let out = [0.02, 0.0, -0.02].map(|v| after_an_ankle_switch(sole, v));
+    let [plus, flat, minus] = [out[0].cop, out[1].cop, out[2].cop];
+    assert!(
+        plus > flat + margin && flat > minus + margin,
+        "{sole}: centre of pressure at +0.02 rad {plus:.4} m, flat {flat:.4} m, -0.02 rad {minus:.4} m"
+    );
+    out
+}
+
+/// The reach the walker reported for the switched sole was the ankle's limit, every tick.
+fn assert_reach_is_the_ankles_limit(switch: &AnkleSwitch) {
+    let limit = steplearn::control::motion::ANKLE_LIMIT;
+    assert!(!switch.reach.is_empty());
+    assert!(switch.reach.iter().all(|r| *r == [-limit, limit]));
+}
+
 /// The learned sole pitch reaches the support foot: switched on stepping in place, +0.02 rad
 /// (toe down) moves the support foot's centre of pressure forward at once and turns the trunk
 /// back, -0.02 rad (heel down) the other way round (measured: about 0.04 m either way in the
@@ -573,15 +592,7 @@ fn after_an_ankle_switch(sole: StepParameter, value: f64) -> AnkleSwitch {
 /// policy's offset and reports the ankle's limit as its reach.
 #[test]
 fn an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure() {
-    let [toe, flat, heel] =
-        [0.02, 0.0, -0.02].map(|a| after_an_ankle_switch(StepParameter::AnklePitch, a));
-    assert!(
-        toe.cop > flat.cop + 0.015 && flat.cop > heel.cop + 0.015,
-        "centre of pressure: toe down {:.4} m, flat {:.4} m, heel down {:.4} m",
-        toe.cop,
-        flat.cop,
-        heel.cop
-    );
+    let [toe, flat, heel] = ankle_switches(StepParameter::AnklePitch, 0.015);
     assert!(
         toe.pitch < flat.pitch && flat.pitch < heel.pitch,
         "trunk pitch: toe down {:.4}, flat {:.4}, heel down {:.4}",
@@ -591,28 +602,20 @@ fn an_ankle_pitch_offset_moves_the_support_soles_centre_of_pressure() {
     );
     let switched = toe.applied.iter().filter(|&&a| a == 0.02).count();
     assert!(switched > 20 && toe.applied[..10].iter().all(|&a| a == 0.0));
-    let limit = steplearn::control::motion::ANKLE_LIMIT;
-    assert!(!toe.reach.is_empty());
-    assert!(toe.reach.iter().all(|r| *r == [-limit, limit]));
+    assert_reach_is_the_ankles_limit(&toe);
 }
 
 /// The learned sole roll reaches the support foot: switched on stepping in place, +0.02 rad
 /// (the edge on the swing leg's side down) moves the support foot's centre of pressure towards
-/// the swing leg's side, -0.02 rad away from it, on whichever foot the walker stands; the
+/// the swing leg's side, -0.02 rad away from it, on whichever foot the walker stands
+/// (measured over two steps: about 0.03 m towards it, 0.05 m away; the sole's inner edge is
+/// nearer the centre of pressure of a flat sole); the
 /// walker applies the policy's offset, mirrored to the side of each step's swing leg
 /// (`Tick::offsets` holds the sole's roll, positive pressing its right edge), and reports the
 /// ankle's limit as its reach.
 #[test]
 fn an_ankle_roll_offset_moves_the_support_soles_centre_of_pressure_sideways() {
-    let [inner, flat, outer] =
-        [0.02, 0.0, -0.02].map(|r| after_an_ankle_switch(StepParameter::AnkleRoll, r));
-    assert!(
-        inner.cop > flat.cop + 0.005 && flat.cop > outer.cop + 0.005,
-        "centre of pressure towards the swing side: +0.02 {:.4} m, flat {:.4} m, -0.02 {:.4} m",
-        inner.cop,
-        flat.cop,
-        outer.cop
-    );
+    let [inner, ..] = ankle_switches(StepParameter::AnkleRoll, 0.005);
     let switched: Vec<f64> = inner
         .applied
         .iter()
@@ -622,7 +625,5 @@ fn an_ankle_roll_offset_moves_the_support_soles_centre_of_pressure_sideways() {
     assert!(switched.len() > 20 && inner.applied[..10].iter().all(|&a| a == 0.0));
     assert!(switched.iter().all(|a| a.abs() == 0.02));
     assert!(switched.contains(&0.02) && switched.contains(&-0.02));
-    let limit = steplearn::control::motion::ANKLE_LIMIT;
-    assert!(!inner.reach.is_empty());
-    assert!(inner.reach.iter().all(|r| *r == [-limit, limit]));
+    assert_reach_is_the_ankles_limit(&inner);
 }
