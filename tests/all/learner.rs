@@ -1080,6 +1080,7 @@ fn a_parameter_table_sets_its_offset_apart_from_the_shared_settings() {
 #[test]
 fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
     use steplearn::control::learner::ParameterSettings;
+    use steplearn::control::step_parameter::StepParameter;
     let cases = [
         (
             "step-time.eta",
@@ -1155,54 +1156,42 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
     ];
     // The sole's pitch is learned in the sagittal plane only, its roll in the frontal plane
     // only, each with its own table.
-    let ankle = |ankle_pitch| LearnerConfig {
-        ankle_pitch,
-        ..LearnerConfig::default()
+    use steplearn::control::Planes;
+    let table_of = |sole: StepParameter, own: ParameterSettings| {
+        let mut cfg = LearnerConfig::default();
+        match sole {
+            StepParameter::AnkleRoll => cfg.ankle_roll = own,
+            _ => cfg.ankle_pitch = own,
+        }
+        cfg
     };
-    let roll = |ankle_roll| LearnerConfig {
-        ankle_roll,
-        ..LearnerConfig::default()
+    let plane = |plane| ParameterSettings {
+        plane: Some(plane),
+        ..ParameterSettings::default()
     };
-    let frontal = Some(steplearn::control::Planes::Frontal);
-    let sagittal = Some(steplearn::control::Planes::Sagittal);
-    let both = Some(steplearn::control::Planes::Both);
+    let (pitch, roll) = (StepParameter::AnklePitch, StepParameter::AnkleRoll);
     let ankle_cases = [
-        (
-            "ankle-pitch.plane",
-            ankle(ParameterSettings {
-                plane: frontal,
-                ..ParameterSettings::default()
-            }),
-        ),
+        ("ankle-pitch.plane", pitch, plane(Planes::Frontal)),
+        ("ankle-roll.plane", roll, plane(Planes::Sagittal)),
+        ("ankle-roll.plane", roll, plane(Planes::Both)),
         (
             "ankle-pitch.max_offset",
-            ankle(ParameterSettings {
+            pitch,
+            ParameterSettings {
                 max_offset: Some(f64::INFINITY),
                 ..ParameterSettings::default()
-            }),
-        ),
-        (
-            "ankle-roll.plane",
-            roll(ParameterSettings {
-                plane: sagittal,
-                ..ParameterSettings::default()
-            }),
-        ),
-        (
-            "ankle-roll.plane",
-            roll(ParameterSettings {
-                plane: both,
-                ..ParameterSettings::default()
-            }),
+            },
         ),
         (
             "ankle-roll.eta",
-            roll(ParameterSettings {
+            roll,
+            ParameterSettings {
                 eta: Some(f64::NAN),
                 ..ParameterSettings::default()
-            }),
+            },
         ),
-    ];
+    ]
+    .map(|(key, sole, own)| (key, table_of(sole, own)));
     for (key, cfg) in cases.into_iter().chain(ankle_cases) {
         match cfg.check() {
             Err(LearnerError::InvalidConfig { param, .. }) => assert_eq!(param, key),
