@@ -414,6 +414,42 @@ mod tests {
     }
 
     #[test]
+    fn the_soles_roll_reads_and_learns_the_frontal_plane() {
+        let mut l = StepLearner::new(vec![
+            (StepParameter::AnkleRoll, learner(StepParameter::AnkleRoll)),
+            (StepParameter::StepX, learner(StepParameter::StepX)),
+        ])
+        .unwrap();
+        assert_eq!(l.learns().to_string(), "step-x,ankle-roll");
+        let reach = PerParameter::splat([-1.0, 1.0]);
+        for k in 0..3 {
+            l.offsets(&inputs(k)).unwrap();
+            l.set_reach(&reach).unwrap();
+        }
+        let lateral = inputs(0)[StepParameter::AnkleRoll];
+        let roll = l.learner(StepParameter::AnkleRoll).unwrap();
+        assert_eq!(roll.plane(), Plane::Frontal);
+        assert!(roll.recorded_inputs().all(|x| x == lateral));
+        // Leaning back sagittally, towards the swing leg sideways: the roll presses the
+        // sole's edge on the swing leg's side (G_R > 0, the frontal G times the roll's factor).
+        let lean = StepOutcome {
+            theta_e: 0.1,
+            theta_e_dot: 0.0,
+            f_e: 0.0,
+            f_r: 0.0,
+        };
+        let o = PerParameter::from_planes(outcome(-0.1)[StepParameter::StepX], lean);
+        let r = l.touch_down(&o).unwrap();
+        let g_r = r[StepParameter::AnkleRoll].unwrap().gradient;
+        assert!(g_r > 0.0);
+        assert!(
+            (g_r - SoleTilt::roll().factor() * PendulumCart::default().gradient(&lean)).abs()
+                < 1e-12
+        );
+        assert!(r[StepParameter::StepX].unwrap().gradient < 0.0);
+    }
+
+    #[test]
     fn a_step_time_in_both_planes_sums_one_learner_per_plane() {
         let mut l = both_planes();
         assert_eq!(l.learns().to_string(), "step-x,step-time");

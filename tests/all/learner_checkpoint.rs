@@ -241,7 +241,11 @@ fn a_checkpoint_keeps_the_parameter_its_learner_learns() {
     };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("learner.json");
-    for p in [StepParameter::StepTime, StepParameter::AnklePitch] {
+    for p in [
+        StepParameter::StepTime,
+        StepParameter::AnklePitch,
+        StepParameter::AnkleRoll,
+    ] {
         let learner =
             FootstepLearner::new(approx(), PendulumCart::default(), LearnerConfig::default())
                 .unwrap()
