@@ -7,9 +7,9 @@
 //! in progress. A policy answers for the parameters it [`learns`](FootstepPolicy::learns) and
 //! ignores the others. The inputs and outcomes of the step parameters:
 //!
-//! - `step-x` and `step-time`: the sagittal plane, input
+//! - `step-x`, `step-time` and `ankle-pitch`: the sagittal plane, input
 //!   `(theta_E, theta_E_dot, F_R)`, outcome `(theta_E, theta_E_dot, F_E, F_R)` (eq. 1-2);
-//! - `step-y`: the frontal plane mirrored to the swing leg's side, input
+//! - `step-y` and `ankle-roll`: the frontal plane mirrored to the swing leg's side, input
 //!   `(lean, lean rate, W_R - 2 delta)`, outcome the lean, its rate and the width error
 //!   `W - W_R` (see [`Walker`](super::walker::Walker)).
 //!
