@@ -5,8 +5,8 @@ pushes (the model is the same walker in both; checked).
 python3 table.py TAG[:BASE]... prints per tag and seed group: sideways (per seed the summed
 left and right I50s, learner over model), its base's (the lateral levers' `step-x,step-y,
 step-time` runs with config BASE, default `default`) and the learner over the base learner;
-pushed forward (if run) the same against ../leaderboard-sets-default (BASE `default`) or the
-lateral levers' C-forward-BASE runs; then the fall causes summed.
+pushed forward (if run) the same against ../leaderboard-sets-default (BASE `default`, seeds 0-4),
+../judge-sets-landing (`default`, seeds 5-9) or the lateral levers' C-forward-BASE runs; then the fall causes summed.
 """
 import os
 import sys
@@ -22,6 +22,8 @@ GROUPS = [[0, 1, 2, 3, 4], [5, 6, 7, 8, 9]]
 
 def base(config, direction, seed):
     if direction == "forward":
+        if config == "default" and seed >= 5:
+            return f"../judge-sets-landing/C-step-x,step-y,step-time-forward-s{seed}"
         if config == "default":
             return ("../leaderboard-sets-default/"
                     f"stability__lwpr__pendulum-cart__s{seed}__step-x+step-y+step-time")
