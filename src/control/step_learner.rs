@@ -335,6 +335,19 @@ mod tests {
         PerParameter::splat(o)
     }
 
+    /// A step learner of `parameters`, each with its default learner ([`learner`]).
+    fn of(parameters: &[StepParameter]) -> StepLearner<AnyApproximator, Box<dyn LearningRule>> {
+        StepLearner::new(parameters.iter().map(|&p| (p, learner(p))).collect()).unwrap()
+    }
+
+    /// `n` ticks of `l`: the offsets at `inputs(0..n)`, each reach [-1, 1].
+    fn query(l: &mut StepLearner<AnyApproximator, Box<dyn LearningRule>>, n: usize) {
+        for k in 0..n {
+            l.offsets(&inputs(k)).unwrap();
+            l.set_reach(&PerParameter::splat([-1.0, 1.0])).unwrap();
+        }
+    }
+
     #[test]
     fn each_parameter_learns_with_its_own_rule_and_the_rest_stay_zero() {
         let mut l = StepLearner::new(vec![
@@ -394,11 +407,7 @@ mod tests {
             (StepParameter::StepTime, time),
         ])
         .unwrap();
-        let reach = PerParameter::splat([-1.0, 1.0]);
-        for k in 0..3 {
-            l.offsets(&inputs(k)).unwrap();
-            l.set_reach(&reach).unwrap();
-        }
+        query(&mut l, 3);
         let lateral = inputs(0)[StepParameter::StepY];
         let time = l.learner(StepParameter::StepTime).unwrap();
         assert!(time.recorded_inputs().all(|x| x == lateral));
@@ -415,17 +424,9 @@ mod tests {
 
     #[test]
     fn the_soles_roll_reads_and_learns_the_frontal_plane() {
-        let mut l = StepLearner::new(vec![
-            (StepParameter::AnkleRoll, learner(StepParameter::AnkleRoll)),
-            (StepParameter::StepX, learner(StepParameter::StepX)),
-        ])
-        .unwrap();
+        let mut l = of(&[StepParameter::AnkleRoll, StepParameter::StepX]);
         assert_eq!(l.learns().to_string(), "step-x,ankle-roll");
-        let reach = PerParameter::splat([-1.0, 1.0]);
-        for k in 0..3 {
-            l.offsets(&inputs(k)).unwrap();
-            l.set_reach(&reach).unwrap();
-        }
+        query(&mut l, 3);
         let lateral = inputs(0)[StepParameter::AnkleRoll];
         let roll = l.learner(StepParameter::AnkleRoll).unwrap();
         assert_eq!(roll.plane(), Plane::Frontal);
@@ -462,11 +463,7 @@ mod tests {
                 (StepParameter::StepTime, Plane::Frontal),
             ]
         );
-        let reach = PerParameter::splat([-1.0, 1.0]);
-        for k in 0..3 {
-            l.offsets(&inputs(k)).unwrap();
-            l.set_reach(&reach).unwrap();
-        }
+        query(&mut l, 3);
         // Each part reads its own plane.
         let lateral = inputs(0)[StepParameter::StepY];
         let frontal = l
@@ -595,16 +592,9 @@ mod tests {
 
     #[test]
     fn a_checkpoint_continues_bit_for_bit_mid_step() {
-        let mut a = StepLearner::new(vec![
-            (StepParameter::StepX, learner(StepParameter::StepX)),
-            (StepParameter::StepTime, learner(StepParameter::StepTime)),
-        ])
-        .unwrap();
+        let mut a = of(&[StepParameter::StepX, StepParameter::StepTime]);
         let reach = PerParameter::splat([-1.0, 1.0]);
-        for k in 0..4 {
-            a.offsets(&inputs(k)).unwrap();
-            a.set_reach(&reach).unwrap();
-        }
+        query(&mut a, 4);
         a.touch_down(&outcome(0.2)).unwrap();
         a.offsets(&inputs(1)).unwrap();
         a.set_reach(&reach).unwrap();
@@ -612,10 +602,7 @@ mod tests {
         assert_eq!(b.learns(), a.learns());
         // The step time in both planes: each part comes back in its plane with its rule.
         let mut c = both_planes();
-        for k in 0..2 {
-            c.offsets(&inputs(k)).unwrap();
-            c.set_reach(&reach).unwrap();
-        }
+        query(&mut c, 2);
         let mut d = through_json(&c);
         let o = leaning_sideways(0.2);
         let (rc, rd) = (c.touch_down(&o).unwrap(), d.touch_down(&o).unwrap());
