@@ -44,6 +44,17 @@ impl ConfigError {
     }
 }
 
+/// Whether `v` is 0 (either sign): for `skip_serializing_if`, a value left out of written
+/// configs and saved files when it has its default.
+pub(crate) fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// Whether `v` is `false`: for `skip_serializing_if`, a switch left out when off.
+pub(crate) fn is_false(v: &bool) -> bool {
+    !*v
+}
+
 /// `Err(ConfigError)` for `field` with `reason` unless `ok`.
 pub fn ensure(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(), ConfigError> {
     if ok {

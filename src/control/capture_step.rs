@@ -147,13 +147,8 @@ pub struct CaptureStepConfig {
     /// footstep with it (the LIPM is run to the offset time, so a sooner step is a shorter
     /// one). On: the step time only; the sagittal footstep stays the one of the analytic step
     /// time, so a sooner step lands beyond the capture point of its own time.
-    #[serde(skip_serializing_if = "is_false")]
+    #[serde(skip_serializing_if = "crate::config::is_false")]
     pub time_offset_keeps_step: bool,
-}
-
-/// Whether `v` is false (a setting left out of written configs at its default).
-fn is_false(v: &bool) -> bool {
-    !*v
 }
 
 impl Default for CaptureStepConfig {

@@ -230,7 +230,7 @@ pub struct SavedOffset {
     /// The value the last query returned.
     pub last_offset: f64,
     /// Its rule's exploration perturbation of this step; absent when 0.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub exploration: f64,
     /// Its rule's state; absent for a stateless rule.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -256,13 +256,8 @@ pub struct StepInProgress {
     pub last_offset: f64,
     /// The rule's exploration perturbation of this step (m; [`LearningRule::explore`]);
     /// absent when 0.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub exploration: f64,
-}
-
-/// Whether `v` is 0 (either sign), the exploration left out of saved files.
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
 }
 
 impl Default for StepInProgress {

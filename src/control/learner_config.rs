@@ -83,10 +83,10 @@ pub struct LearnerConfig {
     /// Dead zone on G (robust adaptive control's dead-zone modification): the rule's G is
     /// shrunk towards 0 by this much, `sign(G) max(|G| - dead_zone, 0)`, before eq. (6), so
     /// gradients within the step-to-step noise teach nothing. Finite, >= 0; default 0 (eq. 6).
-    /// A run's `step-x`, `step-time` and `ankle-pitch` learners take it from the settings
-    /// (default there: about the model's median |G| stepping undisturbed, docs/learner.md;
-    /// for `ankle-pitch` above every undisturbed |G_A|, which keeps a held sole pitch, whose
-    /// loop no gain stabilises, from being taught); its `step-y`
+    /// A run's `step-x`, `step-time`, `ankle-pitch` and `ankle-roll` learners take it from the
+    /// settings (default there: about the model's median |G| stepping undisturbed,
+    /// docs/learner.md; for the sole's pitch and roll above every undisturbed |G_A| and |G_R|,
+    /// which keeps a held sole tilt, whose loop no gain stabilises, from being taught); its `step-y`
     /// learner, whose lateral G is of that size, and the coupled learner learn without it.
     pub dead_zone: f64,
     /// Leakage (sigma-modification): each target is pulled back towards the prior dF = 0 by

@@ -149,13 +149,13 @@ pub struct StepCommand {
     /// A learned pitch offset of the support sole (rad, toe down positive), added to the ankle
     /// strategy's ([`MotionConfig::ankle_gain`]); the sum is clamped to +-[`ANKLE_LIMIT`].
     /// 0: the sole as the generator alone turns it.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub ankle_pitch: f64,
     /// A learned roll offset of the support sole (rad, positive rolls it as the ankle strategy
     /// does for a trunk whose top tilts to the right: the sole's right edge presses down),
     /// added to the ankle strategy's; the sum is clamped to +-[`ANKLE_LIMIT`]. 0: the sole as
     /// the generator alone turns it.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub ankle_roll: f64,
 }
 
@@ -253,7 +253,7 @@ pub struct MotionConfig {
     /// tracking swing places the foot for the legs' tilt without it. Without a measured tilt
     /// (the paper's swing) it is 0. Left out of written configs at 0, so that run identities
     /// are those of the generator without it.
-    #[serde(skip_serializing_if = "is_zero")]
+    #[serde(skip_serializing_if = "crate::config::is_zero")]
     pub hip_gain: f64,
     /// [`Swing::Tracking`]: the hip strategy's rate law (rad of extra trunk pitch per rad/s of
     /// the trunk's pitch rate, in [-2, 2]; default 0: off, and every result is as without it).
@@ -264,7 +264,7 @@ pub struct MotionConfig {
     /// the extra pitch decays to 0 with [`MotionConfig::hip_return_s`]. Positive: a forward fall
     /// pitches the trunk forward quickly and returns it slowly. Adds to the position law's
     /// pitch when both are on. Left out of written configs at 0.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub hip_rate_gain: f64,
     /// The time constant with which the rate law's extra pitch returns to 0 (s, in [0.01, 10];
     /// default 0.5). Only read with [`MotionConfig::hip_rate_gain`] on; left out of written
@@ -278,7 +278,7 @@ pub struct MotionConfig {
     /// trunk pitch (default false: it does not): the desired trunk pitch theta_R it hands the
     /// estimator includes the extra pitch, so theta_E does not read the trunk's deliberate
     /// lean. Left out of written configs when false.
-    #[serde(default, skip_serializing_if = "is_false")]
+    #[serde(default, skip_serializing_if = "crate::config::is_false")]
     pub hip_to_estimator: bool,
     /// The longest the generator holds a step whose time ran out while its swing foot is
     /// still in the air (s, in [0, 1]; default 0: off, the step ends on time as in the paper).
@@ -287,7 +287,7 @@ pub struct MotionConfig {
     /// ground where it was sent; the legs are exchanged at the touch-down (or when the time
     /// is up). Needs the walker's [`StepCommand::swing_landed`]; without it the step ends on
     /// time. Left out of written configs at 0.
-    #[serde(skip_serializing_if = "is_zero")]
+    #[serde(skip_serializing_if = "crate::config::is_zero")]
     pub landing_wait_s: f64,
     /// The earliest phase of a step at which its swing foot's landing ends it (in [0, 1];
     /// default 0.5; 1: off, the step ends on time as in the paper). A swing foot that lands
@@ -309,16 +309,8 @@ pub struct MotionConfig {
     /// to +-[`ANKLE_LIMIT`]) away from flat, so that the position-controlled ankle presses one
     /// edge of the sole into the ground and moves the centre of pressure towards it. Left out
     /// of written configs at 0.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub ankle_gain: f64,
-}
-
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
-}
-
-fn is_false(v: &bool) -> bool {
-    !*v
 }
 
 /// [`MotionConfig::hip_return_s`]'s default (s).
@@ -453,7 +445,7 @@ pub struct MotionGenerator {
     #[serde(default)]
     hip: f64,
     /// The rate law's share of [`Self::hip`] (rad, [`MotionConfig::hip_rate_gain`]).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     hip_rate: f64,
     /// How long the current step has been held past its time, waiting for the swing foot to
     /// land (s, [`MotionConfig::landing_wait_s`]).
@@ -464,11 +456,11 @@ pub struct MotionGenerator {
     step_elapsed: f64,
     /// The last command's learned pitch offset of the support sole (rad,
     /// [`StepCommand::ankle_pitch`]).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     ankle_pitch: f64,
     /// The last command's learned roll offset of the support sole (rad,
     /// [`StepCommand::ankle_roll`]).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     ankle_roll: f64,
 }
 

@@ -43,11 +43,11 @@ pub struct Frame {
     pub d_t: f64,
     /// The learned pitch offset dA of the support sole used this tick (rad, toe down
     /// positive; left out when 0).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub d_a: f64,
     /// The learned roll offset dR of the support sole used this tick (rad, positive pressing
     /// its right edge; left out when 0).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub d_r: f64,
     /// Trunk deviation angle theta_E (rad, positive leaning forward).
     pub lean: f64,
@@ -127,11 +127,6 @@ struct Pending {
     d_a: f64,
     d_r: f64,
     lean: f64,
-}
-
-/// Whether a rounded offset is 0 (it is then left out of the frame).
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
 }
 
 /// Gravity used for the capture point (m/s^2).
@@ -234,9 +229,9 @@ impl Observer for Recorder {
                 stepping,
                 support: tick.estimate.support,
                 touch_down: tick.step.is_some(),
-                d_f: tick.learned_offset,
-                d_w: tick.lateral_offset,
-                d_t: tick.time_offset,
+                d_f: tick.offsets[StepParameter::StepX],
+                d_w: tick.offsets[StepParameter::StepY],
+                d_t: tick.offsets[StepParameter::StepTime],
                 d_a: tick.offsets[StepParameter::AnklePitch],
                 d_r: tick.offsets[StepParameter::AnkleRoll],
                 lean: tick.estimate.theta_e,
