@@ -10,7 +10,7 @@
 #   TAG=v4 LEARN=step-x,step-time,ankle-pitch CONFIG=leak01.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=v1 LEARN=step-x,step-time,ankle-pitch SEEDS="5 6 7 8 9" bash run.sh
 set -euo pipefail
-bin=../../target/release/steplearn
+bin=${BIN:-../../target/release/steplearn}
 for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-backward forward}; do
   out=C-$TAG-$dir-s$s
   [ -f $out/summary.json ] && continue

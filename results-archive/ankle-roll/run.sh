@@ -11,7 +11,7 @@
 #   TAG=r3 CONFIG=dz02.toml bash run.sh                      # dead zone 0.02
 #   TAG=r2 CONFIG=dz0.toml DIRS=forward PUSHES=400 bash run.sh   # pushed forward, the protocol
 set -euo pipefail
-bin=../../target/release/steplearn
+bin=${BIN:-../../target/release/steplearn}
 for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-left right}; do
   out=C-$TAG-$dir-s$s
   [ -f $out/summary.json ] && continue

@@ -791,7 +791,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
 
     /// The control-tick query: returns the offsets at `x` (faded by the trust region), plus
     /// each rule's exploration perturbation of the step (drawn at the step's first query),
-    /// clamped to `max_offset` if set, and records `x` for the touch-down update (subject to
+    /// clamped to `max_offset` and `offset_range` if set, and records `x` for the touch-down update (subject to
     /// the per-step bound). On error nothing is recorded (a non-finite perturbation is an
     /// error; the rule has then drawn it).
     pub fn query_all(&mut self, x: [f64; I]) -> Result<[f64; O], LearnerError> {
@@ -835,9 +835,8 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             self.settings.memory.max_samples_per_step,
         );
         for (k, v) in y.iter_mut().enumerate() {
-            if let Some(m) = self.offset(k).max_offset {
-                *v = v.clamp(-m, m);
-            }
+            let [lo, hi] = self.offset(k).bounds();
+            *v = v.clamp(lo, hi);
         }
         self.last_offset = y;
         Ok(y)
@@ -1001,6 +1000,9 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
                 let mut change = step_size[k] - self.offset(k).leakage * before[k];
                 if self.settings.guard.anti_windup {
                     change = windup(change, before[k], reach[k]);
+                    if let Some(range) = self.offset(k).offset_range {
+                        change = windup(change, before[k], range);
+                    }
                 }
                 let target = before[k] + change;
                 if !target.is_finite() {
@@ -1161,7 +1163,8 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
     }
 
     /// The control-tick query: returns dF at `input` plus the step's exploration perturbation
-    /// (drawn from the rule at the step's first query; clamped to `max_offset` if set) and
+    /// (drawn from the rule at the step's first query; clamped to `max_offset` and
+    /// `offset_range` if set) and
     /// records the input for the touch-down update (subject to the per-step bound). Does not
     /// allocate. On error nothing is recorded (a non-finite perturbation is an error; the rule
     /// has then drawn it).

@@ -55,6 +55,12 @@ pub struct LearnerConfig {
     /// [`FootstepLearner::query`](super::learner::FootstepLearner::query) is clamped to +-this
     /// (m); training targets are not clamped by it (see `anti_windup`). Must be finite and > 0.
     pub max_offset: Option<f64>,
+    /// If set, `[lo, hi]`: the offsets the learner may apply, one end possibly at 0 (a
+    /// one-sided offset, such as a sole pressed on its heel only). The query is clamped into it
+    /// (after `max_offset`) and, with `anti_windup`, a training target goes no further past its
+    /// ends than the prediction already is. Finite, `lo <= 0 <= hi`, `lo < hi`; default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset_range: Option<[f64; 2]>,
     /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
     /// unit of G (see [`TouchDownReport::gain`](super::learner::TouchDownReport::gain) and the
     /// module docs for the limit). If the approximator's response to the full step eta G would
@@ -172,6 +178,9 @@ pub struct ParameterSettings {
     /// The clamp on the offset's query.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_offset: Option<f64>,
+    /// The range of the offset (`[lo, hi]`, one end possibly 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub offset_range: Option<[f64; 2]>,
     /// The plane whose state the offset's learner reads and whose outcome teaches it
     /// (default: [`StepParameter::default_plane`]). Only `step-time` may name another: `plane =
     /// "frontal"` learns the step time from the lean sideways (docs/lateral.md), `"both"` from
@@ -232,6 +241,22 @@ pub struct OffsetSettings {
     pub leakage: f64,
     /// Clamp on the queried offset, finite and > 0 if set.
     pub max_offset: Option<f64>,
+    /// The range of the offset, `[lo, hi]` with `lo <= 0 <= hi`, `lo < hi`, if set: the query
+    /// is clamped into it and anti-windup stops training targets at its ends.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub offset_range: Option<[f64; 2]>,
+}
+
+impl OffsetSettings {
+    /// The values the query is clamped to: `+-max_offset` within `offset_range` (infinite
+    /// ends where neither is set).
+    pub fn bounds(&self) -> [f64; 2] {
+        let m = self.max_offset.unwrap_or(f64::INFINITY);
+        let [lo, hi] = self
+            .offset_range
+            .unwrap_or([f64::NEG_INFINITY, f64::INFINITY]);
+        [lo.max(-m), hi.min(m)]
+    }
 }
 
 /// The gain guard and anti-windup: what bounds one touch-down's update.
@@ -429,6 +454,7 @@ impl Default for LearnerConfig {
             eta: 1.0,
             max_samples_per_step: 128,
             max_offset: None,
+            offset_range: None,
             max_gain: Some(0.2),
             anti_windup: true,
             learn_from_falls: true,
@@ -501,6 +527,7 @@ impl LearnerConfig {
             dead_zone: own.dead_zone.unwrap_or(self.dead_zone),
             leakage: own.leakage.unwrap_or(self.leakage),
             max_offset: own.max_offset.or(self.max_offset),
+            offset_range: own.offset_range.or(self.offset_range),
         }
     }
 
@@ -538,6 +565,7 @@ impl LearnerConfig {
             dead_zone: self.dead_zone,
             leakage: self.leakage,
             max_offset: self.max_offset,
+            offset_range: self.offset_range,
         };
         check_offset(SHARED_OFFSET_KEYS, &shared)?;
         self.check_shared()?;
@@ -683,40 +711,46 @@ const HALTON_BASES: [usize; MAX_OFFSET_INPUTS] = [2, 3, 5, 7, 11, 13, 17, 19, 23
 /// plane or parameter.
 pub const MAX_OFFSET_INPUTS: usize = 9;
 
-/// The keys of the offset settings in `[settings.learner]`: eta, dead zone, leakage, clamp.
-const SHARED_OFFSET_KEYS: [&str; 4] = ["eta", "dead_zone", "leakage", "max_offset"];
+/// The keys of the offset settings in `[settings.learner]`: eta, dead zone, leakage, clamp,
+/// range.
+const SHARED_OFFSET_KEYS: [&str; 5] = ["eta", "dead_zone", "leakage", "max_offset", "offset_range"];
 
 /// The same keys in each parameter's table, in [`StepParameter::ALL`]'s order.
-const PARAMETER_OFFSET_KEYS: [[&str; 4]; StepParameter::COUNT] = [
+const PARAMETER_OFFSET_KEYS: [[&str; 5]; StepParameter::COUNT] = [
     [
         "step-x.eta",
         "step-x.dead_zone",
         "step-x.leakage",
         "step-x.max_offset",
+        "step-x.offset_range",
     ],
     [
         "step-y.eta",
         "step-y.dead_zone",
         "step-y.leakage",
         "step-y.max_offset",
+        "step-y.offset_range",
     ],
     [
         "step-time.eta",
         "step-time.dead_zone",
         "step-time.leakage",
         "step-time.max_offset",
+        "step-time.offset_range",
     ],
     [
         "ankle-pitch.eta",
         "ankle-pitch.dead_zone",
         "ankle-pitch.leakage",
         "ankle-pitch.max_offset",
+        "ankle-pitch.offset_range",
     ],
     [
         "ankle-roll.eta",
         "ankle-roll.dead_zone",
         "ankle-roll.leakage",
         "ankle-roll.max_offset",
+        "ankle-roll.offset_range",
     ],
 ];
 
@@ -742,8 +776,8 @@ pub(crate) const PLANE_KEYS: [&str; StepParameter::COUNT] = [
 ];
 
 /// Checks one offset's settings; an error names the value by its key in `keys` (eta, dead
-/// zone, leakage, clamp), so a value from a parameter's table is named with its table.
-fn check_offset(keys: [&'static str; 4], o: &OffsetSettings) -> Result<(), LearnerError> {
+/// zone, leakage, clamp, range), so a value from a parameter's table is named with its table.
+fn check_offset(keys: [&'static str; 5], o: &OffsetSettings) -> Result<(), LearnerError> {
     if !(o.eta.is_finite() && o.eta > 0.0) {
         return Err(LearnerError::config(
             keys[0],
@@ -768,6 +802,14 @@ fn check_offset(keys: [&'static str; 4], o: &OffsetSettings) -> Result<(), Learn
         return Err(LearnerError::config(
             keys[3],
             format!("must be finite and > 0, got {m}"),
+        ));
+    }
+    if let Some([lo, hi]) = o.offset_range
+        && !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi && lo < hi)
+    {
+        return Err(LearnerError::config(
+            keys[4],
+            format!("must be finite [lo, hi] with lo <= 0 <= hi and lo < hi, got [{lo}, {hi}]"),
         ));
     }
     Ok(())

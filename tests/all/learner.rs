@@ -452,6 +452,51 @@ fn output_clamp_limits_the_query_not_the_model() {
 }
 
 #[test]
+fn a_one_sided_offset_range_clamps_the_query_and_stops_the_targets_at_its_ends() {
+    let x = input(0.0, 0.0, 0.0);
+    // One touch-down with G = g (eta 1): the query after it and the model's prediction.
+    let taught = |g: f64, range: [f64; 2], anti_windup: bool| {
+        let cfg = LearnerConfig {
+            offset_range: Some(range),
+            anti_windup,
+            ..LearnerConfig::literal()
+        };
+        let mut learner =
+            FootstepLearner::new(table(), Fixed(g, AtomicUsize::new(0)), cfg).unwrap();
+        learner.query(x).unwrap();
+        learner.touch_down(&StepOutcome::default()).unwrap();
+        (learner.query(x).unwrap(), learner.predict(x).unwrap())
+    };
+    // Asked past the closed end, the learner stays at it and learns nothing beyond it.
+    assert_eq!(taught(0.3, [-0.1, 0.0], true), (0.0, 0.0));
+    // Within the range it learns up to the end.
+    let (q, p) = taught(-0.3, [-0.1, 0.0], true);
+    assert!(
+        (q + 0.1).abs() < 1e-12 && (p + 0.1).abs() < 1e-12,
+        "{q} {p}"
+    );
+    let (q, p) = taught(0.3, [-0.1, 0.05], true);
+    assert!(
+        (q - 0.05).abs() < 1e-12 && (p - 0.05).abs() < 1e-12,
+        "{q} {p}"
+    );
+    // Without anti-windup the range clamps the query only.
+    let (q, p) = taught(0.3, [-0.1, 0.0], false);
+    assert_eq!(q, 0.0);
+    assert!((p - 0.3).abs() < 1e-12, "{p}");
+    // With max_offset too, the query is clamped to both.
+    let cfg = LearnerConfig {
+        max_offset: Some(0.02),
+        offset_range: Some([-0.1, 0.0]),
+        ..LearnerConfig::literal()
+    };
+    let mut learner = FootstepLearner::new(table(), Fixed(-0.3, AtomicUsize::new(0)), cfg).unwrap();
+    learner.query(x).unwrap();
+    learner.touch_down(&StepOutcome::default()).unwrap();
+    assert_eq!(learner.query(x).unwrap(), -0.02);
+}
+
+#[test]
 fn bad_configs_shapes_and_inputs_are_typed_errors() {
     for cfg in [
         LearnerConfig {
@@ -1113,6 +1158,13 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
             },
         ),
         (
+            "offset_range",
+            LearnerConfig {
+                offset_range: Some([-0.1, f64::INFINITY]),
+                ..LearnerConfig::default()
+            },
+        ),
+        (
             "step-x.max_offset",
             LearnerConfig {
                 step_x: ParameterSettings {
@@ -1169,6 +1221,10 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
         plane: Some(plane),
         ..ParameterSettings::default()
     };
+    let range = |r| ParameterSettings {
+        offset_range: Some(r),
+        ..ParameterSettings::default()
+    };
     let (pitch, roll) = (StepParameter::AnklePitch, StepParameter::AnkleRoll);
     let ankle_cases = [
         ("ankle-pitch.plane", pitch, plane(Planes::Frontal)),
@@ -1182,6 +1238,10 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
                 ..ParameterSettings::default()
             },
         ),
+        // A range holds the prior's 0 and is not empty.
+        ("ankle-pitch.offset_range", pitch, range([0.05, 0.1])),
+        ("ankle-roll.offset_range", roll, range([0.0, 0.0])),
+        ("ankle-pitch.offset_range", pitch, range([f64::NAN, 0.0])),
         (
             "ankle-roll.eta",
             roll,

@@ -185,6 +185,29 @@ fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
     assert!(html.contains("sole roll dR"));
 }
 
+/// A sole pitch learned on its heel alone (`offset_range = [-0.3, 0]`) is applied on the
+/// humanoid, and never presses the toe, pushes included.
+#[test]
+fn a_sole_pitch_learned_on_its_heel_alone_never_presses_the_toe() {
+    let (_tmp, dir) = run_experiment(
+        &[
+            "stability",
+            "--seed",
+            "2",
+            "--pushes",
+            "2",
+            "--learn",
+            "step-x,ankle-pitch",
+        ],
+        Some("[settings.learner.ankle-pitch]\ndead_zone = 0.0\noffset_range = [-0.3, 0.0]\n"),
+    );
+    let r = record(&Registry::builtin(), &dir, 2).unwrap();
+    let learned = r.walks.iter().find(|w| w.name == "learned").unwrap();
+    let heel = learned.frames.iter().filter(|f| f.d_a < 0.0).count();
+    assert!(heel > 10, "{heel} frames with the heel pressed");
+    assert!(learned.frames.iter().all(|f| f.d_a <= 0.0));
+}
+
 #[test]
 fn a_stability_replay_ends_each_push_as_the_run_logged_it() {
     let dir = stability_dir();

@@ -60,10 +60,16 @@ pub struct ConfigFile {
 
 /// Keys that are unset by default and so absent from [`ConfigFile::default_toml`]'s tables;
 /// listed there as comments: (table header, line).
-const OPTIONAL_KEYS: &[(&str, &str)] = &[(
-    "[settings.learner]",
-    "# max_offset = 0.1  # optional: clamp of the learned offset (m); unset by default (no clamp)",
-)];
+const OPTIONAL_KEYS: &[(&str, &str)] = &[
+    (
+        "[settings.learner]",
+        "# max_offset = 0.1  # optional: clamp of the learned offset (m); unset by default (no clamp)",
+    ),
+    (
+        "[settings.learner]",
+        "# offset_range = [-0.1, 0.0]  # optional: range of the learned offset, lo <= 0 <= hi; unset by default",
+    ),
+];
 
 impl ConfigFile {
     /// Parses TOML text (not yet validated: see [`ConfigFile::parse_toml`]). A parse error's
