@@ -435,6 +435,21 @@ fn the_shipped_configs_pass_the_check() {
         *time = Default::default();
         assert_eq!(config, ConfigFile::default(), "{file}");
     }
+
+    // The sole's pitch on its heel alone: the defaults but for the learned set and the pitch's
+    // range and dead zone.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/heel_pitch.toml");
+    let o = steplearn(&["config", "--check", path]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut config = ConfigFile::load(Path::new(path)).unwrap();
+    let learner = &mut config.settings.learner;
+    assert_eq!(learner.learn.to_string(), "step-x,step-time,ankle-pitch");
+    let pitch = learner.offset(steplearn::control::StepParameter::AnklePitch);
+    assert_eq!(pitch.bounds(), [-0.3, 0.0]);
+    assert_eq!(pitch.dead_zone, 0.02);
+    learner.learn = Default::default();
+    learner.ankle_pitch = Default::default();
+    assert_eq!(config, ConfigFile::default());
 }
 
 #[test]
