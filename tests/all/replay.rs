@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 use steplearn::bench::Registry;
-use steplearn::replay::{ReplayError, embedded_replay, page, record, record_span};
+use steplearn::replay::{Replay, ReplayError, embedded_replay, page, record, record_span};
 
 const PUSHES: usize = 3;
 
@@ -144,10 +144,9 @@ fn assert_push_as_logged(r: &steplearn::replay::Replay, table: &Path, names: &[(
     }
 }
 
-/// A replay of a walker that learns the sole's pitch and roll shows their offsets (`d_a`,
-/// `d_r`) as the run applied them, and the model's frames leave them out.
-#[test]
-fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
+/// The replay of the second push of C (seed 2, two pushes) with the walker learning `learn`
+/// under `config`.
+fn second_push_of_a_short_run(learn: &str, config: &str) -> Replay {
     let (_tmp, dir) = run_experiment(
         &[
             "stability",
@@ -156,14 +155,22 @@ fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
             "--pushes",
             "2",
             "--learn",
-            "step-x,ankle-pitch,ankle-roll",
+            learn,
         ],
-        Some(
-            "[settings.learner.ankle-pitch]\ndead_zone = 0.0\n\
-             [settings.learner.ankle-roll]\ndead_zone = 0.0\n",
-        ),
+        Some(config),
     );
-    let r = record(&Registry::builtin(), &dir, 2).unwrap();
+    record(&Registry::builtin(), &dir, 2).unwrap()
+}
+
+/// A replay of a walker that learns the sole's pitch and roll shows their offsets (`d_a`,
+/// `d_r`) as the run applied them, and the model's frames leave them out.
+#[test]
+fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
+    let r = second_push_of_a_short_run(
+        "step-x,ankle-pitch,ankle-roll",
+        "[settings.learner.ankle-pitch]\ndead_zone = 0.0\n\
+         [settings.learner.ankle-roll]\ndead_zone = 0.0\n",
+    );
     let learned = r.walks.iter().find(|w| w.name == "learned").unwrap();
     let model = r.walks.iter().find(|w| w.name == "model").unwrap();
     let moved = |f: fn(&steplearn::replay::Frame) -> f64| {
@@ -189,19 +196,10 @@ fn a_replay_of_a_learned_sole_shows_its_pitch_and_roll_offsets() {
 /// humanoid, and never presses the toe, pushes included.
 #[test]
 fn a_sole_pitch_learned_on_its_heel_alone_never_presses_the_toe() {
-    let (_tmp, dir) = run_experiment(
-        &[
-            "stability",
-            "--seed",
-            "2",
-            "--pushes",
-            "2",
-            "--learn",
-            "step-x,ankle-pitch",
-        ],
-        Some("[settings.learner.ankle-pitch]\ndead_zone = 0.0\noffset_range = [-0.3, 0.0]\n"),
+    let r = second_push_of_a_short_run(
+        "step-x,ankle-pitch",
+        "[settings.learner.ankle-pitch]\ndead_zone = 0.0\noffset_range = [-0.3, 0.0]\n",
     );
-    let r = record(&Registry::builtin(), &dir, 2).unwrap();
     let learned = r.walks.iter().find(|w| w.name == "learned").unwrap();
     let heel = learned.frames.iter().filter(|f| f.d_a < 0.0).count();
     assert!(heel > 10, "{heel} frames with the heel pressed");
