@@ -9,6 +9,11 @@
 #   TAG=v3 LEARN=step-x,step-time,ankle-pitch CONFIG=dz02.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=v4 LEARN=step-x,step-time,ankle-pitch CONFIG=leak01.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=v1 LEARN=step-x,step-time,ankle-pitch SEEDS="5 6 7 8 9" bash run.sh
+# The pitch on its heel alone (BIN=path runs another binary):
+#   TAG=h1 LEARN=step-x,step-time,ankle-pitch CONFIG=heel.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=h2 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz02.toml SEEDS="0 1 2 3 4 5 6 7 8 9" bash run.sh
+#   TAG=h3 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz04.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=h4 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz02-leak01.toml SEEDS="0 1 2 3 4" bash run.sh
 set -euo pipefail
 bin=${BIN:-../../target/release/steplearn}
 for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-backward forward}; do
