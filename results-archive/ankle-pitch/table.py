@@ -26,10 +26,16 @@ def base_run(seed, direction):
 
 
 for tag in sys.argv[1:] or ["v1"]:
-    for name, seeds in [("seeds 0-4", range(0, 5)), ("seeds 5-9", range(5, 10))]:
+    for name, seeds in [("seeds 0-4", range(0, 5)), ("seeds 5-9", range(5, 10)),
+                        ("seeds 10-14", range(10, 15))]:
         for direction in ["forward", "backward"]:
             done = [s for s in seeds if os.path.exists(f"C-{tag}-{direction}-s{s}/summary.json")]
             if not done:
+                continue
+            if not all(os.path.exists(base_run(s, direction)) for s in done):
+                # No step-x,step-time run on these seeds: the learner over the model alone.
+                ours = [ratio(summary(f"C-{tag}-{direction}-s{s}")) for s in done]
+                print(f"{tag} {name} ({len(done)} seeds), {direction}: learned / model {interval(ours)}")
                 continue
             ours, base, diff, causes, base_causes = [], [], [], {}, {}
             for s in done:
