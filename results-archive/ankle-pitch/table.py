@@ -22,7 +22,9 @@ def ratio(s):
 def base_run(seed, direction):
     if seed < 5:
         return f"../learner-levers/C-default-{direction}-s{seed}"
-    return f"../judge-sets-landing/C-step-x,step-time-{direction}-s{seed}"
+    if seed < 10:
+        return f"../judge-sets-landing/C-step-x,step-time-{direction}-s{seed}"
+    return f"C-xt-{direction}-s{seed}"  # step-x,step-time run here on seeds 10-14 (tag xt)
 
 
 for tag in sys.argv[1:] or ["v1"]:
