@@ -12,6 +12,8 @@
 # The pitch on its heel alone (BIN=path runs another binary):
 #   TAG=h1 LEARN=step-x,step-time,ankle-pitch CONFIG=heel.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=h2 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz02.toml SEEDS="0 1 2 3 4 5 6 7 8 9" bash run.sh
+#   TAG=h2 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz02.toml SEEDS="10 11 12 13 14" bash run.sh
+#   TAG=xt LEARN=step-x,step-time SEEDS="10 11 12 13 14" DIRS=backward bash run.sh
 #   TAG=h3 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz04.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=h4 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz02-leak01.toml SEEDS="0 1 2 3 4" bash run.sh
 set -euo pipefail
