@@ -791,8 +791,8 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
 
     /// The control-tick query: returns the offsets at `x` (faded by the trust region), plus
     /// each rule's exploration perturbation of the step (drawn at the step's first query),
-    /// clamped to `max_offset` and `offset_range` if set, and records `x` for the touch-down update (subject to
-    /// the per-step bound). On error nothing is recorded (a non-finite perturbation is an
+    /// clamped to `max_offset` and `offset_range` if set, and records `x` for the touch-down
+    /// update (subject to the per-step bound). On error nothing is recorded (a non-finite perturbation is an
     /// error; the rule has then drawn it).
     pub fn query_all(&mut self, x: [f64; I]) -> Result<[f64; O], LearnerError> {
         for (a, v) in x.iter().enumerate() {
@@ -982,11 +982,12 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
                 });
             }
         }
+        let offsets: [OffsetSettings; O] = std::array::from_fn(|k| self.offset(k));
         let g: [f64; O] = std::array::from_fn(|k| {
-            let dz = self.offset(k).dead_zone;
+            let dz = offsets[k].dead_zone;
             raw[k].signum() * (raw[k].abs() - dz).max(0.0)
         });
-        let step_size: [f64; O] = std::array::from_fn(|k| self.offset(k).eta * g[k]);
+        let step_size: [f64; O] = std::array::from_fn(|k| offsets[k].eta * g[k]);
         self.before.clear();
         self.desired.clear();
         let first = self.first_trained();
@@ -997,10 +998,10 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
             let before = self.predict_all(x)?;
             let mut desired = [0.0; O];
             for k in 0..O {
-                let mut change = step_size[k] - self.offset(k).leakage * before[k];
+                let mut change = step_size[k] - offsets[k].leakage * before[k];
                 if self.settings.guard.anti_windup {
                     change = windup(change, before[k], reach[k]);
-                    if let Some(range) = self.offset(k).offset_range {
+                    if let Some(range) = offsets[k].offset_range {
                         change = windup(change, before[k], range);
                     }
                 }
@@ -1164,9 +1165,8 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
 
     /// The control-tick query: returns dF at `input` plus the step's exploration perturbation
     /// (drawn from the rule at the step's first query; clamped to `max_offset` and
-    /// `offset_range` if set) and
-    /// records the input for the touch-down update (subject to the per-step bound). Does not
-    /// allocate. On error nothing is recorded (a non-finite perturbation is an error; the rule
+    /// `offset_range` if set) and records the input for the touch-down update (subject to the
+    /// per-step bound). Does not allocate. On error nothing is recorded (a non-finite perturbation is an error; the rule
     /// has then drawn it).
     pub fn query(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
         Ok(self.query_all(input.to_array())?[0])
