@@ -16,6 +16,11 @@
 #   TAG=xt LEARN=step-x,step-time SEEDS="10 11 12 13 14" DIRS=backward bash run.sh
 #   TAG=h3 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz04.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=h4 LEARN=step-x,step-time,ankle-pitch CONFIG=heel-dz02-leak01.toml SEEDS="0 1 2 3 4" bash run.sh
+# A sooner-only step time (offset_range on step-time), with and without the heel, and the toe
+# alone pushed forward (2026-11-30, ninth session):
+#   TAG=s1 LEARN=step-x,step-time CONFIG=sooner.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=hs LEARN=step-x,step-time,ankle-pitch CONFIG=heel-sooner.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=t1 LEARN=step-x,step-time,ankle-pitch CONFIG=toe.toml SEEDS="0 1 2 3 4" DIRS=forward bash run.sh
 set -euo pipefail
 bin=${BIN:-../../target/release/steplearn}
 for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-backward forward}; do

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""C pushed backward, seeds 5-9: each approximator learning step-x,step-time with the sole's pitch
-on its heel alone (this directory) over the model, and over the same approximator learning
-step-x,step-time alone on the same pushes (without/), paired by seed. LWPR's runs are
-../ankle-pitch/C-h2-backward-s* and ../judge-sets-landing/C-step-x,step-time-backward-s*.
+"""C, seeds 5-9: each approximator learning step-x,step-time with the sole's pitch on its heel
+alone over the model, and over the same approximator learning step-x,step-time alone on the same
+pushes, paired by seed. Pushed backward: this directory and without/; forward: forward/ and
+forward/without/. LWPR's runs are ../ankle-pitch/C-h2-DIRECTION-s* and
+../judge-sets-landing/C-step-x,step-time-DIRECTION-s*.
 Run: python3 compare.py (from anywhere)."""
 import os
 import sys
@@ -15,17 +16,20 @@ from paired import i50, interval, summary  # noqa: E402
 SEEDS = range(5, 10)
 
 
-def runs(approx):
+def runs(approx, direction):
     if approx == "lwpr":
-        return ([f"../ankle-pitch/C-h2-backward-s{s}" for s in SEEDS],
-                [f"../judge-sets-landing/C-step-x,step-time-backward-s{s}" for s in SEEDS])
-    return ([f"stability__{approx}__pendulum-cart__s{s}__step-x+step-time+ankle-pitch" for s in SEEDS],
-            [f"without/stability__{approx}__pendulum-cart__s{s}__step-x+step-time" for s in SEEDS])
+        return ([f"../ankle-pitch/C-h2-{direction}-s{s}" for s in SEEDS],
+                [f"../judge-sets-landing/C-step-x,step-time-{direction}-s{s}" for s in SEEDS])
+    here = "" if direction == "backward" else "forward/"
+    return ([f"{here}stability__{approx}__pendulum-cart__s{s}__step-x+step-time+ankle-pitch" for s in SEEDS],
+            [f"{here}without/stability__{approx}__pendulum-cart__s{s}__step-x+step-time" for s in SEEDS])
 
 
-print("backward, seeds 5-9: learned / model with the heel | step-x,step-time alone | difference")
-for approx in ["lwpr", "rbf", "grid", "kernel-ridge"]:
-    heel, alone = runs(approx)
+for direction, approx in [(d, a) for d in ["backward", "forward"]
+                          for a in ["lwpr", "rbf", "grid", "kernel-ridge"]]:
+    if approx == "lwpr":
+        print(f"{direction}, seeds 5-9: learned / model with the heel | step-x,step-time alone | difference")
+    heel, alone = runs(approx, direction)
     if not all(os.path.exists(os.path.join(d, "summary.json")) for d in heel + alone):
         print(f"{approx}: runs missing")
         continue

@@ -4,8 +4,10 @@
 # default.toml is the default (the reference).
 #   cargo build --release && cd results-archive/learner-levers && bash run.sh [LEVER ...]
 # SEEDS="5 6 7 8 9" bash run.sh maxoff0.05 judges a lever on the seeds that chose nothing.
+# LWPR's receptive-field width (2026-11-30, ninth session): bash run.sh lwprd3 lwprd30
+# (BIN=path runs another binary).
 set -euo pipefail
-bin=../../target/release/steplearn
+bin=${BIN:-../../target/release/steplearn}
 levers=("$@"); [ ${#levers[@]} -eq 0 ] && levers=(default nofalls leak0.02 maxoff0.05 share0.5)
 for lever in "${levers[@]}"; do
   for dir in forward backward; do for s in ${SEEDS:-0 1 2 3 4}; do
