@@ -109,10 +109,12 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
     ) -> Result<PerParameter<f64>, LearnerError> {
         let [df, dw] = self.query(inputs[StepParameter::StepX], inputs[StepParameter::StepY])?;
         // Each offset weighted by its parameter's gate in its own plane.
-        let gate = |p: StepParameter, plane| gate_weight(self.settings().gate(p), plane, inputs);
+        let gate = |p: StepParameter, plane, offset: f64| {
+            gate_weight(self.settings().gate(p), plane, inputs, offset) * offset
+        };
         let mut out = PerParameter::default();
-        out[StepParameter::StepX] = gate(StepParameter::StepX, Plane::Sagittal) * df;
-        out[StepParameter::StepY] = gate(StepParameter::StepY, Plane::Frontal) * dw;
+        out[StepParameter::StepX] = gate(StepParameter::StepX, Plane::Sagittal, df);
+        out[StepParameter::StepY] = gate(StepParameter::StepY, Plane::Frontal, dw);
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {

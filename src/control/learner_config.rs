@@ -587,7 +587,16 @@ impl LearnerConfig {
                 ));
             }
             planes[p.index()] = plane;
-            gates[p.index()] = self.parameter_settings(p).gate.unwrap_or_default();
+            let gate = self.parameter_settings(p).gate.unwrap_or_default();
+            if !gate.allows(p) {
+                return Err(LearnerError::config(
+                    GATE_KEYS[p.index()],
+                    format!(
+                        "{p} has no direction in space to fall with; gate = \"with-the-fall\" is for step-x, step-y, ankle-pitch and ankle-roll"
+                    ),
+                ));
+            }
+            gates[p.index()] = gate;
             if self.parameter_settings(p).frontal.is_some() {
                 if plane != Planes::Both {
                     return Err(LearnerError::config(
@@ -767,6 +776,14 @@ const FRONTAL_KEYS: [&str; StepParameter::COUNT] = [
 const FRONTAL_DEAD_ZONE_KEY: &str = "step-time.frontal.dead_zone";
 
 /// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
+const GATE_KEYS: [&str; StepParameter::COUNT] = [
+    "step-x.gate",
+    "step-y.gate",
+    "step-time.gate",
+    "ankle-pitch.gate",
+    "ankle-roll.gate",
+];
+
 pub(crate) const PLANE_KEYS: [&str; StepParameter::COUNT] = [
     "step-x.plane",
     "step-y.plane",

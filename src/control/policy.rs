@@ -25,13 +25,20 @@ use crate::rules::{LearningRule, StepOutcome};
 /// What a policy did with a step, per parameter (`None` for a parameter it did not learn from).
 pub type StepReports = PerParameter<Option<TouchDownReport>>;
 
-/// The weight `gate` gives the offset of a learner reading `plane` at these inputs (the
-/// planes' deviation rates: the sagittal input's theta_E_dot, the frontal input's lean rate).
-pub(crate) fn gate_weight(gate: Gate, plane: Plane, inputs: &PerParameter<LearnerInput>) -> f64 {
+/// The weight `gate` gives `offset`, the output of a learner reading `plane`, at these inputs
+/// (the planes' deviation rates: the sagittal input's theta_E_dot, the frontal input's lean
+/// rate).
+pub(crate) fn gate_weight(
+    gate: Gate,
+    plane: Plane,
+    inputs: &PerParameter<LearnerInput>,
+    offset: f64,
+) -> f64 {
     gate.weight(
         plane,
         inputs[StepParameter::StepX].theta_e_dot,
         inputs[StepParameter::StepY].theta_e_dot,
+        offset,
     )
 }
 
@@ -76,8 +83,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for Footst
     ) -> Result<PerParameter<f64>, LearnerError> {
         let p = self.parameter();
         let mut out = PerParameter::default();
-        let weight = gate_weight(self.settings().gate(p), self.plane(), inputs);
-        out[p] = weight * self.query(*inputs.in_plane(p, self.plane()))?;
+        let offset = self.query(*inputs.in_plane(p, self.plane()))?;
+        out[p] = gate_weight(self.settings().gate(p), self.plane(), inputs, offset) * offset;
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {

@@ -212,8 +212,9 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         let mut out = PerParameter::default();
         for s in &mut self.slots {
             let p = s.parameter;
-            s.weight = gate_weight(s.learner.settings().gate(p), s.plane, inputs);
-            out[p] += s.weight * s.learner.query(*inputs.in_plane(p, s.plane))?;
+            let offset = s.learner.query(*inputs.in_plane(p, s.plane))?;
+            s.weight = gate_weight(s.learner.settings().gate(p), s.plane, inputs, offset);
+            out[p] += s.weight * offset;
         }
         Ok(out)
     }
@@ -536,7 +537,7 @@ mod tests {
             x[StepParameter::StepY].theta_e_dot = frontal_rate;
             let got = l.offsets(&x).unwrap()[StepParameter::StepTime];
             let (s, f) = (last(&l, Plane::Sagittal), last(&l, Plane::Frontal));
-            let w = |plane| Gate::RateShare.weight(plane, sagittal_rate, frontal_rate);
+            let w = |plane| Gate::RateShare.weight(plane, sagittal_rate, frontal_rate, 0.1);
             let (ws, wf) = (w(Plane::Sagittal), w(Plane::Frontal));
             assert!((ws + wf - 1.0).abs() < 1e-15);
             assert!((got - (ws * s + wf * f)).abs() < 1e-12, "{got} {s} {f}");
@@ -545,10 +546,23 @@ mod tests {
                 assert!(s < 0.0 && f < 0.0 && got == s, "{got} {s} {f}");
             }
         }
-        assert_eq!(Gate::RateShare.weight(Plane::Frontal, 1.0, 0.0), 0.0);
-        assert_eq!(Gate::RateShare.weight(Plane::Frontal, 0.0, -2.0), 1.0);
-        assert_eq!(Gate::RateShare.weight(Plane::Sagittal, 0.0, 0.0), 0.5);
-        assert_eq!(Gate::Off.weight(Plane::Frontal, 1.0, 0.0), 1.0);
+        assert_eq!(Gate::RateShare.weight(Plane::Frontal, 1.0, 0.0, 0.1), 0.0);
+        assert_eq!(Gate::RateShare.weight(Plane::Frontal, 0.0, -2.0, 0.1), 1.0);
+        assert_eq!(Gate::RateShare.weight(Plane::Sagittal, 0.0, 0.0, 0.1), 0.5);
+        assert_eq!(Gate::Off.weight(Plane::Frontal, 1.0, 0.0, -0.1), 1.0);
+        // With the fall: the sign of the offset against that of its own plane's rate.
+        assert_eq!(
+            Gate::WithTheFall.weight(Plane::Sagittal, -0.2, 0.5, -0.1),
+            1.0
+        );
+        assert_eq!(
+            Gate::WithTheFall.weight(Plane::Sagittal, 0.2, -0.5, -0.1),
+            0.0
+        );
+        assert_eq!(Gate::WithTheFall.weight(Plane::Frontal, 0.2, 0.5, 0.1), 1.0);
+        assert_eq!(Gate::WithTheFall.weight(Plane::Frontal, 0.2, 0.0, 0.1), 0.0);
+        assert!(!Gate::WithTheFall.allows(StepParameter::StepTime));
+        assert!(Gate::WithTheFall.allows(StepParameter::AnklePitch));
         // A checkpoint keeps the gate (it is each part's setting).
         let back = StepLearner::from_checkpoint(l.checkpoint(), rule).unwrap();
         let part = back

@@ -184,22 +184,45 @@ pub enum Gate {
     /// squared deviation rate, `r_plane^2 / (r_sagittal^2 + r_frontal^2)` (half when both are
     /// 0): it acts when the trunk falls in its plane and fades when it falls in the other.
     RateShare,
+    /// The offset acts only while it points the way the trunk falls in its plane (its sign that
+    /// of the plane's deviation rate) and is withheld while it points against the fall: a
+    /// pressed heel, or a shorter step, while the trunk falls forward. For offsets with a
+    /// direction in space (`step-x`, `step-y`, `ankle-pitch`, `ankle-roll`), not the step time.
+    WithTheFall,
 }
 
 impl Gate {
-    /// The weight of the offset of a learner reading `plane`, at the planes' deviation rates.
-    pub fn weight(self, plane: Plane, sagittal_rate: f64, frontal_rate: f64) -> f64 {
+    /// The weight of `offset`, the output of a learner reading `plane`, at the planes'
+    /// deviation rates.
+    pub fn weight(self, plane: Plane, sagittal_rate: f64, frontal_rate: f64, offset: f64) -> f64 {
+        let own_rate = match plane {
+            Plane::Sagittal => sagittal_rate,
+            Plane::Frontal => frontal_rate,
+        };
         match self {
             Gate::Off => 1.0,
             Gate::RateShare => {
                 let (s, f) = (sagittal_rate * sagittal_rate, frontal_rate * frontal_rate);
-                let own = match plane {
-                    Plane::Sagittal => s,
-                    Plane::Frontal => f,
-                };
-                if s + f > 0.0 { own / (s + f) } else { 0.5 }
+                if s + f > 0.0 {
+                    own_rate * own_rate / (s + f)
+                } else {
+                    0.5
+                }
+            }
+            Gate::WithTheFall => {
+                if offset * own_rate > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                }
             }
         }
+    }
+
+    /// Whether this gate may weight `parameter`'s offset ([`Gate::WithTheFall`] needs an
+    /// offset with a direction in space, so not the step time's).
+    pub fn allows(self, parameter: StepParameter) -> bool {
+        self != Gate::WithTheFall || parameter != StepParameter::StepTime
     }
 }
 

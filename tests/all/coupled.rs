@@ -518,8 +518,8 @@ fn a_gate_weights_each_coupled_offset_by_its_planes_share() {
         .unwrap();
     let (rs, rf) = (SAGITTAL.theta_e_dot, LATERAL.theta_e_dot);
     let want = [
-        Gate::RateShare.weight(Plane::Sagittal, rs, rf) * both[0],
-        Gate::RateShare.weight(Plane::Frontal, rs, rf) * both[1],
+        Gate::RateShare.weight(Plane::Sagittal, rs, rf, both[0]) * both[0],
+        Gate::RateShare.weight(Plane::Frontal, rs, rf, both[1]) * both[1],
     ];
     assert!((offsets.0[0] - want[0]).abs() < 1e-15 && (offsets.0[1] - want[1]).abs() < 1e-15);
     assert!(offsets.0[0].abs() < both[0].abs() && offsets.0[1].abs() < both[1].abs());

@@ -1471,6 +1471,81 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
     assert!((half - 0.5 * whole).abs() < 1e-12, "{half} {whole}");
 }
 
+/// `gate = "with-the-fall"` withholds an offset while it points against the trunk's fall in
+/// its plane: a learned heel (negative sole pitch) acts while the trunk falls backward and not
+/// while it falls forward. The step time, with no direction in space, refuses the gate naming
+/// its key.
+#[test]
+fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
+    use steplearn::bench::Registry;
+    use steplearn::control::learner::LearnerInput;
+    use steplearn::control::step_parameter::{Gate, LearnSet, PerParameter, StepParameter};
+    use steplearn::control::walker::FootstepPolicy;
+    use steplearn::experiments::RunContext;
+    use steplearn::experiments::config_file::ConfigFile;
+    use steplearn::rules::StepOutcome;
+    let text = "[ankle-pitch]\ngate = \"with-the-fall\"\n";
+    let cfg: LearnerConfig = toml::from_str(text).unwrap();
+    let a = StepParameter::AnklePitch;
+    assert_eq!(cfg.check().unwrap().gate(a), Gate::WithTheFall);
+    let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
+    assert_eq!(back, cfg);
+    let refused: LearnerConfig = toml::from_str("[step-time]\ngate = \"with-the-fall\"\n").unwrap();
+    let err = refused.check().unwrap_err().to_string();
+    assert!(err.contains("step-time.gate"), "{err}");
+    // The run's learner of `step-x,ankle-pitch` with the gated pitch.
+    let mut config = ConfigFile::default();
+    config.settings.learner.learn = LearnSet::of(&[StepParameter::StepX, a]).unwrap();
+    config.settings.learner.ankle_pitch.gate = Some(Gate::WithTheFall);
+    config.settings.learner.ankle_pitch.dead_zone = Some(0.0);
+    let settings = &config.settings;
+    let components = Registry::builtin()
+        .components("lwpr", "pendulum-cart", &settings.lwpr)
+        .unwrap();
+    let ctx = RunContext {
+        settings,
+        protocols: &config.protocols,
+        seed: 0,
+        approx: "lwpr",
+        rule: "pendulum-cart",
+        components: &components,
+    };
+    let mut learner = ctx.make_step_learner().unwrap();
+    let input = |rate: f64| {
+        let x = LearnerInput::new(0.0, rate, 0.0);
+        PerParameter::from_planes(x, LearnerInput::new(0.05, 0.0, 0.0))
+    };
+    // Steps that end leaning back teach a heel at both falling rates.
+    let outcome = StepOutcome {
+        theta_e: -0.1,
+        theta_e_dot: 0.0,
+        f_e: 0.0,
+        f_r: 0.0,
+    };
+    for k in 0..40 {
+        let rate = if k % 2 == 0 { -0.3 } else { 0.3 };
+        learner.offsets(&input(rate)).unwrap();
+        learner.touch_down(&PerParameter::splat(outcome)).unwrap();
+    }
+    let (mut passed, mut withheld) = (0, 0);
+    for rate in [-0.3, -0.1, 0.0, 0.1, 0.3] {
+        let got = learner.offsets(&input(rate)).unwrap()[a];
+        let raw = learner.learner(a).unwrap().last_offset();
+        assert!(raw < -1e-4, "a heel was taught at rate {rate}: {raw}");
+        if rate < 0.0 {
+            assert_eq!(got, raw, "falling backward the heel acts");
+            passed += 1;
+        } else {
+            assert_eq!(
+                got, 0.0,
+                "falling forward (or not at all) the heel is withheld"
+            );
+            withheld += 1;
+        }
+    }
+    assert_eq!((passed, withheld), (2, 3));
+}
+
 #[test]
 fn checked_settings_hold_every_value_in_its_group() {
     use steplearn::control::step_parameter::StepParameter;
