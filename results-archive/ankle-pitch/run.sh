@@ -21,6 +21,8 @@
 #   TAG=s1 LEARN=step-x,step-time CONFIG=sooner.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=hs LEARN=step-x,step-time,ankle-pitch CONFIG=heel-sooner.toml SEEDS="0 1 2 3 4" bash run.sh
 #   TAG=t1 LEARN=step-x,step-time,ankle-pitch CONFIG=toe.toml SEEDS="0 1 2 3 4" DIRS=forward bash run.sh
+# The heel gated by the fall (gate = "with-the-fall", ninth session):
+#   TAG=hg LEARN=step-x,step-time,ankle-pitch CONFIG=heel-gated.toml SEEDS="0 1 2 3 4" bash run.sh
 set -euo pipefail
 bin=${BIN:-../../target/release/steplearn}
 for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-backward forward}; do

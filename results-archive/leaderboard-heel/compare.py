@@ -40,3 +40,21 @@ for direction, approx in [(d, a) for d in ["backward", "forward"]
         a.append(i50(sh, "learned") / i50(sh, "model"))
         b.append(i50(sw, "learned") / i50(sw, "model"))
     print(f"{approx}: {interval(a)} | {interval(b)} | {interval([x - y for x, y in zip(a, b)])}")
+
+# The heel gated by the fall (gated/, ninth session) beside the ungated heel on the same pushes.
+for direction in ["backward", "forward"]:
+    print(f"{direction}, seeds 5-9, the heel gated by the fall: learned / model | ungated heel | difference")
+    for approx in ["rbf", "grid"]:
+        gated = [f"gated/{direction}/stability__{approx}__pendulum-cart__s{s}__step-x+step-time+ankle-pitch"
+                 for s in SEEDS]
+        heel, _ = runs(approx, direction)
+        if not all(os.path.exists(os.path.join(d, "summary.json")) for d in gated):
+            print(f"{approx}: runs missing")
+            continue
+        a, b = [], []
+        for g, h in zip(gated, heel):
+            sg, sh = summary(g), summary(h)
+            assert i50(sg, "model") == i50(sh, "model"), "the model differs"
+            a.append(i50(sg, "learned") / i50(sg, "model"))
+            b.append(i50(sh, "learned") / i50(sh, "model"))
+        print(f"{approx}: {interval(a)} | {interval(b)} | {interval([x - y for x, y in zip(a, b)])}")
