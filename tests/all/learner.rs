@@ -1402,18 +1402,34 @@ fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
     assert!(toml::from_str::<LearnerConfig>("[step-time.frontal]\nplane = \"frontal\"\n").is_err());
 }
 
+/// The run's step learner (LWPR, pendulum-cart, seed 0) that `config` describes.
+fn lwpr_step_learner_of(
+    config: &steplearn::experiments::config_file::ConfigFile,
+) -> steplearn::experiments::experiment::RunStepLearner {
+    let components = steplearn::bench::Registry::builtin()
+        .components("lwpr", "pendulum-cart", &config.settings.lwpr)
+        .unwrap();
+    let ctx = steplearn::experiments::RunContext {
+        settings: &config.settings,
+        protocols: &config.protocols,
+        seed: 0,
+        approx: "lwpr",
+        rule: "pendulum-cart",
+        components: &components,
+    };
+    ctx.make_step_learner().unwrap()
+}
+
 /// `gate = "rate-share"` in a parameter's table weights its offset by its plane's share of the
 /// trunk's deviation rate: checked once (an unknown gate refused), kept by each part of a step
 /// time in both planes, and acting in the run's learner: a gated `step-y` learner gives nothing
 /// while the trunk falls only forward, its whole offset while it falls only sideways.
 #[test]
 fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
-    use steplearn::bench::Registry;
     use steplearn::control::learner::LearnerInput;
     use steplearn::control::step_parameter::{Gate, LearnSet, PerParameter, StepParameter};
     use steplearn::control::walker::FootstepPolicy;
     use steplearn::control::{Plane, Planes};
-    use steplearn::experiments::RunContext;
     use steplearn::experiments::config_file::ConfigFile;
     use steplearn::rules::StepOutcome;
     let t = StepParameter::StepTime;
@@ -1435,19 +1451,7 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
     config.settings.learner.learn = LearnSet::of(&[StepParameter::StepX, y]).unwrap();
     config.settings.learner.step_y.gate = Some(Gate::RateShare);
     config.settings.learner.step_y.dead_zone = Some(0.0);
-    let settings = &config.settings;
-    let components = Registry::builtin()
-        .components("lwpr", "pendulum-cart", &settings.lwpr)
-        .unwrap();
-    let ctx = RunContext {
-        settings,
-        protocols: &config.protocols,
-        seed: 0,
-        approx: "lwpr",
-        rule: "pendulum-cart",
-        components: &components,
-    };
-    let mut learner = ctx.make_step_learner().unwrap();
+    let mut learner = lwpr_step_learner_of(&config);
     let input = |sagittal_rate: f64, frontal_rate: f64| {
         let x = LearnerInput::new(0.0, sagittal_rate, 0.0);
         PerParameter::from_planes(x, LearnerInput::new(0.05, frontal_rate, 0.0))
@@ -1477,11 +1481,9 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
 /// its key.
 #[test]
 fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
-    use steplearn::bench::Registry;
     use steplearn::control::learner::LearnerInput;
     use steplearn::control::step_parameter::{Gate, LearnSet, PerParameter, StepParameter};
     use steplearn::control::walker::FootstepPolicy;
-    use steplearn::experiments::RunContext;
     use steplearn::experiments::config_file::ConfigFile;
     use steplearn::rules::StepOutcome;
     let text = "[ankle-pitch]\ngate = \"with-the-fall\"\n";
@@ -1498,19 +1500,7 @@ fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
     config.settings.learner.learn = LearnSet::of(&[StepParameter::StepX, a]).unwrap();
     config.settings.learner.ankle_pitch.gate = Some(Gate::WithTheFall);
     config.settings.learner.ankle_pitch.dead_zone = Some(0.0);
-    let settings = &config.settings;
-    let components = Registry::builtin()
-        .components("lwpr", "pendulum-cart", &settings.lwpr)
-        .unwrap();
-    let ctx = RunContext {
-        settings,
-        protocols: &config.protocols,
-        seed: 0,
-        approx: "lwpr",
-        rule: "pendulum-cart",
-        components: &components,
-    };
-    let mut learner = ctx.make_step_learner().unwrap();
+    let mut learner = lwpr_step_learner_of(&config);
     let input = |rate: f64| {
         let x = LearnerInput::new(0.0, rate, 0.0);
         PerParameter::from_planes(x, LearnerInput::new(0.05, 0.0, 0.0))
