@@ -775,7 +775,7 @@ const FRONTAL_KEYS: [&str; StepParameter::COUNT] = [
 /// The key of the frontal part's dead zone (only the step time is learned in both planes).
 const FRONTAL_DEAD_ZONE_KEY: &str = "step-time.frontal.dead_zone";
 
-/// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
+/// The `gate` key of each parameter's table, in [`StepParameter::ALL`]'s order.
 const GATE_KEYS: [&str; StepParameter::COUNT] = [
     "step-x.gate",
     "step-y.gate",
@@ -784,6 +784,7 @@ const GATE_KEYS: [&str; StepParameter::COUNT] = [
     "ankle-roll.gate",
 ];
 
+/// The `plane` key of each parameter's table, in [`StepParameter::ALL`]'s order.
 pub(crate) const PLANE_KEYS: [&str; StepParameter::COUNT] = [
     "step-x.plane",
     "step-y.plane",
