@@ -792,8 +792,8 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     /// The control-tick query: returns the offsets at `x` (faded by the trust region), plus
     /// each rule's exploration perturbation of the step (drawn at the step's first query),
     /// clamped to `max_offset` and `offset_range` if set, and records `x` for the touch-down
-    /// update (subject to the per-step bound). On error nothing is recorded (a non-finite perturbation is an
-    /// error; the rule has then drawn it).
+    /// update (subject to the per-step bound). On error nothing is recorded (a non-finite
+    /// perturbation is an error; the rule has then drawn it).
     pub fn query_all(&mut self, x: [f64; I]) -> Result<[f64; O], LearnerError> {
         for (a, v) in x.iter().enumerate() {
             if !v.is_finite() {
@@ -1166,8 +1166,8 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
     /// The control-tick query: returns dF at `input` plus the step's exploration perturbation
     /// (drawn from the rule at the step's first query; clamped to `max_offset` and
     /// `offset_range` if set) and records the input for the touch-down update (subject to the
-    /// per-step bound). Does not allocate. On error nothing is recorded (a non-finite perturbation is an error; the rule
-    /// has then drawn it).
+    /// per-step bound). Does not allocate. On error nothing is recorded (a non-finite
+    /// perturbation is an error; the rule has then drawn it).
     pub fn query(&mut self, input: LearnerInput) -> Result<f64, LearnerError> {
         Ok(self.query_all(input.to_array())?[0])
     }

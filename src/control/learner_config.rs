@@ -592,7 +592,13 @@ impl LearnerConfig {
                 return Err(LearnerError::config(
                     GATE_KEYS[p.index()],
                     format!(
-                        "{p} has no direction in space to fall with; gate = \"with-the-fall\" is for step-x, step-y, ankle-pitch and ankle-roll"
+                        "{p} has no direction in space to fall with; gate = \"with-the-fall\" is for {}",
+                        StepParameter::ALL
+                            .into_iter()
+                            .filter(|&q| gate.allows(q))
+                            .map(StepParameter::name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     ),
                 ));
             }
