@@ -5,7 +5,7 @@
 # with the same set's default runs in ../leaderboard-sets-default (lwpr).
 #   bash forward.sh [CONFIG NAME]   e.g. bash forward.sh ../../configs/both_planes_step_time.toml both-dz0
 set -euo pipefail
-bin=../../target/release/steplearn
+bin=${BIN:-../../target/release/steplearn}
 config=${1:-../../configs/frontal_step_time.toml}
 name=${2:-frontal-dz0}
 for s in ${SEEDS:-0 1 2 3 4}; do

@@ -4,7 +4,7 @@
 # SET:CONFIG, the learned set and a config in this directory (default.toml: no change).
 #   cargo build --release && cd results-archive/lateral-levers && bash run.sh [SET:CONFIG ...]
 set -euo pipefail
-bin=../../target/release/steplearn
+bin=${BIN:-../../target/release/steplearn}
 levers=("$@"); [ ${#levers[@]} -eq 0 ] && levers=(step-x,step-y,step-time:default step-y:default)
 for lever in "${levers[@]}"; do
   set_=${lever%%:*}; cfg=${lever#*:}
