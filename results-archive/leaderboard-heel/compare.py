@@ -58,3 +58,22 @@ for direction in ["backward", "forward"]:
             a.append(i50(sg, "learned") / i50(sg, "model"))
             b.append(i50(sh, "learned") / i50(sh, "model"))
         print(f"{approx}: {interval(a)} | {interval(b)} | {interval([x - y for x, y in zip(a, b)])}")
+
+# step-x,step-time alone on five more seeds that chose nothing (10-14; seeds-10-14/ backward,
+# seeds-10-14/forward/ forward, tenth session; LWPR's backward runs are ../ankle-pitch/C-xt-backward-s*,
+# it was not run forward there), alone and pooled with 5-9.
+for direction in ["backward", "forward"]:
+    print(f"{direction}, step-x,step-time alone: learned / model, seeds 10-14 | seeds 5-14")
+    for approx in ["lwpr", "rbf", "grid"]:
+        here = "seeds-10-14" if direction == "backward" else "seeds-10-14/forward"
+        if approx == "lwpr":
+            later = [f"../ankle-pitch/C-xt-{direction}-s{s}" for s in range(10, 15)]
+        else:
+            later = [f"{here}/stability__{approx}__pendulum-cart__s{s}__step-x+step-time" for s in range(10, 15)]
+        if not all(os.path.exists(os.path.join(d, "summary.json")) for d in later):
+            print(f"{approx}: runs missing")
+            continue
+        _, earlier = runs(approx, direction)
+        r = lambda d: i50(summary(d), "learned") / i50(summary(d), "model")
+        a = [r(d) for d in later]
+        print(f"{approx}: {interval(a)} | {interval(a + [r(d) for d in earlier])}")
