@@ -25,6 +25,7 @@
 #   TAG=hg LEARN=step-x,step-time,ankle-pitch CONFIG=heel-gated.toml SEEDS="0 1 2 3 4 5 6 7 8 9" bash run.sh
 # The pitch both ways gated by the fall (tenth session):
 #   TAG=bg LEARN=step-x,step-time,ankle-pitch CONFIG=both-gated.toml SEEDS="0 1 2 3 4" bash run.sh
+#   TAG=xt LEARN=step-x,step-time SEEDS="10 11 12 13 14" DIRS=forward bash run.sh
 set -euo pipefail
 bin=${BIN:-../../target/release/steplearn}
 for s in ${SEEDS:-0 1 2 3 4}; do for dir in ${DIRS:-backward forward}; do

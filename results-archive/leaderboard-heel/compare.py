@@ -60,8 +60,8 @@ for direction in ["backward", "forward"]:
         print(f"{approx}: {interval(a)} | {interval(b)} | {interval([x - y for x, y in zip(a, b)])}")
 
 # step-x,step-time alone on five more seeds that chose nothing (10-14; seeds-10-14/ backward,
-# seeds-10-14/forward/ forward, tenth session; LWPR's backward runs are ../ankle-pitch/C-xt-backward-s*,
-# it was not run forward there), alone and pooled with 5-9.
+# seeds-10-14/forward/ forward, tenth session; LWPR's runs are ../ankle-pitch/C-xt-DIRECTION-s*),
+# alone and pooled with 5-9.
 for direction in ["backward", "forward"]:
     print(f"{direction}, step-x,step-time alone: learned / model, seeds 10-14 | seeds 5-14")
     for approx in ["lwpr", "rbf", "grid"]:
