@@ -1,6 +1,6 @@
 """Shared by the archive's table scripts: the mean of per-seed values with its Student-t 95%
 interval, and a run's summary. `sys.path.insert(0, "..")` from a directory here, then
-`from paired import interval, summary, i50` (or `mean_h`, `t975` for other formats)."""
+`from paired import interval, summary, i50, ratio` (or `mean_h`, `t975` for other formats)."""
 import json
 import math
 import os
@@ -43,3 +43,8 @@ def summary(path):
 def i50(s, walker):
     """`walker`'s I50 (Ns) in the summary `s`."""
     return s["controllers"][walker]["impulse_at_50pct_fall_ns"]
+
+
+def ratio(s):
+    """The learned walker's I50 over the model's in the summary `s` (the same run's pushes)."""
+    return i50(s, "learned") / i50(s, "model")

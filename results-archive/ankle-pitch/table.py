@@ -12,11 +12,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 os.chdir(HERE)
 sys.path.insert(0, os.path.dirname(HERE))
-from paired import i50, interval, summary  # noqa: E402
-
-
-def ratio(s):
-    return i50(s, "learned") / i50(s, "model")
+from paired import i50, interval, ratio, summary  # noqa: E402
 
 
 def base_run(seed, direction):

@@ -10,7 +10,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 os.chdir(HERE)
 sys.path.insert(0, os.path.dirname(HERE))
-from paired import i50, interval, summary  # noqa: E402
+from paired import i50, interval, ratio, summary  # noqa: E402
 
 print("| approximator | capture-point gate | rate gate (with-the-fall) | step-x,step-time alone | capture point - rate |")
 print("|---|---|---|---|---|")
@@ -20,14 +20,10 @@ for approx in ["rbf", "grid"]:
     cols = [[f"capture-point/{name(s)}" for s in range(5)],
             [f"rate/{name(s)}" for s in range(5)],
             [f"../leaderboard-sets-default/{name(s, 'step-x+step-time')}" for s in range(5)]]
-    ratios = []
-    for runs in cols:
-        r = []
-        for d in runs:
-            s = summary(d)
-            assert i50(s, "model") == i50(summary(cols[0][runs.index(d)]), "model"), "the model differs"
-            r.append(i50(s, "learned") / i50(s, "model"))
-        ratios.append(r)
+    sums = [[summary(d) for d in runs] for runs in cols]
+    for col in sums[1:]:
+        assert all(i50(a, "model") == i50(b, "model") for a, b in zip(sums[0], col)), "the model differs"
+    ratios = [[ratio(s) for s in col] for col in sums]
     diff = [a - b for a, b in zip(ratios[0], ratios[1])]
     print(f"| {approx} | " + " | ".join(interval(r) for r in ratios) + f" | {interval(diff)} |")
 

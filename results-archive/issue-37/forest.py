@@ -11,7 +11,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ARCHIVE = os.path.dirname(HERE)
 sys.path.insert(0, ARCHIVE)
-from paired import i50, mean_h, summary  # noqa: E402
+from paired import mean_h, ratio, summary  # noqa: E402
 
 SEEDS = range(5, 10)
 MARK = 1.15
@@ -22,12 +22,9 @@ def simple(pattern):
     return lambda d: [pattern.format(dir=d, s=s) for s in SEEDS]
 
 
-def bench(approx, learn, heel_dir=None):
-    """A bench's runs: backward at the top of its directory, forward under forward/."""
-    def runs(d):
-        base = heel_dir[d]
-        return [f"{base}/stability__{approx}__pendulum-cart__s{s}__{learn}" for s in SEEDS]
-    return runs
+def bench(approx, learn, dirs):
+    """A bench's runs, in `dirs[direction]` (a directory under results-archive)."""
+    return lambda d: [f"{dirs[d]}/stability__{approx}__pendulum-cart__s{s}__{learn}" for s in SEEDS]
 
 
 HEEL = {"backward": "leaderboard-heel", "forward": "leaderboard-heel/forward"}
@@ -56,11 +53,7 @@ WALKERS = [
 
 
 def ratios(runs):
-    out = []
-    for d in runs:
-        s = summary(os.path.join(ARCHIVE, d))
-        out.append(i50(s, "learned") / i50(s, "model"))
-    return out
+    return [ratio(summary(os.path.join(ARCHIVE, d))) for d in runs]
 
 
 rows = []

@@ -11,7 +11,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 os.chdir(HERE)
 sys.path.insert(0, os.path.dirname(HERE))
-from paired import i50, interval, summary  # noqa: E402
+from paired import i50, interval, ratio, summary  # noqa: E402
 
 SEEDS = range(5, 10)
 
@@ -74,6 +74,5 @@ for direction in ["backward", "forward"]:
             print(f"{approx}: runs missing")
             continue
         _, earlier = runs(approx, direction)
-        r = lambda d: i50(summary(d), "learned") / i50(summary(d), "model")
-        a = [r(d) for d in later]
-        print(f"{approx}: {interval(a)} | {interval(a + [r(d) for d in earlier])}")
+        a = [ratio(summary(d)) for d in later]
+        print(f"{approx}: {interval(a)} | {interval(a + [ratio(summary(d)) for d in earlier])}")

@@ -8,7 +8,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 os.chdir(HERE)
 sys.path.insert(0, os.path.dirname(HERE))
-from paired import i50, interval, summary  # noqa: E402
+from paired import i50, interval, ratio, summary  # noqa: E402
 
 tags = sys.argv[1:] or ["msd25", "msd20"]
 KEYS = ["catch_step_clamped", "later_step_clamped", "tipped_after_catch_step"]
@@ -26,7 +26,7 @@ for tag in ["default"] + tags:
         for a, b in runs:
             sa, sb = summary(a), summary(b)
             mm.append(i50(sa, "model") / i50(sb, "model"))
-            lm.append(i50(sa, "learned") / i50(sa, "model"))
+            lm.append(ratio(sa))
             ll.append(i50(sa, "learned") / i50(sb, "learned"))
             reach.append(sa["catch_step_reach"]["model"])
             for w in falls:
