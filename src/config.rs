@@ -50,11 +50,6 @@ pub(crate) fn is_zero(v: &f64) -> bool {
     *v == 0.0
 }
 
-/// Whether `v` is `false`: for `skip_serializing_if`, a switch left out when off.
-pub(crate) fn is_false(v: &bool) -> bool {
-    !*v
-}
-
 /// `Err(ConfigError)` for `field` with `reason` unless `ok`.
 pub fn ensure(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(), ConfigError> {
     if ok {

@@ -143,12 +143,6 @@ pub struct CaptureStepConfig {
     /// Whether the analytic sagittal footstep is used. When false the step is the nominal step
     /// in place plus the learned offset `dF` (the learner alone decides the step).
     pub analytic_footstep: bool,
-    /// What a learned step-time offset dT moves. Off (the default): the step time, and the
-    /// footstep with it (the LIPM is run to the offset time, so a sooner step is a shorter
-    /// one). On: the step time only; the sagittal footstep stays the one of the analytic step
-    /// time, so a sooner step lands beyond the capture point of its own time.
-    #[serde(skip_serializing_if = "crate::config::is_false")]
-    pub time_offset_keeps_step: bool,
 }
 
 impl Default for CaptureStepConfig {
@@ -167,7 +161,6 @@ impl Default for CaptureStepConfig {
             max_reference_step: 0.30,
             max_step_x: 0.50,
             analytic_footstep: true,
-            time_offset_keeps_step: false,
         }
     }
 }
@@ -546,17 +539,8 @@ impl CaptureStep {
         let fy = lipm
             .pivot_for(end[1], -l * self.alpha, 0.0)
             .unwrap_or(l * self.alpha);
-        // The sagittal state the footstep is placed for: at the step time, or with
-        // `time_offset_keeps_step` at the analytic step time (the ZMP aimed for that time).
-        let placed_for = if cfg.time_offset_keeps_step && t_step != analytic_time_to_step {
-            let z = lipm
-                .zmp_to_reach(cx, target[0].pos, analytic_time_to_step)
-                .unwrap_or(0.0)
-                .clamp(cfg.zmp_x[0], cfg.zmp_x[1]);
-            lipm.state_after(cx, z, analytic_time_to_step)
-        } else {
-            end[0]
-        };
+        // The sagittal state the footstep is placed for: at the step time.
+        let placed_for = end[0];
         let analytic_step_x = if cfg.analytic_footstep {
             placed_for.pos + placed_for.vel / c * (c * tau).tanh()
         } else {
@@ -647,31 +631,21 @@ mod tests {
     }
 
     #[test]
-    fn after_a_push_a_sooner_step_is_shorter_unless_the_time_offset_keeps_the_step() {
+    fn after_a_push_a_sooner_step_is_a_shorter_step() {
         let r = GaitReference {
             step_x: 0.2,
             lateral: 0.0,
         };
-        let decide = |keeps: bool, dt: f64| {
-            let mut cs = CaptureStep::new(CaptureStepConfig {
-                time_offset_keeps_step: keeps,
-                ..CaptureStepConfig::default()
-            })
-            .unwrap();
+        let decide = |dt: f64| {
+            let mut cs = CaptureStep::new(CaptureStepConfig::default()).unwrap();
             // Pushed forward: the ZMP saturates and the capture point runs ahead.
             let mut com = nominal(&cs, Side::Left, &r);
             com.axes[0].vel += 0.3;
             cs.update_with_offsets(&com, &r, [0.0, 0.0, dt]).unwrap()
         };
-        for keeps in [false, true] {
-            let (analytic, sooner) = (decide(keeps, 0.0), decide(keeps, -0.05));
-            assert!(sooner.time_to_step < analytic.time_to_step - 0.04);
-            if keeps {
-                assert_eq!(sooner.step[0], analytic.step[0]);
-            } else {
-                assert!(sooner.step[0] < analytic.step[0] - 0.01, "{sooner:?}");
-            }
-        }
+        let (analytic, sooner) = (decide(0.0), decide(-0.05));
+        assert!(sooner.time_to_step < analytic.time_to_step - 0.04);
+        assert!(sooner.step[0] < analytic.step[0] - 0.01, "{sooner:?}");
     }
 
     #[test]

@@ -128,13 +128,8 @@ pub struct LearnerConfig {
     /// (default: nothing).
     #[serde(rename = "step-x", skip_serializing_if = "ParameterSettings::is_empty")]
     pub step_x: ParameterSettings,
-    /// `[settings.learner.step-y]`: what the `step-y` offset changes. Default `dead_zone = 0`:
-    /// the lateral G (a lean) is of the size of the sagittal dead zone. A table given in a
-    /// config replaces this default as a whole.
-    #[serde(
-        rename = "step-y",
-        skip_serializing_if = "ParameterSettings::is_default_step_y"
-    )]
+    /// `[settings.learner.step-y]`: what the `step-y` offset changes (default: nothing).
+    #[serde(rename = "step-y", skip_serializing_if = "ParameterSettings::is_empty")]
     pub step_y: ParameterSettings,
     /// `[settings.learner.step-time]`: what the `step-time` offset changes (default: nothing).
     #[serde(
@@ -213,19 +208,6 @@ impl ParameterSettings {
     /// Nothing set apart.
     pub fn is_empty(&self) -> bool {
         *self == ParameterSettings::default()
-    }
-
-    /// The `step-y` offset's default: no dead zone.
-    pub fn default_step_y() -> Self {
-        ParameterSettings {
-            dead_zone: Some(0.0),
-            ..ParameterSettings::default()
-        }
-    }
-
-    /// Whether this is [`Self::default_step_y`] (left out of a written config).
-    pub fn is_default_step_y(&self) -> bool {
-        *self == Self::default_step_y()
     }
 }
 
@@ -447,8 +429,7 @@ pub(crate) fn radical_inverse(mut i: usize, base: usize) -> f64 {
 
 impl Default for LearnerConfig {
     /// eta = 1, 128 samples per step, no output clamp, gain guard 0.2, anti-windup on,
-    /// learning from falls, the default [`Prior`], no dead zone, trust region 2 (the
-    /// experiments' settings add a dead zone, [`crate::experiments::settings::DEFAULT_DEAD_ZONE`]).
+    /// learning from falls, the default [`Prior`], no dead zone (eq. 6), trust region 2.
     fn default() -> Self {
         LearnerConfig {
             eta: 1.0,
@@ -468,7 +449,7 @@ impl Default for LearnerConfig {
             train_share: 1.0,
             learn: LearnSet::default(),
             step_x: ParameterSettings::default(),
-            step_y: ParameterSettings::default_step_y(),
+            step_y: ParameterSettings::default(),
             step_time: ParameterSettings::default(),
             ankle_pitch: ParameterSettings::default(),
             ankle_roll: ParameterSettings::default(),

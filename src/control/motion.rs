@@ -143,18 +143,16 @@ pub struct StepCommand {
     /// generator commands (the paper's swing never reads it).
     pub tilt: Option<[[f64; 2]; 2]>,
     /// Whether the swing foot has landed (the state estimator stands on it), for
-    /// [`MotionConfig::landing_wait_s`]. `None`: unknown, the step ends on time.
+    /// [`MotionConfig::early_landing_phase`]. `None`: unknown, the step ends on time.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub swing_landed: Option<bool>,
-    /// A learned pitch offset of the support sole (rad, toe down positive), added to the ankle
-    /// strategy's ([`MotionConfig::ankle_gain`]); the sum is clamped to +-[`ANKLE_LIMIT`].
-    /// 0: the sole as the generator alone turns it.
+    /// A learned pitch offset of the support sole (rad, toe down positive), clamped to
+    /// +-[`ANKLE_LIMIT`]. 0: the sole flat as the generator turns it.
     #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub ankle_pitch: f64,
-    /// A learned roll offset of the support sole (rad, positive rolls it as the ankle strategy
-    /// does for a trunk whose top tilts to the right: the sole's right edge presses down),
-    /// added to the ankle strategy's; the sum is clamped to +-[`ANKLE_LIMIT`]. 0: the sole as
-    /// the generator alone turns it.
+    /// A learned roll offset of the support sole (rad, positive presses the sole's right edge
+    /// down, against a trunk whose top tilts to the right), clamped to +-[`ANKLE_LIMIT`]. 0:
+    /// the sole flat as the generator turns it.
     #[serde(default, skip_serializing_if = "crate::config::is_zero")]
     pub ankle_roll: f64,
 }
@@ -165,22 +163,22 @@ pub struct StepCommand {
 pub enum Swing {
     /// The paper's open-loop swing: leg angles relative to the trunk, as if the trunk held its
     /// commanded lean, at a fixed leg extension. When a push tilts the whole body, the swing
-    /// foot lands where the tilted legs put it, short of the command.
+    /// foot lands where the tilted legs put it, short of the command. The default.
+    #[default]
     Paper,
     /// The swing tracks the commanded footstep on the ground to touch-down: every tick it
-    /// re-targets the swing leg's end angle from the measured trunk tilt (predicted to
-    /// touch-down with its rate, [`MotionConfig::tilt_lead`]), so that with the support leg
-    /// tilted as the trunk is, the swing leg's angle in the world puts its sole at the
+    /// re-targets the swing leg's end angle from the measured trunk tilt, so that
+    /// with the support leg tilted as the trunk is, the swing leg's angle in the world puts its sole at the
     /// commanded distance ahead of the support sole, landing flat. The support leg and the
-    /// legs' extension are not changed.
-    #[default]
+    /// legs' extension are not changed. `configs/improved.toml`.
     Tracking,
 }
 
-/// Settings of the step motion generator.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct MotionConfig {
+/// The shape of the gait's motion primitives: the halt pose, the lift, the sway and the
+/// trunk's lean. They belong to the gait the controller's gains were tuned on and are not
+/// settings of a config file.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GaitShape {
     /// Extension of both legs in the halt pose.
     pub halt_extension: f64,
     /// Forward trunk lean in the halt pose (rad).
@@ -201,9 +199,35 @@ pub struct MotionConfig {
     pub lean_per_step: f64,
     /// Time constant of the low-pass filter on the commanded placement (s; 0 = off).
     pub filter_time: f64,
-    /// Sagittal step range (m): commanded steps are clamped to it. The default reaches
-    /// 0.45 m forward and backward (the paper's setup reached 0.15 m backward, which left
-    /// backward catch steps at a fifth of their command; see `docs/learner.md`).
+}
+
+impl Default for GaitShape {
+    fn default() -> Self {
+        GaitShape {
+            halt_extension: 0.04,
+            halt_lean: 0.0,
+            lift_extension: 0.06,
+            push_extension: 0.0,
+            sway: 0.035,
+            sway_lead: 0.0,
+            lift_window: [0.1, 0.9],
+            swing_window: [0.1, 0.9],
+            lean_per_step: 0.2,
+            filter_time: 0.05,
+        }
+    }
+}
+
+/// Settings of the step motion generator.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MotionConfig {
+    /// The gait's motion primitives (not a config key).
+    #[serde(skip)]
+    pub gait: GaitShape,
+    /// Sagittal step range (m): commanded steps are clamped to it. The default is the paper's
+    /// setup, 0.15 m backward and 0.45 m forward (`configs/improved.toml` reaches 0.45 m
+    /// backward).
     pub step_x_range: [f64; 2],
     /// Lateral foot distance range (m, magnitude).
     pub step_y_range: [f64; 2],
@@ -220,9 +244,6 @@ pub struct MotionConfig {
     pub swing_step_scale: f64,
     /// How the swing leg reaches its placement (see [`Swing`]).
     pub swing: Swing,
-    /// [`Swing::Tracking`]: how far ahead the measured trunk tilt is predicted with its rate
-    /// (s; at most the time left in the step).
-    pub tilt_lead: f64,
     /// [`Swing::Tracking`]: the share of the trunk's tilt deviation the swing compensates
     /// (default 1.3: a little more than all of it, which lands a pushed body's catch step
     /// nearer its command; 1: all of it; 0: none, the end angle only from the support leg's
@@ -243,54 +264,8 @@ pub struct MotionConfig {
     /// ones only beyond it (rad, >= 0): the trunk's sway within a step of undisturbed walking
     /// is not a tilt of the body.
     pub tilt_dead_band: f64,
-    /// [`Swing::Tracking`]: the hip strategy's gain (rad of extra trunk pitch per rad of the
-    /// legs' tilt deviation, in [-4, 4]; default 0: off, and every result is as without it).
-    /// Every tick the trunk leans by `hip_gain` times the trunk tilt's deviation from its
-    /// settled value (as the tracking swing measures it, beyond its dead band) less the extra
-    /// pitch last commanded, clamped to +-[`HIP_PITCH_LIMIT`]: positive, a forward fall pitches
-    /// the trunk forward about the hips, which by reaction slows the centre of mass. The extra
-    /// pitch enters the lean of both legs (the support leg's hip pitch moves the trunk); the
-    /// tracking swing places the foot for the legs' tilt without it. Without a measured tilt
-    /// (the paper's swing) it is 0. Left out of written configs at 0, so that run identities
-    /// are those of the generator without it.
-    #[serde(skip_serializing_if = "crate::config::is_zero")]
-    pub hip_gain: f64,
-    /// [`Swing::Tracking`]: the hip strategy's rate law (rad of extra trunk pitch per rad/s of
-    /// the trunk's pitch rate, in [-2, 2]; default 0: off, and every result is as without it).
-    /// While the legs' pitch tilt deviation (the tracking swing's, beyond its dead band, less
-    /// the extra pitch) has the sign of the measured pitch rate (a fall under way), the target
-    /// is `hip_rate_gain` times that rate, clamped to +-[`HIP_PITCH_LIMIT`] (otherwise 0); a
-    /// target larger in magnitude than the rate law's extra pitch is taken at once, otherwise
-    /// the extra pitch decays to 0 with [`MotionConfig::hip_return_s`]. Positive: a forward fall
-    /// pitches the trunk forward quickly and returns it slowly. Adds to the position law's
-    /// pitch when both are on. Left out of written configs at 0.
-    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
-    pub hip_rate_gain: f64,
-    /// The time constant with which the rate law's extra pitch returns to 0 (s, in [0.01, 10];
-    /// default 0.5). Only read with [`MotionConfig::hip_rate_gain`] on; left out of written
-    /// configs at its default.
-    #[serde(
-        default = "default_hip_return_s",
-        skip_serializing_if = "is_default_hip_return_s"
-    )]
-    pub hip_return_s: f64,
-    /// Whether the walker tells its estimator and controller of the hip strategy's extra
-    /// trunk pitch (default false: it does not): the desired trunk pitch theta_R it hands the
-    /// estimator includes the extra pitch, so theta_E does not read the trunk's deliberate
-    /// lean. Left out of written configs when false.
-    #[serde(default, skip_serializing_if = "crate::config::is_false")]
-    pub hip_to_estimator: bool,
-    /// The longest the generator holds a step whose time ran out while its swing foot is
-    /// still in the air (s, in [0, 1]; default 0: off, the step ends on time as in the paper).
-    /// While it holds, the swing leg keeps tracking its placement and straightens from the
-    /// halt extension towards a straight leg over this time, so that the foot reaches the
-    /// ground where it was sent; the legs are exchanged at the touch-down (or when the time
-    /// is up). Needs the walker's [`StepCommand::swing_landed`]; without it the step ends on
-    /// time. Left out of written configs at 0.
-    #[serde(skip_serializing_if = "crate::config::is_zero")]
-    pub landing_wait_s: f64,
     /// The earliest phase of a step at which its swing foot's landing ends it (in [0, 1];
-    /// default 0.5; 1: off, the step ends on time as in the paper). A swing foot that lands
+    /// default 1: off, every step ends on time as in the paper; `configs/improved.toml`: 0.5). A swing foot that lands
     /// early (the state estimator stands on it, having changed to it during this step) bears
     /// the body; ending the step there lets the controller plan the next step from it instead
     /// of sweeping a loaded foot on to its placement. Needs the walker's
@@ -302,71 +277,30 @@ pub struct MotionConfig {
     /// ground up to it; the extra lift follows the lift's own profile, so the foot still
     /// lands at the step's end.
     pub tilt_lift: f64,
-    /// [`Swing::Tracking`]: the ankle strategy's gain (rad of support-foot angle per rad of the
-    /// trunk's tilt deviation, as the tracking swing measures it beyond its dead band; in
-    /// [-2, 2]; default 0: off, and every result is as without it). Every tick the support
-    /// foot's angle (roll, pitch) is commanded `ankle_gain` times that deviation (each clamped
-    /// to +-[`ANKLE_LIMIT`]) away from flat, so that the position-controlled ankle presses one
-    /// edge of the sole into the ground and moves the centre of pressure towards it. Left out
-    /// of written configs at 0.
-    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
-    pub ankle_gain: f64,
 }
 
-/// [`MotionConfig::hip_return_s`]'s default (s).
-const DEFAULT_HIP_RETURN_S: f64 = 0.5;
-
-fn default_hip_return_s() -> f64 {
-    DEFAULT_HIP_RETURN_S
-}
-
-fn is_default_hip_return_s(v: &f64) -> bool {
-    *v == DEFAULT_HIP_RETURN_S
-}
-
-/// The phase a step is held at while its swing foot is still in the air (just below the
-/// exchange at 1).
-const HELD_PHASE: f64 = 1.0 - 1e-8;
-
-/// The largest extra trunk pitch of the hip strategy ([`MotionConfig::hip_gain`], rad).
-pub const HIP_PITCH_LIMIT: f64 = 0.5;
-
-/// The largest support-foot angle of the ankle strategy ([`MotionConfig::ankle_gain`], rad).
+/// The largest support-sole angle the generator commands (rad): the learned pitch and roll
+/// offsets of the support sole ([`StepCommand::ankle_pitch`], [`StepCommand::ankle_roll`]) are
+/// clamped to it.
 pub const ANKLE_LIMIT: f64 = 0.3;
 
 impl Default for MotionConfig {
     fn default() -> Self {
         MotionConfig {
-            halt_extension: 0.04,
-            halt_lean: 0.0,
-            lift_extension: 0.06,
-            push_extension: 0.0,
-            sway: 0.035,
-            sway_lead: 0.0,
-            lift_window: [0.1, 0.9],
-            swing_window: [0.1, 0.9],
-            lean_per_step: 0.2,
-            filter_time: 0.05,
-            step_x_range: [-0.45, 0.45],
+            gait: GaitShape::default(),
+            step_x_range: [-0.15, 0.45],
             step_y_range: [0.16, 0.4],
             max_turn: 0.5,
             period: 0.4,
             fade_in: 1.0,
             swing_step_scale: 1.0,
-            swing: Swing::Tracking,
-            tilt_lead: 0.0,
+            swing: Swing::Paper,
             tilt_gain: 1.3,
             tilt_gain_band: 0.05,
             tilt_settle_s: 3.0,
             tilt_dead_band: 0.01,
-            hip_gain: 0.0,
-            hip_rate_gain: 0.0,
-            hip_return_s: DEFAULT_HIP_RETURN_S,
-            hip_to_estimator: false,
-            landing_wait_s: 0.0,
-            early_landing_phase: 0.5,
+            early_landing_phase: 1.0,
             tilt_lift: 0.3,
-            ankle_gain: 0.0,
         }
     }
 }
@@ -374,38 +308,32 @@ impl Default for MotionConfig {
 impl MotionConfig {
     /// Checks the tracking swing's settings; errors name the field.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        config::non_negative("tilt_lead", self.tilt_lead)?;
         config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)?;
         config::in_range("tilt_gain_band", self.tilt_gain_band, 0.0, 1.0)?;
         config::positive("tilt_settle_s", self.tilt_settle_s)?;
         config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
-        config::in_range("hip_gain", self.hip_gain, -4.0, 4.0)?;
-        config::in_range("hip_rate_gain", self.hip_rate_gain, -2.0, 2.0)?;
-        config::in_range("hip_return_s", self.hip_return_s, 0.01, 10.0)?;
-        config::in_range("landing_wait_s", self.landing_wait_s, 0.0, 1.0)?;
         config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)?;
-        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)?;
-        config::in_range("ankle_gain", self.ankle_gain, -2.0, 2.0)
+        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)
     }
 
-    /// A gait tuned for walking without balance control: it walks open-loop for 30 s at every
-    /// commanded step in [-0.1, 0.2] m (0.025 m apart) on ground friction 0.7, 0.8 and 1.0,
-    /// and steps in place for 60 s, where [`MotionConfig::default`] falls at -0.10, -0.05,
-    /// +0.15 and +0.20 m. Found by a hill-climbing search over the primitives' amplitudes and
-    /// windows scored by survival time; its slight backward lean per step and later lift end
-    /// keep the feet flat at touch-down. The closed-loop walker keeps the default, which its
-    /// controller gains were tuned on.
+    /// A gait tuned for walking without balance control (found by a hill-climbing search over
+    /// the primitives' amplitudes and windows, scored by open-loop survival time; probe
+    /// `walk_open_loop`). The closed-loop walker keeps the default, which its controller gains
+    /// were tuned on.
     pub fn open_loop_gait() -> Self {
         MotionConfig {
-            halt_extension: 0.0344,
-            halt_lean: 0.0213,
-            lift_extension: 0.0665,
-            push_extension: 0.0,
-            sway: 0.0347,
-            sway_lead: -0.007,
-            lift_window: [0.0874, 0.982],
-            swing_window: [0.103, 0.8739],
-            lean_per_step: -0.0582,
+            gait: GaitShape {
+                halt_extension: 0.0344,
+                halt_lean: 0.0213,
+                lift_extension: 0.0665,
+                push_extension: 0.0,
+                sway: 0.0347,
+                sway_lead: -0.007,
+                lift_window: [0.0874, 0.982],
+                swing_window: [0.103, 0.8739],
+                lean_per_step: -0.0582,
+                ..GaitShape::default()
+            },
             // Walking without feedback: the swing never reads the trunk's tilt, and every
             // step ends on time.
             swing: Swing::Paper,
@@ -441,16 +369,6 @@ pub struct MotionGenerator {
     /// The trunk's settled tilt `[roll, pitch]` (low-pass filtered measurement).
     #[serde(default)]
     tilt_settled: Option<[f64; 2]>,
-    /// The hip strategy's extra trunk pitch (rad, [`MotionConfig::hip_gain`]).
-    #[serde(default)]
-    hip: f64,
-    /// The rate law's share of [`Self::hip`] (rad, [`MotionConfig::hip_rate_gain`]).
-    #[serde(default, skip_serializing_if = "crate::config::is_zero")]
-    hip_rate: f64,
-    /// How long the current step has been held past its time, waiting for the swing foot to
-    /// land (s, [`MotionConfig::landing_wait_s`]).
-    #[serde(default)]
-    waited: f64,
     /// Time since the last exchange of legs (or the start) (s).
     #[serde(default)]
     step_elapsed: f64,
@@ -491,9 +409,6 @@ impl MotionGenerator {
             legs: [LegPose::default(); 2],
             tilt: None,
             tilt_settled: None,
-            hip: 0.0,
-            hip_rate: 0.0,
-            waited: 0.0,
             step_elapsed: 0.0,
             ankle_pitch: 0.0,
             ankle_roll: 0.0,
@@ -543,11 +458,6 @@ impl MotionGenerator {
         self.support
     }
 
-    /// The hip strategy's extra trunk pitch last commanded (rad; 0 with it off).
-    pub fn hip_pitch(&self) -> f64 {
-        self.hip
-    }
-
     /// Time since the legs were last exchanged (or since the start) (s).
     pub fn step_elapsed(&self) -> f64 {
         self.step_elapsed
@@ -576,9 +486,9 @@ impl MotionGenerator {
     /// The halt pose of one leg.
     pub fn halt_pose(&self) -> LegPose {
         LegPose {
-            extension: self.config.halt_extension,
-            angle: [0.0, -self.config.halt_lean, 0.0],
-            foot: [0.0, -self.config.halt_lean],
+            extension: self.config.gait.halt_extension,
+            angle: [0.0, -self.config.gait.halt_lean, 0.0],
+            foot: [0.0, -self.config.gait.halt_lean],
         }
     }
 
@@ -627,8 +537,8 @@ impl MotionGenerator {
         if command.gait_x.is_finite() {
             want[3] = command.gait_x.clamp(c.step_x_range[0], c.step_x_range[1]);
         }
-        let alpha = if c.filter_time > 0.0 {
-            1.0 - (-dt / c.filter_time).exp()
+        let alpha = if c.gait.filter_time > 0.0 {
+            1.0 - (-dt / c.gait.filter_time).exp()
         } else {
             1.0
         };
@@ -648,7 +558,6 @@ impl MotionGenerator {
             (Swing::Tracking, Some([tilt, rate]))
                 if tilt.iter().chain(&rate).all(|v| v.is_finite()) =>
             {
-                let lead = c.tilt_lead.min(left).max(0.0);
                 let beta = 1.0 - (-dt / c.tilt_settle_s).exp();
                 let settled = self.tilt_settled.get_or_insert(tilt);
                 for (m, t) in settled.iter_mut().zip(tilt) {
@@ -656,36 +565,12 @@ impl MotionGenerator {
                 }
                 let band = c.tilt_dead_band;
                 Some([0, 1].map(|k| {
-                    let dev = tilt[k] + lead * rate[k] - settled[k];
+                    let dev = tilt[k] - settled[k];
                     dev.signum() * (dev.abs() - band).max(0.0)
                 }))
             }
             _ => None,
         };
-        if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
-            // The legs' tilt: the trunk's less the extra pitch the hips gave it.
-            let legs = self.tilt.map_or(0.0, |[_, pitch]| pitch - self.hip);
-            let position = (c.hip_gain * legs).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
-            if c.hip_rate_gain != 0.0 {
-                let rate = match command.tilt {
-                    Some([_, [_, r]]) if r.is_finite() && self.tilt.is_some() => r,
-                    _ => 0.0,
-                };
-                // A fall under way: the legs tilt beyond the dead band the way the trunk turns.
-                let target = if legs != 0.0 && legs.signum() == rate.signum() {
-                    (c.hip_rate_gain * rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT)
-                } else {
-                    0.0
-                };
-                let r = self.hip_rate;
-                if target.abs() > r.abs() {
-                    self.hip_rate = target;
-                } else {
-                    self.hip_rate -= r * (dt / c.hip_return_s).min(1.0);
-                }
-            }
-            self.hip = (position + self.hip_rate).clamp(-HIP_PITCH_LIMIT, HIP_PITCH_LIMIT);
-        }
         if command.ankle_pitch.is_finite() {
             self.ankle_pitch = command.ankle_pitch;
         }
@@ -700,16 +585,7 @@ impl MotionGenerator {
             self.phase = 1.0;
         }
         if self.phase >= 1.0 - 1e-9 {
-            // A swing foot still in the air is held at its placement until it lands.
-            let hold = c.landing_wait_s > 0.0
-                && command.swing_landed == Some(false)
-                && self.waited < c.landing_wait_s;
-            if hold {
-                self.phase = HELD_PHASE;
-                self.waited += dt;
-            } else {
-                self.exchange();
-            }
+            self.exchange();
         }
         let (placement, legs) = self.poses();
         self.placement = placement;
@@ -719,7 +595,6 @@ impl MotionGenerator {
 
     fn exchange(&mut self) {
         self.phase = 0.0;
-        self.waited = 0.0;
         self.step_elapsed = 0.0;
         self.steps += 1;
         self.support = self.support.other();
@@ -728,21 +603,11 @@ impl MotionGenerator {
 
     /// Leg roll that shifts the hips by the sway at phase `p` (towards the support foot).
     fn sway_roll(&self, p: f64) -> f64 {
-        let d = self.space.leg_length() * (1.0 - self.config.halt_extension);
-        let y = self.config.sway * (std::f64::consts::PI * (p + self.config.sway_lead)).sin();
+        let d = self.space.leg_length() * (1.0 - self.config.gait.halt_extension);
+        let y =
+            self.config.gait.sway * (std::f64::consts::PI * (p + self.config.gait.sway_lead)).sin();
         // Hips move towards the support side: feet move away from it relative to the hips.
         -self.support.sign() * (y / d).clamp(-0.5, 0.5).asin()
-    }
-
-    /// The ankle strategy's support-sole angle `[roll, pitch]` at the last update (rad; 0
-    /// without [`MotionConfig::ankle_gain`] or without a measured tilt).
-    pub fn ankle_strategy(&self) -> [f64; 2] {
-        match self.tilt {
-            Some(tilt) if self.config.ankle_gain != 0.0 => {
-                tilt.map(|t| (self.config.ankle_gain * t).clamp(-ANKLE_LIMIT, ANKLE_LIMIT))
-            }
-            _ => [0.0; 2],
-        }
     }
 
     /// The placement angles and the full leg poses at the current phase.
@@ -750,7 +615,7 @@ impl MotionGenerator {
         let c = &self.config;
         let fade = self.fade();
         let p = self.phase;
-        let d = self.space.leg_length() * (1.0 - c.halt_extension);
+        let d = self.space.leg_length() * (1.0 - c.gait.halt_extension);
         let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();
         // Placement fades in with the lift so a barely lifted foot is not dragged.
         let [sx, sy, turn, gx] = self.filtered.map(|v| v * fade);
@@ -765,12 +630,9 @@ impl MotionGenerator {
             turn / 2.0,
         ];
         let end_support = [-end_swing[0], end_support_pitch, -turn / 2.0];
-        let s_swing = smooth(window(p, c.swing_window));
-        let lift = (std::f64::consts::PI * window(p, c.lift_window)).sin();
-        let mut lean = c.halt_lean + c.lean_per_step * gx;
-        if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
-            lean += self.hip;
-        }
+        let s_swing = smooth(window(p, c.gait.swing_window));
+        let lift = (std::f64::consts::PI * window(p, c.gait.lift_window)).sin();
+        let lean = c.gait.halt_lean + c.gait.lean_per_step * gx;
         // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
         // support sole on the ground, for the trunk's predicted tilt.
         let tracking = self.tilt.map(|[roll, pitch]| {
@@ -784,12 +646,6 @@ impl MotionGenerator {
                 }
             };
             let roll = gained(roll);
-            // The legs' tilt: the hip strategy's extra pitch is in the lean already.
-            let pitch = if c.hip_gain != 0.0 || c.hip_rate_gain != 0.0 {
-                pitch - self.hip
-            } else {
-                pitch
-            };
             let pitch = lean + gained(pitch);
             // The hip over the support sole at the end of the step, with the support leg
             // tilted by the trunk's tilt beyond its settled value.
@@ -810,18 +666,12 @@ impl MotionGenerator {
             let i = side.index();
             let start = self.start[i];
             let (end, s, ext) = if side == swing {
-                // Held past its time: straighten towards the ground.
-                let reach = if c.landing_wait_s > 0.0 {
-                    c.halt_extension * (self.waited / c.landing_wait_s).min(1.0)
-                } else {
-                    0.0
-                };
                 // A tilted body brings the ground up to the swing foot: lift it the more.
                 let tilted = self.tilt.map_or(0.0, |[roll, pitch]| roll.hypot(pitch));
-                let height = c.lift_extension + c.tilt_lift * tilted;
-                (end_swing, s_swing, height * lift * fade - reach)
+                let height = c.gait.lift_extension + c.tilt_lift * tilted;
+                (end_swing, s_swing, height * lift * fade)
             } else {
-                (end_support, p, -c.push_extension * lift * fade)
+                (end_support, p, -c.gait.push_extension * lift * fade)
             };
             let mut foot = [0.0, -lean];
             if side == swing
@@ -830,13 +680,10 @@ impl MotionGenerator {
                 // Land the sole flat on the ground.
                 foot = [-s * roll, -lean - s * (pitch - lean)];
             } else if side != swing {
-                // The ankle strategy turns the support sole with the tilt; learned offsets
-                // of its roll and pitch add to it.
-                let [roll, pitch] = self.ankle_strategy();
-                if roll != 0.0 || pitch != 0.0 || self.ankle_pitch != 0.0 || self.ankle_roll != 0.0
-                {
-                    let roll = (roll + self.ankle_roll).clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
-                    let pitch = (pitch + self.ankle_pitch).clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
+                // Learned offsets of the support sole's roll and pitch turn it.
+                if self.ankle_pitch != 0.0 || self.ankle_roll != 0.0 {
+                    let roll = self.ankle_roll.clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
+                    let pitch = self.ankle_pitch.clamp(-ANKLE_LIMIT, ANKLE_LIMIT);
                     foot = [roll, -lean + pitch];
                 }
             }
@@ -848,7 +695,7 @@ impl MotionGenerator {
             angle[0] += sway;
             angle[1] -= lean;
             out[i] = LegPose {
-                extension: c.halt_extension + ext,
+                extension: c.gait.halt_extension + ext,
                 angle,
                 foot,
             };

@@ -321,12 +321,8 @@ impl Walker {
         // The desired trunk pitch theta_R: the lean the generator gives the trunk for the
         // reference gait (its halt lean plus the lean with the nominal step, which follows F_R).
         let m = &self.config.motion;
-        let mut theta_r =
-            m.halt_lean + m.lean_per_step * f_r.clamp(m.step_x_range[0], m.step_x_range[1]);
-        if m.hip_to_estimator {
-            // The hip strategy's deliberate extra pitch is no fall of the body.
-            theta_r += self.generator.hip_pitch();
-        }
+        let theta_r = m.gait.halt_lean
+            + m.gait.lean_per_step * f_r.clamp(m.step_x_range[0], m.step_x_range[1]);
         let estimate = self.estimator.update(sensors, theta_r)?;
         let dt = self.last_time.map_or(0.0, |t| (sensors.time - t).max(0.0));
         self.last_time = Some(sensors.time);
@@ -507,8 +503,7 @@ impl Walker {
     /// The offsets that can still change the step, per parameter: beyond the step range's
     /// ends (and the controller's largest step) an offset would be clamped away, as would a
     /// width beyond the generator's width range, or a sole's pitch or roll beyond
-    /// [`ANKLE_LIMIT`] with the ankle strategy's (the roll towards the swing leg's side);
-    /// `time_reach` is the controller's.
+    /// [`ANKLE_LIMIT`]; `time_reach` is the controller's.
     fn reach(
         &self,
         base_step: f64,
@@ -520,14 +515,12 @@ impl Walker {
         let lo = m.step_x_range[0].max(-cap);
         let hi = m.step_x_range[1].min(cap);
         let [w_lo, w_hi] = m.step_y_range;
-        let [roll, pitch] = self.generator.ankle_strategy();
-        let roll = sole_roll_towards(self.generator.support().other()) * roll;
         PerParameter([
             [lo - base_step, hi - base_step],
             [w_lo - base_width, w_hi - base_width],
             time_reach,
-            [-ANKLE_LIMIT - pitch, ANKLE_LIMIT - pitch],
-            [-ANKLE_LIMIT - roll, ANKLE_LIMIT - roll],
+            [-ANKLE_LIMIT, ANKLE_LIMIT],
+            [-ANKLE_LIMIT, ANKLE_LIMIT],
         ])
     }
 

@@ -98,12 +98,17 @@ pub fn parameter_learner(
     learner_with_rule(components, parameter, config, rule)
 }
 
-/// The LIPM step-time rule in `plane`: [`StepTime`]'s sagittal one, or the frontal one for the
-/// stance of `walker` ([`WalkerConfig::stance_width`]).
+/// The LIPM step-time rule in `plane` with `walker`'s controller `C`: [`StepTime`]'s
+/// sagittal one, or the frontal one for the stance of `walker`
+/// ([`WalkerConfig::stance_width`]).
 pub fn step_time_rule(plane: Plane, walker: &WalkerConfig) -> StepTime {
-    match plane {
+    let rule = match plane {
         Plane::Sagittal => StepTime::default(),
         Plane::Frontal => StepTime::frontal(walker.stance_width()),
+    };
+    StepTime {
+        c: walker.capture_step.c,
+        ..rule
     }
 }
 

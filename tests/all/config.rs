@@ -152,22 +152,6 @@ fn out_of_range_protocol_values_are_errors_naming_the_field() {
         ("[settings]\nscale = 0.0\n", "settings.scale"),
         ("[settings.sim]\ndt = 0.5\n", "settings.sim"),
         (
-            "[settings.walker.motion]\nhip_gain = 5.0\n",
-            "settings.walker.motion.hip_gain",
-        ),
-        (
-            "[settings.walker.motion]\nhip_rate_gain = -3.0\n",
-            "settings.walker.motion.hip_rate_gain",
-        ),
-        (
-            "[settings.walker.motion]\nhip_return_s = 0.0\n",
-            "settings.walker.motion.hip_return_s",
-        ),
-        (
-            "[settings.walker.motion]\nlanding_wait_s = -0.1\n",
-            "settings.walker.motion.landing_wait_s",
-        ),
-        (
             "[settings.walker.motion]\nearly_landing_phase = 1.5\n",
             "settings.walker.motion.early_landing_phase",
         ),
@@ -217,11 +201,12 @@ fn partial_nested_sections_keep_the_other_defaults() {
     assert_eq!(shank.radius, default.shank.radius);
     assert_eq!(config.settings.sim.body.thigh, default.thigh);
 
-    // The robustness map keeps the protocol's 31 x 31, not the type's default.
-    let config = ConfigFile::parse_toml("[protocols.robustness.map]\nf_r = 0.1\n").unwrap();
+    // The robustness map is the figure's resolution, 31 x 31, not a key.
+    let config = ConfigFile::parse_toml("[protocols.robustness]\npushes = 3\n").unwrap();
     let robustness: RobustnessProtocol = config.protocols.get("robustness").unwrap();
-    assert_eq!(robustness.map.f_r, 0.1);
     assert_eq!(robustness.map.resolution, (31, 31));
+    let e = ConfigFile::parse_toml("[protocols.robustness.map]\nf_r = 0.1\n").unwrap_err();
+    assert!(e.to_string().contains("unknown field `map`"), "{e}");
 
     // The CLI accepts it.
     let (ok, out, err) = check("[settings.sim.body.torso]\nmass = 11.5\n");
@@ -523,11 +508,11 @@ fn hostile_values_are_refused_before_anything_runs() {
         ),
         (
             "[protocols.robustness.map]\nresolution = [100000000, 100000000]\n".to_string(),
-            "protocols.robustness.map.resolution",
+            "unknown field `map`",
         ),
         (
             "[protocols.robustness.metric_grid]\npoints = [100000000, 1, 1]\n".to_string(),
-            "protocols.robustness.metric_grid",
+            "unknown field `metric_grid`",
         ),
         (
             format!(

@@ -2,7 +2,9 @@
 
 use proptest::prelude::*;
 use steplearn::control::LegJoint;
-use steplearn::control::motion::{LegPose, LegSpace, MotionConfig, MotionGenerator, StepCommand};
+use steplearn::control::motion::{
+    LegPose, LegSpace, MotionConfig, MotionGenerator, StepCommand, Swing,
+};
 use steplearn::sim::BodyConfig;
 
 fn space() -> LegSpace {
@@ -95,8 +97,8 @@ fn swing_foot_lands_where_commanded() {
                 break;
             }
         }
-        let d = space().leg_length() * (1.0 - g.config().halt_extension);
-        let lean = g.config().lean_per_step * gait_x;
+        let d = space().leg_length() * (1.0 - g.config().gait.halt_extension);
+        let lean = g.config().gait.lean_per_step * gait_x;
         let swing = g.legs()[g.swing().index()].angle[1] + lean;
         let support = g.legs()[g.support().index()].angle[1] + lean;
         // Foot x relative to the hip is -d sin(pitch).
@@ -152,6 +154,14 @@ fn bad_command_values_are_ignored() {
     assert!(g.steps() >= 1);
 }
 
+/// The improved setup's tracking swing with the generator's other defaults.
+fn tracking() -> MotionConfig {
+    MotionConfig {
+        swing: Swing::Tracking,
+        ..MotionConfig::default()
+    }
+}
+
 fn generator_with(config: MotionConfig) -> MotionGenerator {
     MotionGenerator::new(config, &BodyConfig::default().leg_geometry())
 }
@@ -183,70 +193,15 @@ fn first_exchange(g: &mut MotionGenerator, step_time: f64, landed_at: Option<f64
 }
 
 #[test]
-fn a_swing_foot_still_in_the_air_is_held_until_it_lands_or_the_wait_is_up() {
-    let wait = MotionConfig {
-        landing_wait_s: 0.2,
-        ..MotionConfig::default()
-    };
-    // On time without the setting, or without knowing whether the foot landed.
-    let on_time = first_exchange(&mut generator(), 0.4, Some(0.55));
-    assert!((on_time - 0.4).abs() < 0.015, "{on_time}");
-    let unknown = first_exchange(&mut generator_with(wait), 0.4, None);
-    assert!((unknown - 0.4).abs() < 0.015, "{unknown}");
-    // Held until the landing 0.15 s late, at most the wait.
-    let held = first_exchange(&mut generator_with(wait), 0.4, Some(0.55));
-    assert!((held - 0.56).abs() < 0.015, "{held}");
-    let capped = first_exchange(&mut generator_with(wait), 0.4, Some(2.0));
-    assert!((capped - 0.61).abs() < 0.025, "{capped}");
-}
-
-#[test]
-fn a_held_swing_leg_straightens_towards_the_ground() {
-    let config = MotionConfig {
-        landing_wait_s: 0.2,
-        ..MotionConfig::default()
-    };
-    let mut g = generator_with(config);
-    let swing = g.swing();
-    let dt = 0.01;
-    let mut extensions = Vec::new();
-    for k in 0..55 {
-        let t = k as f64 * dt;
-        let cmd = StepCommand {
-            step_x: 0.2,
-            step_y: swing.sign() * g.nominal_width(),
-            turn: 0.0,
-            step_time: (0.4 - t).max(0.0),
-            gait_x: 0.0,
-            tilt: None,
-            swing_landed: Some(false),
-            ankle_pitch: 0.0,
-            ankle_roll: 0.0,
-        };
-        g.update(&cmd, dt);
-        extensions.push(g.legs()[swing.index()].extension);
-    }
-    assert_eq!(g.swing(), swing, "still held");
-    let at_end = extensions[38];
-    let held = *extensions.last().unwrap();
-    // The halt extension at the swing's end; 0.16 s into a 0.2 s wait, a fifth of it left.
-    assert!((at_end - config.halt_extension).abs() < 1e-9, "{at_end}");
-    assert!(
-        (held - 0.2 * config.halt_extension).abs() < 0.06 * config.halt_extension,
-        "{held}"
-    );
-}
-
-#[test]
 fn an_early_landing_ends_the_step_only_past_the_set_phase() {
     let early = MotionConfig {
         early_landing_phase: 0.5,
-        ..MotionConfig::default()
+        ..tracking()
     };
     // Off (1): the landing at 0.3 s of a 0.4 s step changes nothing.
     let off = MotionConfig {
         early_landing_phase: 1.0,
-        ..MotionConfig::default()
+        ..tracking()
     };
     let on_time = first_exchange(&mut generator_with(off), 0.4, Some(0.3));
     assert!((on_time - 0.4).abs() < 0.015, "{on_time}");
@@ -258,36 +213,39 @@ fn an_early_landing_ends_the_step_only_past_the_set_phase() {
 }
 
 #[test]
-fn landing_settings_out_of_range_are_refused() {
-    for config in [
-        MotionConfig {
-            landing_wait_s: -0.1,
-            ..MotionConfig::default()
-        },
-        MotionConfig {
-            landing_wait_s: 1.5,
-            ..MotionConfig::default()
-        },
-        MotionConfig {
-            early_landing_phase: 1.2,
-            ..MotionConfig::default()
-        },
-        MotionConfig {
-            early_landing_phase: f64::NAN,
-            ..MotionConfig::default()
-        },
-        MotionConfig {
-            tilt_lift: -0.1,
-            ..MotionConfig::default()
-        },
+fn landing_settings_out_of_range_are_refused_naming_the_key() {
+    for (config, key) in [
+        (
+            MotionConfig {
+                early_landing_phase: 1.2,
+                ..tracking()
+            },
+            "early_landing_phase",
+        ),
+        (
+            MotionConfig {
+                early_landing_phase: f64::NAN,
+                ..tracking()
+            },
+            "early_landing_phase",
+        ),
+        (
+            MotionConfig {
+                tilt_lift: -0.1,
+                ..tracking()
+            },
+            "tilt_lift",
+        ),
+        (
+            MotionConfig {
+                tilt_lift: 1.5,
+                ..tracking()
+            },
+            "tilt_lift",
+        ),
     ] {
         let err = config.validate().unwrap_err().to_string();
-        assert!(
-            err.contains("landing_wait_s")
-                || err.contains("early_landing_phase")
-                || err.contains("tilt_lift"),
-            "{err}"
-        );
+        assert!(err.starts_with(key), "{key}: {err}");
     }
 }
 
@@ -340,17 +298,17 @@ fn the_tilt_gain_acts_only_beyond_its_band() {
     let once = MotionConfig {
         tilt_gain: 1.0,
         tilt_gain_band: 0.0,
-        ..MotionConfig::default()
+        ..tracking()
     };
     let gained = MotionConfig {
         tilt_gain: 1.3,
         tilt_gain_band: 0.0,
-        ..MotionConfig::default()
+        ..tracking()
     };
     let banded = MotionConfig {
         tilt_gain: 1.3,
         tilt_gain_band: 0.05,
-        ..MotionConfig::default()
+        ..tracking()
     };
     let pitch = |config: MotionConfig, tilt: f64| -> Vec<f64> {
         // Stepping in place the tracked swing leg stays parallel to the support leg whatever
@@ -378,11 +336,11 @@ fn the_tilt_gain_acts_only_beyond_its_band() {
 fn tilt_lift_lifts_a_tilted_swing_higher_and_lands_it_as_before() {
     let plain = MotionConfig {
         tilt_lift: 0.0,
-        ..MotionConfig::default()
+        ..tracking()
     };
     let lifted = MotionConfig {
         tilt_lift: 0.5,
-        ..MotionConfig::default()
+        ..tracking()
     };
     let upright = swing_extensions(lifted, 0.0);
     let without = swing_extensions(plain, -0.11);
@@ -396,183 +354,4 @@ fn tilt_lift_lifts_a_tilted_swing_higher_and_lands_it_as_before() {
     // At the end of the lift both are back at the halt extension.
     let (a, b) = (with.last().unwrap(), without.last().unwrap());
     assert!((a - b).abs() < 1e-6, "{a} {b}");
-}
-
-/// A generator faded in stepping in place upright (tilt measured, all zero), then ticked
-/// `ticks` times with the trunk's pitch `tilt` (rad) and pitch rate `rate` (rad/s); returns
-/// the generator.
-fn tilted_ticks(g: &mut MotionGenerator, tilt: f64, rate: f64, ticks: usize) {
-    let dt = 0.01;
-    for _ in 0..ticks {
-        let cmd = StepCommand {
-            step_x: 0.0,
-            step_y: g.swing().sign() * g.nominal_width(),
-            turn: 0.0,
-            step_time: (1.0 - g.phase()) * 0.4,
-            gait_x: 0.0,
-            tilt: Some([[0.0, tilt], [0.0, rate]]),
-            swing_landed: None,
-            ankle_pitch: 0.0,
-            ankle_roll: 0.0,
-        };
-        g.update(&cmd, dt);
-    }
-}
-
-/// Generators with the defaults and with `config`, stepped in place upright for 200 ticks,
-/// where `config`'s settings must change nothing.
-fn upright_with_and_without(config: MotionConfig) -> (MotionGenerator, MotionGenerator) {
-    let mut off = generator_with(MotionConfig::default());
-    let mut on = generator_with(config);
-    tilted_ticks(&mut off, 0.0, 0.0, 200);
-    tilted_ticks(&mut on, 0.0, 0.0, 200);
-    assert_eq!(off.legs(), on.legs(), "upright it changes nothing");
-    (off, on)
-}
-
-#[test]
-fn the_hip_rate_law_jumps_with_a_tilt_rate_pulse_and_returns_with_its_time_constant() {
-    let config = MotionConfig {
-        hip_rate_gain: 0.2,
-        hip_return_s: 0.5,
-        ..MotionConfig::default()
-    };
-    let mut g = generator_with(config);
-    tilted_ticks(&mut g, 0.0, 0.0, 200);
-    assert_eq!(g.hip_pitch(), 0.0, "upright: no extra pitch");
-    // A forward fall: the trunk tilts forward and turns forward at 1 rad/s for one tick.
-    tilted_ticks(&mut g, 0.1, 1.0, 1);
-    assert!((g.hip_pitch() - 0.2).abs() < 1e-12, "{}", g.hip_pitch());
-    // The rate gone, the extra pitch decays with 0.5 s: about 1/e of it after 0.5 s.
-    tilted_ticks(&mut g, 0.1, 0.0, 50);
-    let ratio = g.hip_pitch() / 0.2;
-    assert!((ratio - (-1.0f64).exp()).abs() < 0.01, "{ratio}");
-    tilted_ticks(&mut g, 0.1, 0.0, 500);
-    assert!(g.hip_pitch().abs() < 1e-4, "{}", g.hip_pitch());
-    // A backward fall pitches it backward, and clamped to the limit.
-    tilted_ticks(&mut g, -0.1, -5.0, 1);
-    assert_eq!(g.hip_pitch(), -steplearn::control::motion::HIP_PITCH_LIMIT);
-    // A rate against the tilt (a fall being caught) does not pitch the trunk.
-    let mut g = generator_with(config);
-    tilted_ticks(&mut g, 0.0, 0.0, 200);
-    tilted_ticks(&mut g, 0.1, -1.0, 1);
-    assert_eq!(g.hip_pitch(), 0.0);
-    // The extra pitch leans the legs: the joint targets differ from the law's off.
-    let (mut off, mut on) = upright_with_and_without(config);
-    tilted_ticks(&mut off, 0.1, 1.0, 1);
-    tilted_ticks(&mut on, 0.1, 1.0, 1);
-    assert_ne!(off.legs(), on.legs());
-}
-
-#[test]
-fn with_the_hip_rate_law_off_its_other_settings_change_nothing() {
-    let mut plain = generator_with(MotionConfig::default());
-    let other = MotionConfig {
-        hip_return_s: 2.0,
-        hip_to_estimator: true,
-        ..MotionConfig::default()
-    };
-    let mut set = generator_with(other);
-    for (tilt, rate, ticks) in [
-        (0.0, 0.0, 150),
-        (0.1, 1.0, 3),
-        (0.2, 0.5, 30),
-        (-0.1, -2.0, 40),
-    ] {
-        tilted_ticks(&mut plain, tilt, rate, ticks);
-        tilted_ticks(&mut set, tilt, rate, ticks);
-        assert_eq!(plain.legs(), set.legs());
-        assert_eq!(set.hip_pitch(), 0.0);
-    }
-    // The default settings are left out of written configs.
-    let text = toml::to_string(&MotionConfig::default()).unwrap();
-    assert!(!text.contains("hip_"), "{text}");
-    let text = toml::to_string(&other).unwrap();
-    assert!(
-        text.contains("hip_return_s") && text.contains("hip_to_estimator"),
-        "{text}"
-    );
-}
-
-#[test]
-fn hip_rate_settings_out_of_range_are_refused() {
-    for (config, key) in [
-        (
-            MotionConfig {
-                hip_rate_gain: 2.5,
-                ..MotionConfig::default()
-            },
-            "hip_rate_gain",
-        ),
-        (
-            MotionConfig {
-                hip_rate_gain: f64::NAN,
-                ..MotionConfig::default()
-            },
-            "hip_rate_gain",
-        ),
-        (
-            MotionConfig {
-                hip_return_s: 0.0,
-                ..MotionConfig::default()
-            },
-            "hip_return_s",
-        ),
-    ] {
-        let err = config.validate().unwrap_err().to_string();
-        assert!(err.contains(key), "{err}");
-    }
-}
-
-#[test]
-fn the_ankle_strategy_tilts_the_support_sole_with_the_trunks_tilt_and_leaves_the_swing_alone() {
-    let config = MotionConfig {
-        ankle_gain: 0.5,
-        ..MotionConfig::default()
-    };
-    let band = config.tilt_dead_band;
-    let (mut off, mut on) = upright_with_and_without(config);
-    // Tilted forward beyond the dead band: the support sole pitches by the gain times the
-    // tilt beyond the band (the deviation from the settled tilt, which has barely moved in one
-    // tick), the swing leg is as without it.
-    tilted_ticks(&mut off, 0.1, 0.0, 1);
-    tilted_ticks(&mut on, 0.1, 0.0, 1);
-    let support = on.swing().other().index();
-    let swing = on.swing().index();
-    assert_eq!(off.legs()[swing], on.legs()[swing]);
-    let extra = on.legs()[support].foot[1] - off.legs()[support].foot[1];
-    assert!(extra > 0.0, "a forward tilt presses the toes: {extra}");
-    assert!(extra <= 0.5 * (0.1 - band) + 1e-12, "{extra}");
-    assert!(extra > 0.4 * (0.1 - band), "{extra}");
-    assert_eq!(on.legs()[support].foot[0], off.legs()[support].foot[0]);
-    // A large tilt is clamped.
-    let mut big = generator_with(MotionConfig {
-        ankle_gain: 2.0,
-        ..MotionConfig::default()
-    });
-    let mut plain = generator_with(MotionConfig::default());
-    for g in [&mut big, &mut plain] {
-        tilted_ticks(g, 0.0, 0.0, 200);
-        tilted_ticks(g, -0.5, 0.0, 1);
-    }
-    let support = big.swing().other().index();
-    let extra = big.legs()[support].foot[1] - plain.legs()[support].foot[1];
-    assert!(
-        (extra + steplearn::control::motion::ANKLE_LIMIT).abs() < 1e-12,
-        "{extra}"
-    );
-    // Off it is left out of written configs, on it is written, and out of range it is refused.
-    let text = toml::to_string(&MotionConfig::default()).unwrap();
-    assert!(!text.contains("ankle_gain"), "{text}");
-    assert!(toml::to_string(&config).unwrap().contains("ankle_gain"));
-    for bad in [2.5, -2.5, f64::NAN, f64::INFINITY] {
-        let err = MotionConfig {
-            ankle_gain: bad,
-            ..MotionConfig::default()
-        }
-        .validate()
-        .unwrap_err()
-        .to_string();
-        assert!(err.contains("ankle_gain"), "{err}");
-    }
 }

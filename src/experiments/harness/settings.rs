@@ -17,9 +17,7 @@ pub struct Settings {
     pub sim: SimConfig,
     /// The walker (its mode is set by each experiment).
     pub walker: WalkerConfig,
-    /// The learner. A `[settings.learner]` table that leaves keys out keeps these settings'
-    /// values for them (the experiments' dead zone included), not [`LearnerConfig::default`]'s.
-    #[serde(deserialize_with = "learner_over_default")]
+    /// The learner.
     pub learner: LearnerConfig,
     /// Scale of every experiment's length in (0, 1]: 1 is the paper's protocol; `--quick`
     /// uses a fraction for a fast look.
@@ -159,25 +157,12 @@ impl LwprSettings {
     }
 }
 
-/// A `[settings.learner]` table over the default settings' learner.
-fn learner_over_default<'de, D: serde::Deserializer<'de>>(d: D) -> Result<LearnerConfig, D::Error> {
-    config::patch(&Settings::default().learner, d)
-}
-
-/// The experiments' dead zone on the sagittal G (`[settings.learner] dead_zone`): about the
-/// model's median |G| stepping undisturbed with the tracking swing, so the learner leaves the
-/// step-to-step spread alone (chosen in docs/learner.md, "The dead zone").
-pub const DEFAULT_DEAD_ZONE: f64 = 0.06;
-
 impl Default for Settings {
     fn default() -> Self {
         Settings {
             sim: SimConfig::default(),
             walker: WalkerConfig::new(WalkerMode::CaptureStep),
-            learner: LearnerConfig {
-                dead_zone: DEFAULT_DEAD_ZONE,
-                ..LearnerConfig::default()
-            },
+            learner: LearnerConfig::default(),
             scale: 1.0,
             push_window_s: 3.0,
             recovery_s: 0.0,
@@ -315,9 +300,7 @@ mod tests {
     }
 
     /// A table that a config file gives but leaves empty changes nothing, at any depth: each
-    /// key left out keeps the settings' own default, never the nested type's (a partial
-    /// `[settings.learner]` once ran with the learner's dead zone 0 instead of the settings'
-    /// 0.06).
+    /// key left out keeps the settings' own default.
     #[test]
     fn an_empty_or_partial_table_keeps_the_settings_defaults() {
         let defaults = Settings::default();
@@ -333,7 +316,7 @@ mod tests {
         }
         let partial: Settings =
             toml::from_str("[learner]\nlearn = [\"step-x\", \"step-time\"]\n").unwrap();
-        assert_eq!(partial.learner.dead_zone, DEFAULT_DEAD_ZONE);
+        assert_eq!(partial.learner.dead_zone, defaults.learner.dead_zone);
         assert_eq!(partial.learner.learn.iter().count(), 2);
     }
 }

@@ -132,6 +132,13 @@ pub struct PushResponse {
     /// or if every push ended in a fall (censored). A walker whose undisturbed steps miss F_R by
     /// more than the tolerance never returns.
     pub return_time_s: f64,
+    /// Return time resolved between touch-downs: the mean time since the push of the k-th
+    /// touch-down after it, and the step error of its mean step, per k; the last touch-down
+    /// whose error exceeds the tolerance and the next one bound the return, which is placed
+    /// where the error, linearly interpolated between them in time, meets the tolerance. The
+    /// first touch-down's time when none exceeds it; the horizon if the last one does or if
+    /// every push ended in a fall (censored).
+    pub return_time_by_step_s: f64,
     /// Settle time: as the return time, but back at the walker's own undisturbed mean step
     /// (F_R + `undisturbed_f_e`), so a steady bias does not count; the recovery dynamics alone.
     pub settle_time_s: f64,
@@ -172,6 +179,31 @@ impl PushResponse {
             AlignedStats::by_index(&samples, &absorbed, p.horizon_s, STEPS_AFTER_PUSH)
         };
         let step_by_index = by_index(|s| s.f_hat)?;
+        // The time of each touch-down since the latest absorbed push before it.
+        let since: Vec<(f64, f64)> = log
+            .steps
+            .iter()
+            .map(|s| {
+                let i = absorbed.partition_point(|&e| e <= s.time);
+                (
+                    s.time,
+                    if i == 0 {
+                        0.0
+                    } else {
+                        s.time - absorbed[i - 1]
+                    },
+                )
+            })
+            .collect();
+        let time_by_index =
+            AlignedStats::by_index(&since, &absorbed, p.horizon_s, STEPS_AFTER_PUSH)?;
+        let return_time_by_step_s = if absorbed.is_empty() {
+            p.horizon_s
+        } else {
+            return_between_touch_downs(&step_by_index, &time_by_index, p.f_r, p.tolerance_m)
+                .unwrap_or(p.horizon_s)
+                .min(p.horizon_s)
+        };
         let tda_by_index = by_index(|s| s.theta_e)?;
         // Undisturbed: steps not within the horizon after any push.
         let calm: Vec<f64> = log
@@ -243,6 +275,7 @@ impl PushResponse {
             tda_by_index,
             undisturbed_f_e,
             return_time_s,
+            return_time_by_step_s,
             settle_time_s,
             step_error_after_push_m,
             max_tda_rad,
@@ -250,6 +283,34 @@ impl PushResponse {
             falls: log.pushes.iter().filter(|x| x.fell).count(),
             falls_before_next_push: falls_before_next_push(log),
         })
+    }
+}
+
+/// The return to within `tolerance` of `f_r` resolved between touch-downs
+/// ([`PushResponse::return_time_by_step_s`]): `step` holds the mean step of the k-th
+/// touch-down after a push and `time` its mean time since the push. `None` when the last
+/// populated touch-down is still off (censored at the horizon by the caller) or none is
+/// populated.
+pub fn return_between_touch_downs(
+    step: &AlignedStats,
+    time: &AlignedStats,
+    f_r: f64,
+    tolerance: f64,
+) -> Option<f64> {
+    let points: Vec<(f64, f64)> = (0..step.mean.len().min(time.mean.len()))
+        .filter(|&k| step.count[k] > 0 && time.count[k] > 0)
+        .map(|k| (time.mean[k], (step.mean[k] - f_r).abs()))
+        .collect();
+    let first = points.first()?;
+    match points.iter().rposition(|&(_, e)| e > tolerance) {
+        None => Some(first.0),
+        Some(k) if k + 1 == points.len() => None,
+        Some(k) => {
+            let ((t0, e0), (t1, e1)) = (points[k], points[k + 1]);
+            // e0 > tolerance >= e1: the crossing lies within [t0, t1].
+            let share = (e0 - tolerance) / (e0 - e1);
+            Some(t0 + share * (t1 - t0))
+        }
     }
 }
 
@@ -490,6 +551,10 @@ pub struct DisturbanceSummary {
     /// Time (s) from the push until the step size is back at the reference step (within
     /// the protocol's tolerance; the horizon if never).
     pub return_time_s: ModelLearned<f64>,
+    /// The return time resolved between touch-downs (s,
+    /// [`PushResponse::return_time_by_step_s`]); absent in older summaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_time_by_step_s: Option<ModelLearned<f64>>,
     /// Time (s) from the push until the step size is back at the walker's own undisturbed
     /// mean step (recovery without a steady bias); absent in older summaries.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -506,6 +571,16 @@ pub struct DisturbanceSummary {
     pub falls: Option<PushFalls>,
 }
 
+impl DisturbanceSummary {
+    /// The return time claim 2 compares: resolved between touch-downs where the summary has
+    /// it, else in the protocol's bins.
+    pub fn return_time(&self) -> ModelLearned<f64> {
+        self.return_time_by_step_s
+            .clone()
+            .unwrap_or_else(|| self.return_time_s.clone())
+    }
+}
+
 /// B: finite non-negative times, errors and angles; falls within pushes, causes adding up.
 impl TypedResult for DisturbanceSummary {
     const EXPERIMENT: &'static str = NAME;
@@ -513,11 +588,16 @@ impl TypedResult for DisturbanceSummary {
     fn validate(&self) -> Result<(), ReportError> {
         let DisturbanceSummary {
             return_time_s,
+            return_time_by_step_s,
             settle_time_s,
             step_error_after_push_m,
             max_tda_rad,
             falls,
         } = self;
+        if let Some(t) = return_time_by_step_s {
+            finite_non_negative("return_time_by_step_s.model", t.model)?;
+            finite_non_negative("return_time_by_step_s.learned", t.learned)?;
+        }
         if let Some(t) = settle_time_s {
             finite_non_negative("settle_time_s.model", t.model)?;
             finite_non_negative("settle_time_s.learned", t.learned)?;
@@ -587,14 +667,11 @@ impl Experiment for Disturbance {
     fn headline(&self, runs: &[&Summary]) -> Vec<Headline> {
         let mut h: [Vec<f64>; 4] = Default::default();
         for s in runs {
-            if let Some(DisturbanceSummary {
-                return_time_s,
-                falls,
-                ..
-            }) = DisturbanceSummary::of(s)
-            {
-                h[0].push(return_time_s.model);
-                h[1].push(return_time_s.learned);
+            if let Some(d) = DisturbanceSummary::of(s) {
+                let ret = d.return_time();
+                let falls = d.falls;
+                h[0].push(ret.model);
+                h[1].push(ret.learned);
                 if let Some(f) = falls {
                     let rate = |falls: u32, pushes: u32| f64::from(falls) / f64::from(pushes);
                     h[2].push(rate(f.falls.model, f.pushes.model));
@@ -632,6 +709,10 @@ impl Experiment for Disturbance {
                 model: r.model.return_time_s,
                 learned: r.learned.return_time_s,
             },
+            return_time_by_step_s: Some(ModelLearned {
+                model: r.model.return_time_by_step_s,
+                learned: r.learned.return_time_by_step_s,
+            }),
             settle_time_s: Some(ModelLearned {
                 model: r.model.settle_time_s,
                 learned: r.learned.settle_time_s,
@@ -788,16 +869,18 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
     let mut seeds = Vec::new();
     let (mut return_diff, mut settle_diff, mut error_diff, mut falls_diff) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut late_falls_diff = Vec::new();
+    let (mut late_falls_diff, mut binned_diff) = (Vec::new(), Vec::new());
     for (seed, result) in by_seed(runs, DisturbanceSummary::of) {
+        let returned = result.return_time();
         let DisturbanceSummary {
             return_time_s,
             settle_time_s,
             step_error_after_push_m,
             max_tda_rad,
             falls,
+            ..
         } = &result;
-        let sooner = return_time_s.learned < return_time_s.model;
+        let sooner = returned.learned < returned.model;
         // Paired over seeds: return times only where both walkers absorbed a push (without
         // one the return time is the horizon, not a measurement), fall rates only where both
         // received pushes (a walker that falls while walking gets none, and its 0 falls would
@@ -807,6 +890,11 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
             absorbed(f.pushes.model, f.falls.model) && absorbed(f.pushes.learned, f.falls.learned)
         });
         return_diff.push(if both_absorbed {
+            returned.learned - returned.model
+        } else {
+            f64::NAN
+        });
+        binned_diff.push(if both_absorbed {
             return_time_s.learned - return_time_s.model
         } else {
             f64::NAN
@@ -869,7 +957,7 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
             sooner && near && no_more_falls,
             format!(
                 "return {:.2} s learned vs {:.2} s model{settle}; max TDA {:.3} vs {:.3} rad{fell}",
-                return_time_s.learned, return_time_s.model, max_tda_rad.learned, max_tda_rad.model
+                returned.learned, returned.model, max_tda_rad.learned, max_tda_rad.model
             ),
         ));
     }
@@ -882,8 +970,12 @@ pub fn claim(runs: &[&Summary], p_theta: f64) -> Claim {
         Claim::every,
         vec![
             paired(
-                "return time to the reference step, learned - model (s)",
+                "return time to the reference step, interpolated between touch-downs, learned - model (s)",
                 &return_diff,
+            ),
+            paired(
+                "return time to the reference step in the protocol's time bins (Fig. 5), learned - model (s)",
+                &binned_diff,
             ),
             paired(
                 "settle time to the walker's own undisturbed step, learned - model (s)",
@@ -1071,5 +1163,51 @@ mod tests {
         // A 2 cm shortfall: the 4 cm step is then within 3 cm of the reference.
         let r = PushResponse::new(&log(-0.02), &p).unwrap();
         assert_eq!((r.return_time_s, r.settle_time_s), (0.5, 1.0));
+    }
+
+    #[test]
+    fn the_return_between_touch_downs_is_where_the_interpolated_error_meets_the_tolerance() {
+        let p = DisturbanceProtocol::default();
+        // Touch-downs 0.1, 0.6 and 1.1 s after each push, 8 cm, 4 cm and 0 cm off the
+        // reference: the 3 cm tolerance is met a quarter of the way from 0.6 to 1.1 s, where
+        // the 0.5 s bins can only say 1.0 s.
+        let r = PushResponse::new(&log(0.0), &p).unwrap();
+        assert!(
+            (r.return_time_by_step_s - 0.725).abs() < 1e-9,
+            "{}",
+            r.return_time_by_step_s
+        );
+        // 2 cm short: 6, 2, 2 cm off; the second touch-down is already within the
+        // tolerance, met three quarters of the way from 0.1 to 0.6 s.
+        let r = PushResponse::new(&log(-0.02), &p).unwrap();
+        assert!(
+            (r.return_time_by_step_s - (0.1 + 0.5 * (0.03 / 0.04))).abs() < 1e-9,
+            "{}",
+            r.return_time_by_step_s
+        );
+        // Never back: censored at the horizon.
+        let r = PushResponse::new(&log(-0.05), &p).unwrap();
+        assert_eq!(r.return_time_by_step_s, p.horizon_s);
+        // Within the tolerance from the first touch-down: back at its time.
+        let step = AlignedStats {
+            bin_s: 1.0,
+            mean: vec![0.21, 0.2],
+            std: vec![0.0; 2],
+            count: vec![3, 3],
+        };
+        let time = AlignedStats {
+            mean: vec![0.3, 0.7],
+            ..step.clone()
+        };
+        assert_eq!(
+            return_between_touch_downs(&step, &time, 0.2, 0.03),
+            Some(0.3)
+        );
+        // No touch-down at all: no return.
+        let empty = AlignedStats {
+            count: vec![0, 0],
+            ..step.clone()
+        };
+        assert_eq!(return_between_touch_downs(&empty, &time, 0.2, 0.03), None);
     }
 }

@@ -61,11 +61,11 @@ pub struct RobustnessProtocol {
     pub settle_s: (f64, f64),
     /// Unit push direction (forward by default).
     pub direction: [f64; 3],
-    /// The input grid of the learning metric.
+    /// The input grid of the learning metric (a figure's resolution, not a config key).
+    #[serde(skip)]
     pub metric_grid: InputGrid,
-    /// The dF maps drawn after every push (a partial `map` keeps this protocol's defaults,
-    /// 31 x 31, for the keys it leaves out).
-    #[serde(deserialize_with = "map_patch")]
+    /// The dF maps drawn after every push, 31 x 31 (a figure's resolution, not a config key).
+    #[serde(skip)]
     pub map: MapSpec,
     /// Whether the learner holds its dF = 0 prior ([`crate::control::learner::Prior`]) from
     /// the start. Default false: D's learner is not initialised, so it neither has the analytic
@@ -89,10 +89,6 @@ impl Default for RobustnessProtocol {
             learner_prior: false,
         }
     }
-}
-
-fn map_patch<'de, D: serde::Deserializer<'de>>(d: D) -> Result<MapSpec, D::Error> {
-    crate::config::patch(&RobustnessProtocol::default().map, d)
 }
 
 impl Protocol for RobustnessProtocol {

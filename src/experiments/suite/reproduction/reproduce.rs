@@ -422,9 +422,12 @@ mod tests {
             disturbance(3, (2.0, 4.0), (60, 60), (6, 60)),
         ];
         let c = Claims::from_summaries(&s, 0.15);
-        let [ret, settle, error, rate, late] = &c.disturbance.over_seeds[..] else {
-            panic!("five paired quantities: {:?}", c.disturbance.over_seeds);
+        let [ret, binned, settle, error, rate, late] = &c.disturbance.over_seeds[..] else {
+            panic!("six paired quantities: {:?}", c.disturbance.over_seeds);
         };
+        // The fixtures have no return time between touch-downs: the claim falls back to the
+        // binned one, paired on the same seeds.
+        assert_eq!(binned.values, ret.values);
         // Quantities are Markdown table cells in claims.md (and index.html's tables).
         for c in c.all() {
             for p in &c.over_seeds {
@@ -614,8 +617,9 @@ mod tests {
         let ratio = &c.stability.over_seeds[1];
         assert!((ratio.values[1] - 12.0 / 9.0).abs() < 1e-12);
         assert_eq!(c.disturbance.over_seeds[0].values, vec![-1.0, -1.0]);
+        assert_eq!(c.disturbance.over_seeds[1].values, vec![-1.0, -1.0]);
         assert!(
-            c.disturbance.over_seeds[1].values.is_empty(),
+            c.disturbance.over_seeds[2].values.is_empty(),
             "no falls recorded"
         );
         assert_eq!(c.robustness.over_seeds[0].values, vec![2.0, 1.0, 0.0, 2.0]);
