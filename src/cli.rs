@@ -71,8 +71,12 @@ enum Command {
     Config {
         /// Check FILE (TOML, or JSON if it ends in .json): prints `ok`, or what is wrong and
         /// exits with an error.
-        #[arg(long, value_name = "FILE")]
+        #[arg(long, value_name = "FILE", conflicts_with = "table")]
         check: Option<PathBuf>,
+        /// Print the reference table of every key (default, range, meaning) as Markdown, as
+        /// docs/configuration.md holds it.
+        #[arg(long)]
+        table: bool,
     },
     /// Builds ablation.md and ablation.csv from a sweep's directory.
     Merge {
@@ -356,7 +360,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Sweep(args) => sweep(registry, args),
-        Command::Config { check } => config(registry, check),
+        Command::Config { check, table } => config(registry, check, table),
         Command::Replay(args) => replay(registry, args),
         Command::Merge { dir } => merge_dir(&dir),
     }
@@ -694,7 +698,11 @@ fn sweep(registry: &Registry, args: SweepArgs) -> Result<(), String> {
 }
 
 /// `steplearn config`: the default configuration, or `ok` for a valid `--check FILE`.
-fn config(registry: &Registry, check: Option<PathBuf>) -> Result<(), String> {
+fn config(registry: &Registry, check: Option<PathBuf>, table: bool) -> Result<(), String> {
+    if table {
+        print!("{}", crate::experiments::config_keys::key_table());
+        return Ok(());
+    }
     match check {
         None => print!(
             "{}",

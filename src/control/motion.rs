@@ -306,8 +306,28 @@ impl Default for MotionConfig {
 }
 
 impl MotionConfig {
-    /// Checks the tracking swing's settings; errors name the field.
+    /// Checks every setting; errors name the field.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        let [lo, hi] = self.step_x_range;
+        config::ensure(
+            lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi && lo < hi && hi - lo <= 2.0,
+            "step_x_range",
+            || format!("must be finite with lo <= 0 <= hi, lo < hi, within 2 m, got [{lo}, {hi}]"),
+        )?;
+        let [lo, hi] = self.step_y_range;
+        config::ensure(
+            lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi && hi <= 1.0,
+            "step_y_range",
+            || format!("must be finite with 0 < lo < hi <= 1, got [{lo}, {hi}]"),
+        )?;
+        config::in_range("max_turn", self.max_turn, 0.0, 1.5)?;
+        config::in_range("period", self.period, 0.05, 10.0)?;
+        config::in_range("fade_in", self.fade_in, 0.0, 60.0)?;
+        config::ensure(
+            self.swing_step_scale > 0.0 && self.swing_step_scale <= 2.0,
+            "swing_step_scale",
+            || format!("must be in (0, 2], got {}", self.swing_step_scale),
+        )?;
         config::in_range("tilt_gain", self.tilt_gain, 0.0, 2.0)?;
         config::in_range("tilt_gain_band", self.tilt_gain_band, 0.0, 1.0)?;
         config::positive("tilt_settle_s", self.tilt_settle_s)?;

@@ -14,7 +14,7 @@ pub mod suite;
 pub use harness::{
     aligned, catch_step, compare, fall_causes, protocol, replay_plan, schedule, settings, trial,
 };
-pub use records::{claim, config_file, index_page, paired, summary, sweep};
+pub use records::{claim, config_file, config_keys, index_page, paired, summary, sweep};
 pub use suite::reproduction::{ablation, reproduce};
 pub use suite::{disturbance, omnidirectional, robustness, stability, tracking};
 

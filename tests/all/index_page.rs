@@ -117,6 +117,7 @@ fn reproduction(dir: &Path, seeds: u64) {
                     model: 3.0 + 0.1 * s,
                     learned: 2.0,
                 },
+                return_time_by_step_s: None,
                 settle_time_s: None,
                 step_error_after_push_m: None,
                 max_tda_rad: ModelLearned {

@@ -2,6 +2,7 @@
 //! module per area: `cargo test --test all <module>::` runs one area.
 
 mod approx_batch;
+mod archive;
 mod bench;
 mod bench_sets;
 mod browser;

@@ -80,6 +80,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
                 model: rng.random_range(0.0..5.0),
                 learned: rng.random_range(0.0..5.0),
             },
+            return_time_by_step_s: None,
             settle_time_s: None,
             step_error_after_push_m: None,
             max_tda_rad: ModelLearned {

@@ -3,6 +3,7 @@
 
 pub mod claim;
 pub mod config_file;
+pub mod config_keys;
 pub(crate) mod error;
 pub mod index_page;
 pub mod paired;

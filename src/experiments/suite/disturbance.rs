@@ -1021,6 +1021,7 @@ mod tests {
                 model: 1.0,
                 learned: 1.0,
             },
+            return_time_by_step_s: None,
             settle_time_s: None,
             step_error_after_push_m: None,
             max_tda_rad: ModelLearned {

@@ -5,6 +5,7 @@
 //! replay, the bench and the command line reach them through the `Experiment` trait.
 
 pub mod ablation;
+pub mod claims_table;
 pub(crate) mod kind;
 pub mod reproduce;
 

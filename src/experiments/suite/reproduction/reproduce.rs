@@ -377,6 +377,7 @@ mod tests {
                     model: returns.0,
                     learned: returns.1,
                 },
+                return_time_by_step_s: None,
                 // Settled half a second before returning (a steady bias of either walker).
                 settle_time_s: Some(ModelLearned {
                     model: (returns.0 - 0.5).max(0.0),
@@ -494,6 +495,7 @@ mod tests {
                         model: 3.0,
                         learned: 2.0,
                     },
+                    return_time_by_step_s: None,
                     settle_time_s: None,
                     step_error_after_push_m: None,
                     max_tda_rad: ModelLearned {
@@ -510,6 +512,7 @@ mod tests {
                         model: 3.0,
                         learned: 2.0,
                     },
+                    return_time_by_step_s: None,
                     settle_time_s: None,
                     step_error_after_push_m: None,
                     max_tda_rad: ModelLearned {
