@@ -619,7 +619,8 @@ fn single_planes(
 /// [`LearnerConfig`] holds for each offset: the prior, the gain guard (on the largest of the
 /// offsets' gains, one scale for all), anti-windup per offset, the trust region over all
 /// inputs with either fallback, learning from falls, dead zone, leakage, `max_step_error` (a
-/// touch-down any of whose offsets the model missed by more teaches nothing) and train share.
+/// touch-down any of whose footstep offsets, `step-x` or `step-y`, the model missed by more
+/// metres teaches nothing; it does not gate the step time or the soles) and train share.
 pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize> {
     approx: A,
     /// One rule per offset, in output order.
@@ -966,8 +967,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
                 }
             }
         }
+        // `max_step_error` is in metres: only an offset whose step error is a length
+        // ([`StepParameter::is_length`]) is compared with it; the step time's (s) and the
+        // soles' (rad) errors never discard a step.
         if let Some(m) = self.settings.trust.max_step_error
-            && (0..O).any(|k| (outcomes[k].f_e - self.last_offset[k]).abs() > m)
+            && (0..O).any(|k| {
+                self.parameters[k].is_length() && (outcomes[k].f_e - self.last_offset[k]).abs() > m
+            })
         {
             self.discard_step();
             return Ok([TouchDownReport::default(); O]);

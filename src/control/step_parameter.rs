@@ -69,6 +69,12 @@ impl StepParameter {
         *self == StepParameter::StepX
     }
 
+    /// Whether this parameter's offset, and so its step error F_E, is a length in metres
+    /// (`step-x`, `step-y`); the step time's is in seconds and the soles' in radians.
+    pub fn is_length(self) -> bool {
+        matches!(self, StepParameter::StepX | StepParameter::StepY)
+    }
+
     /// Position in [`Self::ALL`].
     pub fn index(self) -> usize {
         self as usize

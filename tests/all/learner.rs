@@ -309,6 +309,39 @@ fn max_step_error_skips_steps_the_model_missed_but_not_the_learners_own_errors()
 }
 
 #[test]
+fn max_step_error_in_metres_gates_only_the_footstep_offsets() {
+    use steplearn::control::step_parameter::StepParameter;
+    let cfg = LearnerConfig {
+        max_step_error: Some(0.05),
+        ..LearnerConfig::literal()
+    };
+    let x = input(0.0, 0.0, 0.0);
+    // The same number, 0.2, is a 0.2 m miss of a footstep but 0.2 s of step time or 0.2 rad
+    // of sole: only the metres are held against the metre threshold.
+    let samples = |parameter: StepParameter| {
+        let mut learner = FootstepLearner::for_parameters(
+            BinTable::new([10, 8, 6], 1.0),
+            [Fixed(0.3, AtomicUsize::new(0))],
+            [parameter],
+            cfg,
+        )
+        .unwrap();
+        learner.query(x).unwrap();
+        let outcome = StepOutcome {
+            f_e: 0.2,
+            ..StepOutcome::default()
+        };
+        learner.touch_down(&outcome).unwrap().samples
+    };
+    assert_eq!(samples(StepParameter::StepX), 0);
+    assert_eq!(samples(StepParameter::StepY), 0);
+    assert_eq!(samples(StepParameter::StepTime), 1);
+    assert_eq!(samples(StepParameter::AnklePitch), 1);
+    assert_eq!(samples(StepParameter::AnkleRoll), 1);
+    assert!(StepParameter::StepX.is_length() && !StepParameter::StepTime.is_length());
+}
+
+#[test]
 fn train_share_trains_only_the_latest_inputs_of_a_step() {
     let cfg = LearnerConfig {
         train_share: 0.5,
