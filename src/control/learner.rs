@@ -66,7 +66,7 @@ pub use super::learner_config::{
     ParameterSettings, PartSettings, Prior, TrustFallback, TrustSettings,
 };
 pub use super::learner_error::LearnerError;
-use super::step_parameter::{Plane, StepParameter};
+use super::step_parameter::{FallDirection, Plane, StepParameter};
 use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, StepOutcome};
@@ -644,6 +644,9 @@ pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usiz
     last_offset: [f64; O],
     /// Each rule's exploration perturbation of the current step (drawn at its first query).
     exploration: [f64; O],
+    /// The fall direction of each plane, sagittal first, that the gates of its offsets hold
+    /// from tick to tick (not saved in a checkpoint).
+    fall: [FallDirection; 2],
 }
 
 impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize> std::fmt::Debug
@@ -744,6 +747,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             trained: [MeanStd::new(); I],
             last_offset: [0.0; O],
             exploration: [0.0; O],
+            fall: [FallDirection::default(); 2],
         })
     }
 
@@ -755,6 +759,11 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     /// The settings, checked and grouped.
     pub fn settings(&self) -> &CheckedLearnerConfig {
         &self.settings
+    }
+
+    /// The fall direction held for `plane`'s gates ([`Gate::weight_held`](super::step_parameter::Gate::weight_held)).
+    pub(crate) fn fall_direction(&mut self, plane: Plane) -> &mut FallDirection {
+        &mut self.fall[plane as usize]
     }
 
     /// The step parameter of each offset, in output order.
@@ -1142,6 +1151,7 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
             trained: self.trained,
             last_offset: self.last_offset,
             exploration: self.exploration,
+            fall: self.fall,
         }
     }
 

@@ -21,7 +21,7 @@
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports, gate_weight};
-use super::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
+use super::step_parameter::{FallDirection, LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -42,6 +42,8 @@ struct Slot<A: FunctionApproximator, R: LearningRule> {
     learner: FootstepLearner<A, R>,
     /// The weight of its offset at the last query (its parameter's [`Gate`]).
     weight: f64,
+    /// Its plane's fall direction, held from tick to tick for [`Gate::WithTheFall`].
+    fall: FallDirection,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> std::fmt::Debug for StepLearner<A, R> {
@@ -83,6 +85,7 @@ impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
                 plane,
                 learner,
                 weight: 1.0,
+                fall: FallDirection::default(),
             });
         }
         slots.sort_by_key(|s| (s.parameter.index(), s.plane as usize));
@@ -213,7 +216,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         for s in &mut self.slots {
             let p = s.parameter;
             let offset = s.learner.query(*inputs.in_plane(p, s.plane))?;
-            s.weight = gate_weight(s.learner.settings().gate(p), s.plane, inputs, offset);
+            let gate = s.learner.settings().gate(p);
+            s.weight = gate_weight(gate, s.plane, inputs, offset, &mut s.fall);
             out[p] += s.weight * offset;
         }
         Ok(out)
