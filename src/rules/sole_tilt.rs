@@ -55,9 +55,6 @@ pub struct SoleTilt {
     pub scale: f64,
 }
 
-/// The rule of the sole's pitch under its first name.
-pub type AnklePitch = SoleTilt;
-
 impl Default for SoleTilt {
     /// [`SoleTilt::pitch`].
     fn default() -> Self {
