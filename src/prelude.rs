@@ -4,14 +4,16 @@
 //! `experiments`, the harness, the experiment trait and the bench.
 
 pub use crate::approx::{
-    AnyApproximator, ApproxError, BoxedApproximator, FunctionApproximator, InputBox, Lwpr,
-    LwprConfig, Persist,
+    AnyApproximator, ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox,
+    Lwpr, LwprConfig, Persist,
 };
+pub use crate::control::learner::InputGrid;
+pub use crate::control::step_parameter::PerParameter;
 pub use crate::control::{
     FootstepLearner, FootstepPolicy, LearnSet, LearnerConfig, LearnerError, LearnerInput,
-    StepParameter,
+    StepLearner, StepParameter,
 };
-pub use crate::rules::{LearningRule, PendulumCart, StepOutcome};
+pub use crate::rules::{LearningRule, PendulumCart, StepOutcome, StepTime};
 
 #[cfg(feature = "experiments")]
 pub use crate::bench::{Bench, BenchError, Registry};
@@ -20,3 +22,43 @@ pub use crate::experiments::{
     ConfigFile, CustomResult, Experiment, ExperimentError, ExperimentResult, RunContext, Settings,
     Summary, TypedResult,
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A program learning the footstep and the step time needs no name beyond the prelude.
+    #[test]
+    fn a_step_learner_is_built_and_taught_from_the_prelude_alone() {
+        let config = LearnerConfig::default();
+        let bounds = InputGrid::default().input_box().unwrap();
+        let part = |p: StepParameter, rule: Box<dyn LearningRule>| {
+            let approx = ApproxKind::Grid.build(&bounds).unwrap();
+            (
+                p,
+                FootstepLearner::for_parameters(approx, [rule], [p], config).unwrap(),
+            )
+        };
+        let mut learner = StepLearner::new(vec![
+            part(StepParameter::StepX, Box::<PendulumCart>::default()),
+            part(StepParameter::StepTime, Box::<StepTime>::default()),
+        ])
+        .unwrap();
+        let set: LearnSet = "step-x,step-time".parse().unwrap();
+        assert_eq!(learner.learns(), set);
+        let x = LearnerInput::new(0.05, 0.3, 0.1);
+        let inputs = PerParameter::from_planes(x, LearnerInput::default());
+        learner.offsets(&inputs).unwrap();
+        let falling = StepOutcome {
+            theta_e: 0.1,
+            theta_e_dot: 0.5,
+            f_e: 0.0,
+            f_r: 0.1,
+        };
+        let reports = learner.touch_down(&PerParameter::splat(falling)).unwrap();
+        for p in [StepParameter::StepX, StepParameter::StepTime] {
+            assert!(reports[p].is_some_and(|r| r.samples > 0), "{p} learned");
+        }
+        assert!(reports[StepParameter::StepY].is_none());
+    }
+}

@@ -109,8 +109,9 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy
     ) -> Result<PerParameter<f64>, LearnerError> {
         let [df, dw] = self.query(inputs[StepParameter::StepX], inputs[StepParameter::StepY])?;
         // Each offset weighted by its parameter's gate in its own plane.
-        let gate = |p: StepParameter, plane, offset: f64| {
-            gate_weight(self.settings().gate(p), plane, inputs, offset) * offset
+        let mut gate = |p: StepParameter, plane, offset: f64| {
+            let g = self.settings().gate(p);
+            gate_weight(g, plane, inputs, offset, self.fall_direction(plane)) * offset
         };
         let mut out = PerParameter::default();
         out[StepParameter::StepX] = gate(StepParameter::StepX, Plane::Sagittal, df);

@@ -66,7 +66,7 @@ pub use super::learner_config::{
     ParameterSettings, PartSettings, Prior, TrustFallback, TrustSettings,
 };
 pub use super::learner_error::LearnerError;
-use super::step_parameter::{Plane, StepParameter};
+use super::step_parameter::{FallDirection, Plane, StepParameter};
 use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};
 use crate::rules::{LearningRule, StepOutcome};
@@ -619,7 +619,8 @@ fn single_planes(
 /// [`LearnerConfig`] holds for each offset: the prior, the gain guard (on the largest of the
 /// offsets' gains, one scale for all), anti-windup per offset, the trust region over all
 /// inputs with either fallback, learning from falls, dead zone, leakage, `max_step_error` (a
-/// touch-down any of whose offsets the model missed by more teaches nothing) and train share.
+/// touch-down any of whose footstep offsets, `step-x` or `step-y`, the model missed by more
+/// metres teaches nothing; it does not gate the step time or the soles) and train share.
 pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize> {
     approx: A,
     /// One rule per offset, in output order.
@@ -643,6 +644,9 @@ pub struct OffsetLearner<A: FunctionApproximator, R: LearningRule, const I: usiz
     last_offset: [f64; O],
     /// Each rule's exploration perturbation of the current step (drawn at its first query).
     exploration: [f64; O],
+    /// The fall direction of each plane, sagittal first, that the gates of its offsets hold
+    /// from tick to tick (not saved in a checkpoint).
+    fall: [FallDirection; 2],
 }
 
 impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize> std::fmt::Debug
@@ -743,6 +747,7 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
             trained: [MeanStd::new(); I],
             last_offset: [0.0; O],
             exploration: [0.0; O],
+            fall: [FallDirection::default(); 2],
         })
     }
 
@@ -754,6 +759,11 @@ impl<A: FunctionApproximator, R: LearningRule, const I: usize, const O: usize>
     /// The settings, checked and grouped.
     pub fn settings(&self) -> &CheckedLearnerConfig {
         &self.settings
+    }
+
+    /// The fall direction held for `plane`'s gates ([`Gate::weight_held`](super::step_parameter::Gate::weight_held)).
+    pub(crate) fn fall_direction(&mut self, plane: Plane) -> &mut FallDirection {
+        &mut self.fall[plane as usize]
     }
 
     /// The step parameter of each offset, in output order.
@@ -966,8 +976,13 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
                 }
             }
         }
+        // `max_step_error` is in metres: only an offset whose step error is a length
+        // ([`StepParameter::is_length`]) is compared with it; the step time's (s) and the
+        // soles' (rad) errors never discard a step.
         if let Some(m) = self.settings.trust.max_step_error
-            && (0..O).any(|k| (outcomes[k].f_e - self.last_offset[k]).abs() > m)
+            && (0..O).any(|k| {
+                self.parameters[k].is_length() && (outcomes[k].f_e - self.last_offset[k]).abs() > m
+            })
         {
             self.discard_step();
             return Ok([TouchDownReport::default(); O]);
@@ -1136,6 +1151,7 @@ impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUT
             trained: self.trained,
             last_offset: self.last_offset,
             exploration: self.exploration,
+            fall: self.fall,
         }
     }
 

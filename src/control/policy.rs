@@ -18,7 +18,7 @@
 //! ([`PerParameter::in_plane`]).
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
-use super::step_parameter::{Gate, LearnSet, PerParameter, Plane, StepParameter};
+use super::step_parameter::{FallDirection, Gate, LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::FunctionApproximator;
 use crate::rules::{LearningRule, StepOutcome};
 
@@ -27,18 +27,20 @@ pub type StepReports = PerParameter<Option<TouchDownReport>>;
 
 /// The weight `gate` gives `offset`, the output of a learner reading `plane`, at these inputs
 /// (the planes' deviation rates: the sagittal input's theta_E_dot, the frontal input's lean
-/// rate).
+/// rate), `fall` the plane's fall direction held from tick to tick ([`Gate::weight_held`]).
 pub(crate) fn gate_weight(
     gate: Gate,
     plane: Plane,
     inputs: &PerParameter<LearnerInput>,
     offset: f64,
+    fall: &mut FallDirection,
 ) -> f64 {
-    gate.weight(
+    gate.weight_held(
         plane,
         inputs[StepParameter::StepX].theta_e_dot,
         inputs[StepParameter::StepY].theta_e_dot,
         offset,
+        fall,
     )
 }
 
@@ -84,7 +86,9 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for Footst
         let p = self.parameter();
         let mut out = PerParameter::default();
         let offset = self.query(*inputs.in_plane(p, self.plane()))?;
-        out[p] = gate_weight(self.settings().gate(p), self.plane(), inputs, offset) * offset;
+        let (gate, plane) = (self.settings().gate(p), self.plane());
+        let fall = self.fall_direction(plane);
+        out[p] = gate_weight(gate, plane, inputs, offset, fall) * offset;
         Ok(out)
     }
     fn set_reach(&mut self, reach: &PerParameter<[f64; 2]>) -> Result<(), LearnerError> {

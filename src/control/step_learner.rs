@@ -21,7 +21,7 @@
 
 use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports, gate_weight};
-use super::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
+use super::step_parameter::{FallDirection, LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -42,6 +42,8 @@ struct Slot<A: FunctionApproximator, R: LearningRule> {
     learner: FootstepLearner<A, R>,
     /// The weight of its offset at the last query (its parameter's [`Gate`]).
     weight: f64,
+    /// Its plane's fall direction, held from tick to tick for [`Gate::WithTheFall`].
+    fall: FallDirection,
 }
 
 impl<A: FunctionApproximator, R: LearningRule> std::fmt::Debug for StepLearner<A, R> {
@@ -83,6 +85,7 @@ impl<A: FunctionApproximator, R: LearningRule> StepLearner<A, R> {
                 plane,
                 learner,
                 weight: 1.0,
+                fall: FallDirection::default(),
             });
         }
         slots.sort_by_key(|s| (s.parameter.index(), s.plane as usize));
@@ -213,7 +216,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
         for s in &mut self.slots {
             let p = s.parameter;
             let offset = s.learner.query(*inputs.in_plane(p, s.plane))?;
-            s.weight = gate_weight(s.learner.settings().gate(p), s.plane, inputs, offset);
+            let gate = s.learner.settings().gate(p);
+            s.weight = gate_weight(gate, s.plane, inputs, offset, &mut s.fall);
             out[p] += s.weight * offset;
         }
         Ok(out)
@@ -276,8 +280,17 @@ mod tests {
             (StepParameter::StepTime, Plane::Sagittal) => Box::new(StepTime::default()),
             (StepParameter::StepTime, Plane::Frontal) => Box::new(StepTime::frontal(0.2)),
             (StepParameter::AnklePitch, _) => Box::new(SoleTilt::pitch()),
-            (StepParameter::AnkleRoll, _) => Box::new(SoleTilt::roll()),
+            (StepParameter::AnkleRoll, _) => Box::new(roll_rule()),
             _ => Box::new(PendulumCart::default()),
+        }
+    }
+
+    /// The roll's rule with a lever of its own: the humanoid's roll and pitch levers are
+    /// equal, and a roll taught by the pitch's rule would not show with them.
+    fn roll_rule() -> SoleTilt {
+        SoleTilt {
+            lever: 2.0 * SoleTilt::ROLL_LEVER,
+            ..SoleTilt::roll()
         }
     }
 
@@ -425,8 +438,12 @@ mod tests {
 
     #[test]
     fn the_soles_roll_reads_and_learns_the_frontal_plane() {
-        let mut l = of(&[StepParameter::AnkleRoll, StepParameter::StepX]);
-        assert_eq!(l.learns().to_string(), "step-x,ankle-roll");
+        let mut l = of(&[
+            StepParameter::AnkleRoll,
+            StepParameter::StepX,
+            StepParameter::AnklePitch,
+        ]);
+        assert_eq!(l.learns().to_string(), "step-x,ankle-pitch,ankle-roll");
         query(&mut l, 3);
         let lateral = inputs(0)[StepParameter::AnkleRoll];
         let roll = l.learner(StepParameter::AnkleRoll).unwrap();
@@ -440,14 +457,18 @@ mod tests {
             f_e: 0.0,
             f_r: 0.0,
         };
-        let o = PerParameter::from_planes(outcome(-0.1)[StepParameter::StepX], lean);
+        let back = outcome(-0.1)[StepParameter::StepX];
+        let o = PerParameter::from_planes(back, lean);
         let r = l.touch_down(&o).unwrap();
         let g_r = r[StepParameter::AnkleRoll].unwrap().gradient;
-        assert!(g_r > 0.0);
-        assert!(
-            (g_r - SoleTilt::roll().factor() * PendulumCart::default().gradient(&lean)).abs()
-                < 1e-12
-        );
+        let g_a = r[StepParameter::AnklePitch].unwrap().gradient;
+        assert!(g_r > 0.0 && g_a < 0.0, "{g_r} {g_a}");
+        // Each sole by its own rule (levers differ) from its own plane's outcome.
+        let g = |o: &StepOutcome| PendulumCart::default().gradient(o);
+        let (roll, pitch) = (roll_rule().factor(), SoleTilt::pitch().factor());
+        assert!((roll - pitch).abs() > 0.1 * pitch);
+        assert!((g_r - roll * g(&lean)).abs() < 1e-12, "{g_r}");
+        assert!((g_a - pitch * g(&back)).abs() < 1e-12, "{g_a}");
         assert!(r[StepParameter::StepX].unwrap().gradient < 0.0);
     }
 

@@ -69,6 +69,12 @@ impl StepParameter {
         *self == StepParameter::StepX
     }
 
+    /// Whether this parameter's offset, and so its step error F_E, is a length in metres
+    /// (`step-x`, `step-y`); the step time's is in seconds and the soles' in radians.
+    pub fn is_length(self) -> bool {
+        matches!(self, StepParameter::StepX | StepParameter::StepY)
+    }
+
     /// Position in [`Self::ALL`].
     pub fn index(self) -> usize {
         self as usize
@@ -188,12 +194,13 @@ pub enum Gate {
     /// of the plane's deviation rate) and is withheld while it points against the fall: a
     /// pressed heel, or a shorter step, while the trunk falls forward. For offsets with a
     /// direction in space (`step-x`, `step-y`, `ankle-pitch`, `ankle-roll`), not the step time.
+    /// A learner reads the rate's sign with hysteresis ([`FallDirection`]).
     WithTheFall,
 }
 
 impl Gate {
     /// The weight of `offset`, the output of a learner reading `plane`, at the planes'
-    /// deviation rates.
+    /// deviation rates, from this tick's rates alone (no hysteresis, see [`Self::weight_held`]).
     pub fn weight(self, plane: Plane, sagittal_rate: f64, frontal_rate: f64, offset: f64) -> f64 {
         let own_rate = match plane {
             Plane::Sagittal => sagittal_rate,
@@ -219,10 +226,69 @@ impl Gate {
         }
     }
 
+    /// [`Self::weight`] with hysteresis on the fall direction: `fall`, the direction this
+    /// plane's learner last saw, is updated from the plane's rate first and
+    /// [`Gate::WithTheFall`] reads it instead of the rate's raw sign, so a rate dithering
+    /// within [`FALL_DIRECTION_BAND`] of 0 does not toggle the offset on and off. The other
+    /// gates do not read `fall`.
+    pub fn weight_held(
+        self,
+        plane: Plane,
+        sagittal_rate: f64,
+        frontal_rate: f64,
+        offset: f64,
+        fall: &mut FallDirection,
+    ) -> f64 {
+        let own_rate = match plane {
+            Plane::Sagittal => sagittal_rate,
+            Plane::Frontal => frontal_rate,
+        };
+        let direction = fall.update(own_rate);
+        match self {
+            Gate::WithTheFall => {
+                if offset * direction > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            _ => self.weight(plane, sagittal_rate, frontal_rate, offset),
+        }
+    }
+
     /// Whether this gate may weight `parameter`'s offset ([`Gate::WithTheFall`] needs an
     /// offset with a direction in space, so not the step time's).
     pub fn allows(self, parameter: StepParameter) -> bool {
         self != Gate::WithTheFall || parameter != StepParameter::StepTime
+    }
+}
+
+/// The half-width of the band of deviation rates around 0 (rad/s) within which
+/// [`FallDirection`] keeps the direction it last saw. Small beside the rates a push or a
+/// stumble gives the trunk, large beside the tick-to-tick jitter of the rate of a trunk
+/// standing nearly still, which without it would switch a [`Gate::WithTheFall`] offset on
+/// and off from one tick to the next.
+pub const FALL_DIRECTION_BAND: f64 = 0.05;
+
+/// The direction the trunk falls in one plane, with hysteresis: the sign of the plane's
+/// deviation rate once the rate leaves +-[`FALL_DIRECTION_BAND`], kept while it is inside.
+/// None (0) until the rate first leaves the band. Not part of a checkpoint: a restored
+/// learner's direction starts at none.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FallDirection(f64);
+
+impl FallDirection {
+    /// The direction after a tick at `rate`: +1, -1, or 0 before any rate left the band.
+    pub fn update(&mut self, rate: f64) -> f64 {
+        if rate.abs() > FALL_DIRECTION_BAND {
+            self.0 = rate.signum();
+        }
+        self.0
+    }
+
+    /// The direction last seen (+1, -1, or 0 for none).
+    pub fn get(self) -> f64 {
+        self.0
     }
 }
 
@@ -469,6 +535,48 @@ mod tests {
         assert!(!StepParameter::StepY.allows(Planes::Sagittal));
         assert!(StepParameter::StepY.allows(Planes::Frontal));
         assert_eq!("both".parse::<Planes>(), Ok(Planes::Both));
+    }
+
+    #[test]
+    fn with_the_fall_holds_its_state_while_the_rate_dithers_within_the_band() {
+        let gate = Gate::WithTheFall;
+        let mut fall = FallDirection::default();
+        let w = |fall: &mut FallDirection, rate: f64| {
+            gate.weight_held(Plane::Sagittal, rate, 0.0, 0.1, fall)
+        };
+        // Closed until the rate first leaves the band, however its sign dithers.
+        let dither = [0.4, -0.6, 0.9, -0.2].map(|k| k * FALL_DIRECTION_BAND);
+        for r in dither {
+            assert_eq!(w(&mut fall, r), 0.0);
+        }
+        // Falling forward beyond the band: open, and it stays open while the rate dithers
+        // around 0 inside the band (the stateless weight would toggle).
+        assert_eq!(w(&mut fall, 1.5 * FALL_DIRECTION_BAND), 1.0);
+        let mut toggles = 0;
+        for r in dither {
+            assert_eq!(w(&mut fall, r), 1.0);
+            toggles += usize::from(gate.weight(Plane::Sagittal, r, 0.0, 0.1) == 0.0);
+        }
+        assert_eq!(toggles, 2);
+        // Beyond the band the other way: closed.
+        assert_eq!(w(&mut fall, -1.5 * FALL_DIRECTION_BAND), 0.0);
+        assert_eq!(fall.get(), -1.0);
+        assert_eq!(w(&mut fall, 0.9 * FALL_DIRECTION_BAND), 0.0);
+        // The other plane's rate does not move this plane's direction.
+        let mut frontal = FallDirection::default();
+        assert_eq!(
+            gate.weight_held(Plane::Frontal, 1.0, 0.2, 0.1, &mut frontal),
+            1.0
+        );
+        assert_eq!(
+            gate.weight_held(Plane::Frontal, -1.0, 0.0, 0.1, &mut frontal),
+            1.0
+        );
+        // The other gates ignore the held direction.
+        assert_eq!(
+            Gate::Off.weight_held(Plane::Sagittal, -1.0, 0.0, 0.1, &mut fall),
+            1.0
+        );
     }
 
     #[test]

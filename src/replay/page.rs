@@ -49,7 +49,7 @@ pub fn page(replay: &Replay) -> Result<String, ReplayError> {
         .replace("</", "<\\/");
     let moment = match replay.span {
         Some(_) => super::moment_name(replay),
-        None => format!("push {} ({} Ns)", replay.push, replay.impulse),
+        None => format!("push {} ({:.2} Ns)", replay.push, replay.impulse),
     };
     let title = format!(
         "steplearn replay: {} seed {}, {moment}",
@@ -109,4 +109,34 @@ pub fn embedded_replay(html: &str) -> Result<Replay, ReplayError> {
         .find(DATA_CLOSE)
         .ok_or_else(|| ReplayError::Page("the replay-data element is not closed".into()))?;
     serde_json::from_str(&html[start..start + len]).map_err(|e| ReplayError::Page(e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_title_gives_the_impulse_to_two_decimals() {
+        let replay = Replay {
+            experiment: "A".into(),
+            approx: "lwpr".into(),
+            rule: "pendulum-cart".into(),
+            seed: 3,
+            push: 2,
+            impulse: 3.491584701138599,
+            direction: [1.0, 0.0, 0.0],
+            window_s: 1.0,
+            span: None,
+            changes: Vec::new(),
+            walks: Vec::new(),
+        };
+        let html = page(&replay).unwrap();
+        let start = html.find("<title>").unwrap() + "<title>".len();
+        let title = &html[start..start + html[start..].find("</title>").unwrap()];
+        assert_eq!(title, "steplearn replay: A seed 3, push 2 (3.49 Ns)");
+        let header = format!("<strong>{title}</strong>");
+        assert!(html.contains(&header), "the header repeats the title");
+        // The data keeps the impulse whole; only the text shown is rounded.
+        assert!(!title.contains("3.4915") && html.contains("3.491584701138599"));
+    }
 }

@@ -39,7 +39,7 @@ pub use linear::Linear;
 pub use pendulum_cart::PendulumCart;
 pub use policy_gradient::{PolicyGradient, PolicyGradientParams, PolicyGradientState};
 pub use rate_damped::RateDamped;
-pub use sole_tilt::{AnklePitch, SoleTilt};
+pub use sole_tilt::SoleTilt;
 pub use step_time::StepTime;
 pub use tracking_only::TrackingOnly;
 

@@ -532,11 +532,17 @@ fn learn_names_the_step_parameters_of_a_run() {
     // The paper's set is another run: refused in the finished run's directory.
     let o = run("step-x");
     assert!(!o.status.success());
-    for bad in ["step-z", "step-x,step-x", ""] {
+    // Each refusal names what is wrong: the unknown name (an empty one too), or the name
+    // given twice.
+    for (bad, why) in [
+        ("step-z", "unknown step parameter \"step-z\""),
+        ("step-x,step-x", "step parameter step-x named twice"),
+        ("", "unknown step parameter \"\""),
+    ] {
         let o = run(bad);
         assert!(!o.status.success(), "{bad:?} accepted");
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains("step"), "{bad:?}: {err}");
+        assert!(err.contains(why), "{bad:?}: {err}");
     }
 }
 

@@ -270,15 +270,18 @@ fn experiment_omnidirectional_runs_both_planes_coupled_as_a_setting() {
     assert!(i50(&coupled, "both").iter().all(|v| v.is_finite()));
     // The setting changes the walker `both` and nothing else: the same seed gives the other
     // walkers the same pushes and the same I50s, and `both` learns with another model (one
-    // approximator over both planes instead of two), which shows in its I50s or its walk.
+    // approximator over both planes instead of two), which shows in its I50s and in its walk.
     for walker in ["open_loop", "model", "sagittal"] {
         assert_eq!(i50(&coupled, walker), i50(&uncoupled, walker), "{walker}");
     }
-    assert!(
-        i50(&coupled, "both") != i50(&uncoupled, "both")
-            || coupled["walk_error_m"]["both"] != uncoupled["walk_error_m"]["both"],
-        "the coupled walker behaved exactly as the uncoupled pair: {:?}",
-        i50(&coupled, "both")
+    assert_ne!(
+        i50(&coupled, "both"),
+        i50(&uncoupled, "both"),
+        "the coupled walker's I50s are the uncoupled pair's"
+    );
+    assert_ne!(
+        coupled["walk_error_m"]["both"], uncoupled["walk_error_m"]["both"],
+        "the coupled walker walked exactly as the uncoupled pair"
     );
     // A typo in the setting is an error naming the key and the value, never a silent default.
     let err = Bench::new(&Registry::builtin())
@@ -495,7 +498,6 @@ fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
 /// weights the uncoupled ones: each by its plane's share of the trunk's squared deviation rate.
 #[test]
 fn a_gate_weights_each_coupled_offset_by_its_planes_share() {
-    use steplearn::control::Plane;
     use steplearn::control::step_parameter::Gate;
     let mut config = LearnerConfig {
         trust_region: None,
@@ -516,11 +518,10 @@ fn a_gate_weights_each_coupled_offset_by_its_planes_share() {
     let offsets = learner
         .offsets(&PerParameter::from_planes(SAGITTAL, LATERAL))
         .unwrap();
-    let (rs, rf) = (SAGITTAL.theta_e_dot, LATERAL.theta_e_dot);
-    let want = [
-        Gate::RateShare.weight(Plane::Sagittal, rs, rf, both[0]) * both[0],
-        Gate::RateShare.weight(Plane::Frontal, rs, rf, both[1]) * both[1],
-    ];
+    // Rates 0.2 (sagittal) and -0.1 rad/s (frontal): squared 0.04 and 0.01, shares 0.8 and
+    // 0.2 of their sum 0.05.
+    assert_eq!((SAGITTAL.theta_e_dot, LATERAL.theta_e_dot), (0.2, -0.1));
+    let want = [0.8 * both[0], 0.2 * both[1]];
     assert!((offsets.0[0] - want[0]).abs() < 1e-15 && (offsets.0[1] - want[1]).abs() < 1e-15);
     assert!(offsets.0[0].abs() < both[0].abs() && offsets.0[1].abs() < both[1].abs());
 }

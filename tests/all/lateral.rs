@@ -194,11 +194,12 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
     // Within the width range: the walker tells the learner which offsets can change the step
     // (its reach: those that keep the controller's width within the generator's range
     // [lo, hi]), and with anti-windup the learner's training targets stay within it. Only
-    // the approximator's generalisation between trained inputs can carry an offset past it:
-    // measured here 2.2 mm at worst, on 240 mm of range. So no offset may take the commanded
-    // width more than 3 mm further outside [lo, hi] than the controller's own width is (an
-    // offset that ignored the reach could go as far beyond as the offsets reach: 2 cm here;
-    // measured: 1 tick of 1188 beyond, by 2.2 mm).
+    // the approximator's generalisation between trained inputs can carry an offset past it,
+    // by a small share of the offsets it gives. An offset that ignored the reach could take
+    // the width as far beyond as the offset itself goes, so no offset may take the commanded
+    // width further outside [lo, hi] than the controller's own width is by more than a
+    // quarter of the largest offset of the same run (measured: 1 tick of 1216 beyond, by
+    // 1.7 mm, the largest offset 20 mm).
     let outside = |w: f64| (lo - w).max(w - hi).max(0.0);
     assert_eq!(learned.widths.len(), learned.offsets.len());
     let (mut checked, mut beyond, mut worst) = (0, 0, 0.0f64);
@@ -218,8 +219,9 @@ fn the_lateral_learner_stays_within_the_width_range_and_changes_the_steps() {
     );
     assert!(checked > 0);
     assert!(
-        worst <= 0.003,
-        "a learned offset took the commanded width {worst:.4} m beyond [{lo}, {hi}]"
+        worst <= 0.25 * largest,
+        "a learned offset took the commanded width {worst:.4} m beyond [{lo}, {hi}], \
+         the largest offset {largest:.4} m"
     );
     // The width error (against the controller's 2 delta) after the push has settled: the
     // pendulum-cart rule's tracking term pulls the learned walker's width to the reference.
@@ -369,24 +371,21 @@ fn a_sustained_width_offset_moves_the_width_and_barely_the_lean() {
     let pc = PendulumCart::default();
     let k = pc.p_theta * pc.p_f * width_slope - lean_slope;
     eprintln!("d W_E / dW = {width_slope:.3}, d lean / dW = {lean_slope:.3} rad/m, k = {k:.2} /m");
-    // The bounds were set around the first measurement (0.459, -0.094 rad/m, k = 2.16 /m);
-    // docs/lateral.md gives the current one (0.470, -0.080 rad/m, k = 2.19 /m, stored in
-    // results-archive/lateral-k/), with a margin for a change of the physics or the controller
-    // that the doc would have to follow:
-    // - the width moves by about half the offset (the controller's next step takes back about
-    //   half of it, docs/lateral.md); 0.40-0.52 leaves 0.06 either side of 0.459;
-    // - the lean barely moves: |d lean / dW| below 0.2 rad/m, about twice the measured value,
-    //   so its share of k stays under a tenth;
-    // - k within 10% of 2.16, the figure docs/lateral.md derives the guard's margin from.
+    // docs/lateral.md has the measurement (0.470, -0.080 rad/m, k = 2.19 /m, stored in
+    // results-archive/lateral-k/). The bounds follow from what the claim says, not from it:
+    // - the offset moves the width its own way, and by less than itself: the controller's
+    //   next step takes part of it back (about half, docs/lateral.md), never adds to it;
+    // - the lean barely moves: its part of k is under a tenth of the width's part
+    //   p_theta p_F d W_E / dW, so that k is the width's loop gain, as in the sagittal plane.
     assert!(
-        (0.40..=0.52).contains(&width_slope),
+        width_slope > 0.0 && width_slope < 1.0,
         "d W_E / dW = {width_slope:.3}"
     );
+    let width_part = pc.p_theta * pc.p_f * width_slope;
     assert!(
-        lean_slope.abs() < 0.2,
-        "d lean / dW = {lean_slope:.3} rad/m"
+        lean_slope.abs() < 0.1 * width_part,
+        "d lean / dW = {lean_slope:.3} rad/m against {width_part:.3} /m"
     );
-    assert!((1.94..=2.38).contains(&k), "k = {k:.3} /m");
     let guard = LearnerConfig::default().max_gain.unwrap();
     assert!(k > 0.0 && guard * k < 1.0, "k = {k:.2} /m, guard {guard}");
 }

@@ -309,6 +309,39 @@ fn max_step_error_skips_steps_the_model_missed_but_not_the_learners_own_errors()
 }
 
 #[test]
+fn max_step_error_in_metres_gates_only_the_footstep_offsets() {
+    use steplearn::control::step_parameter::StepParameter;
+    let cfg = LearnerConfig {
+        max_step_error: Some(0.05),
+        ..LearnerConfig::literal()
+    };
+    let x = input(0.0, 0.0, 0.0);
+    // The same number, 0.2, is a 0.2 m miss of a footstep but 0.2 s of step time or 0.2 rad
+    // of sole: only the metres are held against the metre threshold.
+    let samples = |parameter: StepParameter| {
+        let mut learner = FootstepLearner::for_parameters(
+            BinTable::new([10, 8, 6], 1.0),
+            [Fixed(0.3, AtomicUsize::new(0))],
+            [parameter],
+            cfg,
+        )
+        .unwrap();
+        learner.query(x).unwrap();
+        let outcome = StepOutcome {
+            f_e: 0.2,
+            ..StepOutcome::default()
+        };
+        learner.touch_down(&outcome).unwrap().samples
+    };
+    assert_eq!(samples(StepParameter::StepX), 0);
+    assert_eq!(samples(StepParameter::StepY), 0);
+    assert_eq!(samples(StepParameter::StepTime), 1);
+    assert_eq!(samples(StepParameter::AnklePitch), 1);
+    assert_eq!(samples(StepParameter::AnkleRoll), 1);
+    assert!(StepParameter::StepX.is_length() && !StepParameter::StepTime.is_length());
+}
+
+#[test]
 fn train_share_trains_only_the_latest_inputs_of_a_step() {
     let cfg = LearnerConfig {
         train_share: 0.5,
@@ -1517,23 +1550,29 @@ fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
         learner.offsets(&input(rate)).unwrap();
         learner.touch_down(&PerParameter::splat(outcome)).unwrap();
     }
+    // A rate of 0 lies within the gate's hysteresis band: it keeps the direction the rate
+    // before it gave (backward after -0.1, forward after 0.3).
     let (mut passed, mut withheld) = (0, 0);
-    for rate in [-0.3, -0.1, 0.0, 0.1, 0.3] {
+    for (rate, backward) in [
+        (-0.3, true),
+        (-0.1, true),
+        (0.0, true),
+        (0.1, false),
+        (0.3, false),
+        (0.0, false),
+    ] {
         let got = learner.offsets(&input(rate)).unwrap()[a];
         let raw = learner.learner(a).unwrap().last_offset();
         assert!(raw < -1e-4, "a heel was taught at rate {rate}: {raw}");
-        if rate < 0.0 {
+        if backward {
             assert_eq!(got, raw, "falling backward the heel acts");
             passed += 1;
         } else {
-            assert_eq!(
-                got, 0.0,
-                "falling forward (or not at all) the heel is withheld"
-            );
+            assert_eq!(got, 0.0, "falling forward the heel is withheld");
             withheld += 1;
         }
     }
-    assert_eq!((passed, withheld), (2, 3));
+    assert_eq!((passed, withheld), (3, 3));
 }
 
 #[test]

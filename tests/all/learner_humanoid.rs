@@ -5,7 +5,7 @@
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
 use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
-use steplearn::control::motion::MotionConfig;
+use steplearn::control::motion::{MotionConfig, Swing};
 use steplearn::control::walker::WalkerMode;
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
@@ -132,8 +132,10 @@ fn largest_gain_and_offset(log: &TrialLog) -> (f64, f64) {
 
 #[test]
 fn the_literal_eq6_learner_exceeds_the_gain_limit_and_winds_up_with_steps_on_time() {
-    // Steps that end on time (configs/on_time.toml, the default swing until 2026-11-28).
+    // Steps that end on time (configs/on_time.toml, the default swing until 2026-11-28),
+    // named in full so that the test keeps its meaning when the defaults change.
     let on_time = MotionConfig {
+        swing: Swing::Tracking,
         early_landing_phase: 1.0,
         tilt_gain: 1.0,
         tilt_lift: 0.0,
@@ -143,11 +145,11 @@ fn the_literal_eq6_learner_exceeds_the_gain_limit_and_winds_up_with_steps_on_tim
     let (max_gain, max_offset) = largest_gain_and_offset(&log);
     // measured: ~1 at the first touch-downs (a fresh LWPR moves all the way)
     assert!(max_gain > 0.5, "max gain {max_gain}");
-    // measured: dF swings to +-0.2-0.44 m within 3 s (and falls at 19 s of 20)
-    assert!(
-        max_offset > 0.1 || !log.falls.is_empty(),
-        "max dF {max_offset}"
-    );
+    // Winding up: dF grows past 0.1 m, over three times the 0.03 m the prior keeps it under
+    // stepping in place (measured: +-0.2-0.44 m within 3 s, and a fall at 19 s of 20); a fall
+    // alone does not count.
+    let falls = log.falls.len();
+    assert!(max_offset > 0.1, "max dF {max_offset}, {falls} falls");
 }
 
 /// With the default swing the literal eq. (6) still takes gains far above the guard's limit,

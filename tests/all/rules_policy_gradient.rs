@@ -499,6 +499,9 @@ fn tuning_probe() {
         .run()
         .unwrap();
     println!("rule | seed | first absorbed push | falls");
+    // Every rule on every seed ran and printed its row.
+    assert_eq!(report.outcomes.len(), rules.len() * 5);
+    let mut printed = std::collections::BTreeMap::<&str, usize>::new();
     for outcome in &report.outcomes {
         assert!(
             matches!(outcome.status, RunStatus::Done { .. }),
@@ -507,17 +510,18 @@ fn tuning_probe() {
         );
         let spec = &outcome.spec;
         let summary = Summary::read(&dir.path().join(spec.id()).join("summary.json")).unwrap();
-        if let Some(RobustnessSummary {
+        let RobustnessSummary {
             pushes_until_first_absorbed,
             falls,
             ..
-        }) = RobustnessSummary::of(&summary)
-        {
-            println!(
-                "{} | {} | {:?} | {falls}",
-                spec.rule, spec.seed, pushes_until_first_absorbed
-            );
-        }
+        } = RobustnessSummary::of(&summary).expect("a robustness summary");
+        println!(
+            "{} | {} | {:?} | {falls}",
+            spec.rule, spec.seed, pushes_until_first_absorbed
+        );
+        *printed.entry(spec.rule.as_str()).or_default() += 1;
     }
+    assert_eq!(printed.len(), rules.len(), "{printed:?}");
+    assert!(printed.values().all(|&n| n == 5), "{printed:?}");
     println!("{}", report.leaderboard.to_markdown());
 }
