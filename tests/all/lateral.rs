@@ -285,15 +285,16 @@ fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
 
 /// The step time learned in both planes at once: a side push teaches its frontal part and a
 /// forward push its sagittal part, each more than the other part (the largest learned |dT| of
-/// each part over the states near walking in place). With the experiments' dead zone, so that
-/// walking alone teaches neither part (without one the step time drifts, docs/learner.md).
+/// each part over the states near walking in place). With the improved setup's dead zone
+/// (`configs/improved.toml`), so that walking alone teaches neither part (without one the step
+/// time drifts, docs/learner.md).
 #[test]
 fn a_step_time_in_both_planes_learns_each_push_in_its_own_plane() {
     use steplearn::control::Planes;
     use steplearn::control::learner::LearnerInput;
     let both = || {
         let config = LearnerConfig {
-            dead_zone: steplearn::experiments::settings::DEFAULT_DEAD_ZONE,
+            dead_zone: 0.06,
             ..LearnerConfig::default()
         }
         .in_planes(StepParameter::StepTime, Planes::Both);

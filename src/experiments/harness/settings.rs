@@ -17,7 +17,9 @@ pub struct Settings {
     pub sim: SimConfig,
     /// The walker (its mode is set by each experiment).
     pub walker: WalkerConfig,
-    /// The learner.
+    /// The learner. A partial table, at any depth, keeps [`LearnerConfig::default`]'s values
+    /// for the keys it leaves out.
+    #[serde(deserialize_with = "learner_over_default")]
     pub learner: LearnerConfig,
     /// Scale of every experiment's length in (0, 1]: 1 is the paper's protocol; `--quick`
     /// uses a fraction for a fast look.
@@ -155,6 +157,11 @@ impl LwprSettings {
             other => ConfigError::new("", other.to_string()),
         })
     }
+}
+
+/// A `[settings.learner]` table over the learner's defaults.
+fn learner_over_default<'de, D: serde::Deserializer<'de>>(d: D) -> Result<LearnerConfig, D::Error> {
+    config::patch(&LearnerConfig::default(), d)
 }
 
 impl Default for Settings {
