@@ -148,7 +148,7 @@ pub struct CaptureStepConfig {
 impl Default for CaptureStepConfig {
     fn default() -> Self {
         CaptureStepConfig {
-            c: 2.95,
+            c: crate::robot::HUMANOID_C,
             nominal_step_time: 0.40,
             delta: 0.12,
             omega: 0.20,

@@ -318,9 +318,10 @@ fn replay_trials(
                 .map(|mut w| {
                     // The pushes after K cannot change what comes before them.
                     w.setup.pushes.truncate(push);
+                    let gravity = w.setup.sim.gravity;
                     (
                         w,
-                        Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S),
+                        Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S).gravity(gravity),
                     )
                 })
                 .collect()
@@ -345,7 +346,8 @@ fn replay_trials(
                 .map(|mut w| {
                     // Nothing after `to` can change what comes before it.
                     w.setup.duration_s = to;
-                    (w, Recorder::new(from, to, FRAME_S))
+                    let gravity = w.setup.sim.gravity;
+                    (w, Recorder::new(from, to, FRAME_S).gravity(gravity))
                 })
                 .collect()
         }
@@ -416,9 +418,10 @@ fn replay_episodes(
     let push_time = setup.pushes.first().map_or(0.0, |p| p.time);
     let from = (push_time - BEFORE_PUSH_S).max(0.0);
     let to = setup.duration_s;
-    let mut learned = Recorder::new(from, to, FRAME_S);
+    let g = setup.sim.gravity;
+    let mut learned = Recorder::new(from, to, FRAME_S).gravity(g);
     run_trial(setup, Some(&mut learner), &mut [&mut learned])?;
-    let mut without = Recorder::new(from, to, FRAME_S);
+    let mut without = Recorder::new(from, to, FRAME_S).gravity(g);
     run_trial(setup, None, &mut [&mut without])?;
     Ok(Replay {
         experiment: config.experiment.clone(),

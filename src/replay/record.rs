@@ -112,6 +112,8 @@ pub struct Recorder {
     last_support: Option<Side>,
     falls: usize,
     trial_steps: usize,
+    /// Gravity of the capture point drawn (m/s^2).
+    gravity: f64,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -128,9 +130,6 @@ struct Pending {
     d_r: f64,
     lean: f64,
 }
-
-/// Gravity used for the capture point (m/s^2).
-const G: f64 = 9.81;
 
 fn yaw(q: [f64; 4]) -> f64 {
     let [w, x, y, z] = q;
@@ -163,7 +162,14 @@ impl Recorder {
             last_support: None,
             falls: 0,
             trial_steps: 0,
+            gravity: crate::sim::SimConfig::default().gravity,
         }
+    }
+
+    /// The same recorder drawing the capture point for gravity `g` (m/s^2; the trial's
+    /// simulator's, the default simulator's without it).
+    pub fn gravity(self, g: f64) -> Self {
+        Recorder { gravity: g, ..self }
     }
 
     /// A recorder of the `push`-th push (1-based) of a trial: from `before` seconds before its
@@ -308,7 +314,7 @@ impl Observer for Recorder {
         }
         self.next += self.every * ((t - self.next) / self.every).floor().max(0.0) + self.every;
         let h = truth.com[2].max(1e-3);
-        let omega = (G / h).sqrt();
+        let omega = (self.gravity / h).sqrt();
         let cp = [
             truth.com[0] + truth.com_vel[0] / omega,
             truth.com[1] + truth.com_vel[1] / omega,

@@ -124,14 +124,11 @@ impl<R: LearningRule + ?Sized> LearningRule for Box<R> {
     }
 }
 
-/// Standard gravity (m/s^2).
-const G0: f64 = 9.81;
-
 /// The LIPM's pendulum height `h = g / C^2` (m) for its constant `C = sqrt(g/h)` (1/s): what
 /// turns the pendulum-cart error G into a capture-point error `h G` for the rules derived from
 /// the LIPM ([`StepTime`], [`SoleTilt`]).
 pub fn pendulum_height(c: f64) -> f64 {
-    G0 / (c * c)
+    crate::robot::STANDARD_GRAVITY / (c * c)
 }
 
 /// The saturated tracking term p_theta tanh(p_F F_E) of eq. (5), shared by every rule that

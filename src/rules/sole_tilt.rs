@@ -66,9 +66,9 @@ impl SoleTilt {
     /// The sole's lever for its roll on the humanoid (m/rad; see the module docs).
     pub const ROLL_LEVER: f64 = 1.5;
 
-    /// The rule of the sole's pitch: the Capture Step controller's `C` (2.95 1/s), the
-    /// paper's `p_theta` 0.15 and `p_F` 30, the default gait's period 0.4 s and the humanoid's
-    /// lever for the pitch, 1.5 m/rad (see the module docs).
+    /// The rule of the sole's pitch: the step-time rule's `C`, `p_theta` and `p_F`
+    /// ([`StepTime::default`]), the default gait's period and the humanoid's lever for the
+    /// pitch (see the module docs).
     pub fn pitch() -> Self {
         // The LIPM and the pendulum-cart error as the step-time rule reads them.
         let StepTime {

@@ -51,11 +51,12 @@ pub struct StepTime {
 }
 
 impl Default for StepTime {
-    /// The Capture Step controller's `C` (2.95 1/s) and the paper's `p_theta` 0.15, `p_F` 30.
+    /// The built-in humanoid's `C` ([`crate::robot::HUMANOID_C`]) and the paper's `p_theta`
+    /// and `p_F`.
     fn default() -> Self {
         let pc = PendulumCart::default();
         StepTime {
-            c: 2.95,
+            c: crate::robot::HUMANOID_C,
             p_theta: pc.p_theta,
             p_f: pc.p_f,
             scale: 1.0,

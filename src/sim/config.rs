@@ -44,7 +44,7 @@ impl Default for SimConfig {
             solver_iterations: 1,
             pgs_iterations: 1,
             friction: 0.8,
-            gravity: 9.81,
+            gravity: crate::robot::STANDARD_GRAVITY,
             push_steps: 5,
             fall_tilt: 0.7,
             initial_joints: standing_pose(0.25),

@@ -38,7 +38,12 @@ fn check_job(job: &str, config: Option<&str>) -> Claims {
     };
     let registry = Registry::builtin();
     let dirs = runs(&job);
-    assert_eq!(dirs.len(), 40, "{}: the main job's 4 experiments x 10 seeds", job.display());
+    assert_eq!(
+        dirs.len(),
+        40,
+        "{}: the main job's 4 experiments x 10 seeds",
+        job.display()
+    );
     let mut summaries = Vec::new();
     for dir in &dirs {
         let stored = std::fs::read_to_string(dir.join("run-config.toml")).unwrap();

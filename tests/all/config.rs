@@ -76,9 +76,9 @@ fn unknown_sections_and_keys_are_errors_that_name_them_and_list_the_allowed() {
             "`stability`",
         ),
         (
-            "[protocols.robustness.map]\nres = 3\n",
-            "`res`",
-            "`resolution`",
+            "[protocols.robustness]\nimpuls = 3\n",
+            "`impuls`",
+            "`impulse`",
         ),
     ] {
         let (ok, _, err) = check(text);
@@ -257,7 +257,7 @@ fn printed_defaults_round_trip_through_check_and_parse_to_the_defaults() {
         "[protocols.tracking]",
         "[protocols.disturbance]",
         "[protocols.stability]",
-        "[protocols.robustness.map]",
+        "[protocols.robustness]",
         "[protocols.omnidirectional]",
     ] {
         assert!(text.lines().any(|l| l == section), "{section} missing");
@@ -359,50 +359,37 @@ fn the_shipped_configs_pass_the_check() {
         assert_eq!(config, base, "{file}");
     }
 
-    // The swing's step ends: the defaults (landing_lift.toml writes them out), without the
-    // extra lift (landing.toml), the previous default with every step on time (on_time.toml),
-    // and the paper's (paper_swing.toml): each the defaults but for the settings it names.
-    const DEFAULT_BAND: f64 = 0.05;
-    let default = steplearn::control::motion::MotionConfig::default();
-    let named = |m: &steplearn::control::motion::MotionConfig| {
+    // The improved setup: the defaults but for the swing, the landing, the step range and
+    // the dead zone (the lateral learner's kept at 0).
+    use steplearn::control::motion::Swing;
+    let path = format!("{}/configs/improved.toml", env!("CARGO_MANIFEST_DIR"));
+    let o = steplearn(&["config", "--check", &path]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut config = ConfigFile::load(Path::new(&path)).unwrap();
+    let default = ConfigFile::default();
+    let motion = &mut config.settings.walker.motion;
+    assert_eq!(
         (
-            m.early_landing_phase,
-            m.tilt_gain,
-            m.tilt_gain_band,
-            m.tilt_lift,
-        )
-    };
-    assert_eq!(named(&default), (0.5, 1.3, DEFAULT_BAND, 0.3));
-    for (file, expected) in [
-        ("landing_lift.toml", (0.5, 1.3, 0.0, 0.3)),
-        ("landing.toml", (0.5, 1.3, 0.0, 0.0)),
-        ("on_time.toml", (1.0, 1.0, DEFAULT_BAND, 0.0)),
-        ("paper_swing.toml", (1.0, 1.3, DEFAULT_BAND, 0.3)),
-    ] {
-        let path = format!("{}/configs/{file}", env!("CARGO_MANIFEST_DIR"));
-        let o = steplearn(&["config", "--check", &path]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let mut config = ConfigFile::load(Path::new(&path)).unwrap();
-        let motion = &mut config.settings.walker.motion;
-        assert_eq!(named(motion), expected, "{file}");
-        (
+            motion.swing,
             motion.early_landing_phase,
-            motion.tilt_gain,
-            motion.tilt_gain_band,
-            motion.tilt_lift,
-        ) = named(&default);
-        if file == "paper_swing.toml" {
-            use steplearn::control::motion::Swing;
-            assert_eq!(
-                (motion.swing, motion.step_x_range),
-                (Swing::Paper, [-0.15, 0.45])
-            );
-            (motion.swing, motion.step_x_range) = (default.swing, default.step_x_range);
-            assert_eq!(config.settings.learner.dead_zone, 0.0);
-            config.settings.learner.dead_zone = ConfigFile::default().settings.learner.dead_zone;
-        }
-        assert_eq!(config, ConfigFile::default(), "{file}");
-    }
+            motion.step_x_range
+        ),
+        (Swing::Tracking, 0.5, [-0.45, 0.45])
+    );
+    let m = default.settings.walker.motion;
+    (
+        motion.swing,
+        motion.early_landing_phase,
+        motion.step_x_range,
+    ) = (m.swing, m.early_landing_phase, m.step_x_range);
+    let learner = &mut config.settings.learner;
+    assert_eq!(
+        (learner.dead_zone, learner.step_y.dead_zone),
+        (0.06, Some(0.0))
+    );
+    learner.dead_zone = default.settings.learner.dead_zone;
+    learner.step_y = default.settings.learner.step_y;
+    assert_eq!(config, default, "improved.toml");
 
     // The step time learned sideways, and in both planes: the defaults but for the step time's
     // plane and dead zone.

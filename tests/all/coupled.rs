@@ -240,8 +240,14 @@ fn experiment_omnidirectional_runs_both_planes_coupled_as_a_setting() {
     let dir = std::env::temp_dir().join(format!("steplearn-coupled-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let summary = |both_planes: &str, out: &str| -> serde_json::Value {
+        // The improved setup, where the walker `both` learns within this short protocol.
+        let improved = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/configs/improved.toml"
+        ))
+        .unwrap();
         let config = ConfigFile::from_toml(&format!(
-            "[protocols.omnidirectional]\n{both_planes}walk_s = 8.0\nwalk_hold_s = [2.0, 3.0]\n"
+            "{improved}\n[protocols.omnidirectional]\n{both_planes}walk_s = 8.0\nwalk_hold_s = [2.0, 3.0]\n"
         ))
         .unwrap();
         Bench::new(&Registry::builtin())
@@ -357,11 +363,16 @@ fn max_step_error_and_the_nominal_fallback_act_on_the_coupled_learner_too() {
 
 #[test]
 fn each_offset_takes_its_own_parameters_dead_zone() {
-    // The shared dead zone 0.15 covers both planes' G of 0.1; the step-y table (default: no
-    // dead zone) lets the lateral one through, so only the width learns.
+    // The shared dead zone 0.15 covers both planes' G of 0.1; the step-y table (no dead
+    // zone, as in configs/improved.toml) lets the lateral one through, so only the width
+    // learns.
     let mut learner = coupled(LearnerConfig {
         trust_region: None,
         dead_zone: 0.15,
+        step_y: steplearn::control::learner::ParameterSettings {
+            dead_zone: Some(0.0),
+            ..Default::default()
+        },
         ..LearnerConfig::default()
     });
     assert_eq!(

@@ -54,7 +54,8 @@ impl Run {
 
 /// Steps in place for `seconds` with `policy`, pushed with `push` (Ns, world frame) just
 /// after the first touch-down from 4 s on of the foot opposite the push's side (so that the
-/// foot on the pushed side is swinging).
+/// foot on the pushed side is swinging); the tracking swing with the improved setup's landing
+/// and step range, the paper's swing with the defaults.
 pub(crate) fn step_in_place(
     seconds: f64,
     push: [f64; 3],
@@ -69,6 +70,11 @@ pub(crate) fn step_in_place(
     let mut robot = Humanoid::new(SimConfig::default()).unwrap();
     let mut config = WalkerConfig::new(WalkerMode::CaptureStep);
     config.motion.swing = swing;
+    if swing == Swing::Tracking {
+        // The tracking swing as the improved setup (configs/improved.toml) runs it.
+        config.motion.early_landing_phase = 0.5;
+        config.motion.step_x_range = [-0.45, 0.45];
+    }
     let mut walker = Walker::new(config, robot.body().leg_geometry()).unwrap();
     let mut run = Run::default();
     let mut pushed = false;

@@ -1136,11 +1136,10 @@ fn a_parameter_table_sets_its_offset_apart_from_the_shared_settings() {
         learner.touch_down(&StepOutcome::default()).unwrap();
         learner.predict(x).unwrap()
     };
-    // step-x: 0.5 * 0.3; step-time (no table): 1 * (0.3 - 0.1); step-y: its default table
-    // has no dead zone, 1 * 0.3.
+    // step-x: 0.5 * 0.3; step-time and step-y (no table): 1 * (0.3 - 0.1).
     assert!((learned(StepParameter::StepX) - 0.15).abs() < 1e-12);
     assert!((learned(StepParameter::StepTime) - 0.2).abs() < 1e-12);
-    assert!((learned(StepParameter::StepY) - 0.3).abs() < 1e-12);
+    assert!((learned(StepParameter::StepY) - 0.2).abs() < 1e-12);
     // `new` is the paper's step-x; `as_parameter` switches to another parameter's settings.
     let mut switched = FootstepLearner::new(
         BinTable::new([10, 8, 6], 1.0),
@@ -1307,7 +1306,7 @@ fn parameter_tables_read_from_toml_and_a_default_config_writes_none() {
     let time = cfg.offset(StepParameter::StepTime);
     assert_eq!((time.eta, time.dead_zone, time.leakage), (0.5, 0.06, 0.1));
     assert_eq!(cfg.offset(StepParameter::StepX).dead_zone, 0.06);
-    assert_eq!(cfg.offset(StepParameter::StepY).dead_zone, 0.0);
+    assert_eq!(cfg.offset(StepParameter::StepY).dead_zone, 0.06);
     let back: LearnerConfig = toml::from_str(&toml::to_string(&cfg).unwrap()).unwrap();
     assert_eq!(back, cfg);
     let unknown = toml::from_str::<LearnerConfig>("[step-time]\nmax_gain = 0.1\n");

@@ -42,10 +42,10 @@ const ROWS: [Row; 4] = [
     },
     Row {
         number: 4,
-        claim: "learns push recovery without initialisation, pushes absorbed over no learning",
+        claim: "learns push recovery without initialisation (absorbed, over no learning)",
         figure: "7-8",
         value: signed1,
-        unit: " of 15",
+        unit: " of 15 pushes",
     },
 ];
 
@@ -74,11 +74,11 @@ fn headline(row: &Row, claim: &Claim) -> String {
     };
     let v = row.value;
     format!(
-        "{}{} [{}, {}], {verdict}",
+        "{} [{}, {}]{}, {verdict}",
         v(p.mean),
-        row.unit,
         v(p.ci95.0),
-        v(p.ci95.1)
+        v(p.ci95.1),
+        row.unit
     )
 }
 
