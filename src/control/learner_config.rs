@@ -103,8 +103,10 @@ pub struct LearnerConfig {
     /// without the learner's part, |F_E - dF| with dF the offset of the step's last query,
     /// exceeds this (m): a step the model itself missed by that much was disturbed (a push, a
     /// reference change), and the rule's saturated tracking term only winds the offset up
-    /// there. Errors the learner's own offset causes still teach. Finite and > 0; default
-    /// none (eq. 6 learns from every step).
+    /// there. Errors the learner's own offset causes still teach. It is in metres and holds
+    /// only for the offsets measured in metres (`step-x`, `step-y`); a step time or a sole
+    /// tilt is never discarded by it. Finite and > 0; default none (eq. 6 learns from every
+    /// step).
     pub max_step_error: Option<f64>,
     /// If set (k > 0), the learner acts only where it has learned: the offset is applied in
     /// full where every input lies within k standard deviations of the mean of the inputs it
