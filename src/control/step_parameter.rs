@@ -202,28 +202,8 @@ impl Gate {
     /// The weight of `offset`, the output of a learner reading `plane`, at the planes'
     /// deviation rates, from this tick's rates alone (no hysteresis, see [`Self::weight_held`]).
     pub fn weight(self, plane: Plane, sagittal_rate: f64, frontal_rate: f64, offset: f64) -> f64 {
-        let own_rate = match plane {
-            Plane::Sagittal => sagittal_rate,
-            Plane::Frontal => frontal_rate,
-        };
-        match self {
-            Gate::Off => 1.0,
-            Gate::RateShare => {
-                let (s, f) = (sagittal_rate * sagittal_rate, frontal_rate * frontal_rate);
-                if s + f > 0.0 {
-                    own_rate * own_rate / (s + f)
-                } else {
-                    0.5
-                }
-            }
-            Gate::WithTheFall => {
-                if offset * own_rate > 0.0 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
-        }
+        let own_rate = own_rate(plane, sagittal_rate, frontal_rate);
+        self.weight_falling(sagittal_rate, frontal_rate, own_rate, offset, own_rate)
     }
 
     /// [`Self::weight`] with hysteresis on the fall direction: `fall`, the direction this
@@ -239,20 +219,38 @@ impl Gate {
         offset: f64,
         fall: &mut FallDirection,
     ) -> f64 {
-        let own_rate = match plane {
-            Plane::Sagittal => sagittal_rate,
-            Plane::Frontal => frontal_rate,
-        };
-        let direction = fall.update(own_rate);
+        let own_rate = own_rate(plane, sagittal_rate, frontal_rate);
+        let falling = fall.update(own_rate);
+        self.weight_falling(sagittal_rate, frontal_rate, own_rate, offset, falling)
+    }
+
+    /// The weight with the plane's own rate `own_rate` and `falling`, a value whose sign is
+    /// the direction [`Gate::WithTheFall`] reads (0: none).
+    fn weight_falling(
+        self,
+        sagittal_rate: f64,
+        frontal_rate: f64,
+        own_rate: f64,
+        offset: f64,
+        falling: f64,
+    ) -> f64 {
         match self {
+            Gate::Off => 1.0,
+            Gate::RateShare => {
+                let (s, f) = (sagittal_rate * sagittal_rate, frontal_rate * frontal_rate);
+                if s + f > 0.0 {
+                    own_rate * own_rate / (s + f)
+                } else {
+                    0.5
+                }
+            }
             Gate::WithTheFall => {
-                if offset * direction > 0.0 {
+                if offset * falling > 0.0 {
                     1.0
                 } else {
                     0.0
                 }
             }
-            _ => self.weight(plane, sagittal_rate, frontal_rate, offset),
         }
     }
 
@@ -260,6 +258,14 @@ impl Gate {
     /// offset with a direction in space, so not the step time's).
     pub fn allows(self, parameter: StepParameter) -> bool {
         self != Gate::WithTheFall || parameter != StepParameter::StepTime
+    }
+}
+
+/// The deviation rate of `plane` of the two planes' rates.
+fn own_rate(plane: Plane, sagittal_rate: f64, frontal_rate: f64) -> f64 {
+    match plane {
+        Plane::Sagittal => sagittal_rate,
+        Plane::Frontal => frontal_rate,
     }
 }
 

@@ -1,9 +1,10 @@
 //! Every key of a config file with its range and meaning, and the reference table built from
 //! them and the defaults (`steplearn config --table`, docs/configuration.md).
 //!
-//! The defaults are not written here: the table reads them from [`ConfigFile::default`], so a
-//! changed default changes the table. A test checks that [`KEYS`] names exactly the keys
-//! `steplearn config` prints, plus the keys a config may add that hold no value by default.
+//! The defaults are not written here: the table reads them from
+//! [`ConfigFile::default_toml`], so a changed default changes the table. A test checks that
+//! [`PRINTED`] names exactly the keys `steplearn config` prints, and that no key of
+//! [`ABSENT`], the keys a config may add that hold no value by default, is among them.
 
 use super::config_file::ConfigFile;
 
@@ -26,8 +27,8 @@ const fn k(key: &'static str, range: &'static str, meaning: &'static str) -> Key
     }
 }
 
-/// Every key, in the order of `steplearn config`, then those absent by default.
-pub const KEYS: &[KeyDoc] = &[
+/// The keys `steplearn config` prints, in its order.
+pub const PRINTED: &[KeyDoc] = &[
     k(
         "settings.scale",
         "(0, 1]",
@@ -618,7 +619,10 @@ pub const KEYS: &[KeyDoc] = &[
         "lo <= hi within [-1, 1] m",
         "A: range of the random reference steps",
     ),
-    // Absent by default.
+];
+
+/// The keys that hold no value by default (`steplearn config` leaves them out).
+pub const ABSENT: &[KeyDoc] = &[
     k(
         "settings.learner.max_offset",
         "> 0, or absent",
@@ -691,14 +695,6 @@ pub const KEYS: &[KeyDoc] = &[
     ),
 ];
 
-/// The first key of [`KEYS`] that holds no value by default.
-const FIRST_ABSENT: &str = "settings.learner.max_offset";
-
-/// The keys of [`KEYS`] that `steplearn config` prints (with their defaults).
-pub fn printed_keys() -> impl Iterator<Item = &'static KeyDoc> {
-    KEYS.iter().take_while(|k| k.key != FIRST_ABSENT)
-}
-
 /// Every key a TOML document holds, as [`KeyDoc::key`] writes them.
 pub fn keys_of(value: &toml::Value) -> Vec<(String, toml::Value)> {
     fn walk(v: &toml::Value, path: &str, out: &mut Vec<(String, toml::Value)>) {
@@ -747,7 +743,7 @@ pub fn key_table() -> String {
     let defaults = toml::from_str::<toml::Value>(&ConfigFile::default_toml()).map(|v| keys_of(&v));
     let defaults = defaults.unwrap_or_default();
     let mut out = String::from("| key | default | range | meaning |\n|---|---|---|---|\n");
-    for doc in KEYS {
+    for doc in PRINTED.iter().chain(ABSENT) {
         let default = defaults
             .iter()
             .find(|(key, _)| key == doc.key)
@@ -770,15 +766,15 @@ mod tests {
     fn the_table_names_every_printed_key_and_no_other() {
         let value: toml::Value = toml::from_str(&ConfigFile::default_toml()).unwrap();
         let mut printed: Vec<String> = keys_of(&value).into_iter().map(|(k, _)| k).collect();
-        let mut documented: Vec<String> = printed_keys().map(|k| k.key.to_string()).collect();
+        let mut documented: Vec<String> = PRINTED.iter().map(|k| k.key.to_string()).collect();
         printed.sort();
         documented.sort();
         assert_eq!(documented, printed);
-        for doc in KEYS.iter().skip(printed.len()) {
+        for doc in ABSENT {
             assert!(!printed.iter().any(|p| p == doc.key), "{}", doc.key);
         }
         let table = key_table();
-        assert_eq!(table.lines().count(), KEYS.len() + 2);
+        assert_eq!(table.lines().count(), PRINTED.len() + ABSENT.len() + 2);
         assert!(
             table.contains("| `settings.walker.motion.swing` | `paper` |"),
             "{table}"

@@ -88,31 +88,33 @@ fn per_seed(claim: &Claim) -> String {
     format!("{holds} of {}", claim.seeds.len())
 }
 
+/// Claim `number` (1-4) of `claims`.
+fn claim_of(claims: &Claims, number: u8) -> &Claim {
+    match number {
+        1 => &claims.tracking,
+        2 => &claims.disturbance,
+        3 => &claims.stability,
+        _ => &claims.robustness,
+    }
+}
+
 /// The README's claims table (Markdown): the paper's system (the default) and the improved
 /// setup, each with its headline over seeds and the seeds on which the claim holds strictly.
 pub fn claims_table(paper: &Claims, improved: &Claims) -> String {
     let mut out = String::from(
         "| # | The paper's claim | Fig. | Paper's system (default) | holds on seeds | Improved setup | holds on seeds |\n|---|---|---|---|---|---|---|\n",
     );
-    let pick = |c: &Claims, n: u8| -> Claim {
-        match n {
-            1 => c.tracking.clone(),
-            2 => c.disturbance.clone(),
-            3 => c.stability.clone(),
-            _ => c.robustness.clone(),
-        }
-    };
     for row in &ROWS {
-        let (a, b) = (pick(paper, row.number), pick(improved, row.number));
+        let (a, b) = (claim_of(paper, row.number), claim_of(improved, row.number));
         out.push_str(&format!(
             "| {} | {} | {} | {} | {} | {} | {} |\n",
             row.number,
             row.claim,
             row.figure,
-            headline(row, &a),
-            per_seed(&a),
-            headline(row, &b),
-            per_seed(&b),
+            headline(row, a),
+            per_seed(a),
+            headline(row, b),
+            per_seed(b),
         ));
     }
     out
