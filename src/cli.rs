@@ -83,10 +83,35 @@ enum Command {
         /// The sweep's output directory.
         dir: PathBuf,
     },
+    /// Describes a robot from a URDF file (what was found, the scale and the gait derived), or
+    /// exports the built-in humanoid as URDF.
+    #[command(subcommand)]
+    Robot(RobotCommand),
     /// Re-simulates push K (disturbance, stability, robustness) or a span of time (tracking,
     /// disturbance, stability) of a finished run (from its run-config.toml) and writes one
     /// self-contained HTML page that draws it in 3D.
     Replay(ReplayArgs),
+}
+
+#[derive(Subcommand)]
+enum RobotCommand {
+    /// Prints what the loader found in PATH: name, mass, centre-of-mass height, C, the two
+    /// legs' joints (hip yaw, roll, pitch, knee, ankle pitch, roll), the held joints, the leg
+    /// geometry and the gait derived. A refused robot exits non-zero, naming the link or joint.
+    Show {
+        /// The URDF file.
+        path: PathBuf,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Writes the built-in humanoid as URDF (loaded with --robot it runs bit for bit as the
+    /// built-in one).
+    Export {
+        /// Where to write it.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 // The arguments of `steplearn reproduce` (no doc comment: the variant's is the command's help).
@@ -115,6 +140,10 @@ struct ReproduceArgs {
     /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
     #[arg(long)]
     config: Option<PathBuf>,
+    /// A robot from a URDF file instead of the built-in humanoid; its gait, learner units and
+    /// protocols follow it by dynamic similarity (docs/robot.md).
+    #[arg(long, value_name = "PATH")]
+    robot: Option<PathBuf>,
 }
 
 // The arguments of `steplearn experiment`.
@@ -150,6 +179,10 @@ struct ExperimentArgs {
     /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
     #[arg(long)]
     config: Option<PathBuf>,
+    /// A robot from a URDF file instead of the built-in humanoid; its gait, learner units and
+    /// protocols follow it by dynamic similarity (docs/robot.md).
+    #[arg(long, value_name = "PATH")]
+    robot: Option<PathBuf>,
     /// Output directory: new or empty, or holding this same run (then reused); anything
     /// else is refused unless --overwrite is given.
     #[arg(long)]
@@ -190,6 +223,10 @@ struct BenchArgs {
     /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
     #[arg(long)]
     config: Option<PathBuf>,
+    /// A robot from a URDF file instead of the built-in humanoid; its gait, learner units and
+    /// protocols follow it by dynamic similarity (docs/robot.md).
+    #[arg(long, value_name = "PATH")]
+    robot: Option<PathBuf>,
     /// The combination every other is compared with, APPROX+RULE [default:
     /// lwpr+pendulum-cart when selected].
     #[arg(long, value_parser = parse_baseline)]
@@ -349,6 +386,46 @@ fn load_config(registry: &Registry, config: Option<PathBuf>) -> Result<ConfigFil
     registry.resolve_config(&config).map_err(|e| e.to_string())
 }
 
+/// With `--robot PATH`: the robot named in `config`'s settings and its protocols rewritten for
+/// it.
+fn use_robot_option(robot: Option<&Path>, config: &mut ConfigFile) -> Result<(), String> {
+    if let Some(path) = robot {
+        crate::experiments::harness::robot_setup::use_robot(
+            path,
+            &mut config.settings,
+            &mut config.protocols,
+        )
+        .map_err(|e| format!("robot {}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// `steplearn robot show` and `steplearn robot export`.
+fn robot_command(command: RobotCommand) -> Result<(), String> {
+    match command {
+        RobotCommand::Show { path, json } => {
+            let report = crate::experiments::harness::robot_setup::robot_report(&path)
+                .map_err(|e| format!("robot {}: {e}", path.display()))?;
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+                );
+            } else {
+                print!("{}", report.to_text());
+            }
+            Ok(())
+        }
+        RobotCommand::Export { out } => {
+            let text = crate::sim::BodyConfig::default().description().to_urdf();
+            crate::atomic_file::write_atomic(&out, text.as_bytes())
+                .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+            println!("wrote {}", out.display());
+            Ok(())
+        }
+    }
+}
+
 /// Runs the parsed command: one function per subcommand.
 fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
     match cli.command {
@@ -362,6 +439,7 @@ fn run(registry: &Registry, cli: Cli) -> Result<(), String> {
         Command::Sweep(args) => sweep(registry, args),
         Command::Config { check, table } => config(registry, check, table),
         Command::Replay(args) => replay(registry, args),
+        Command::Robot(command) => robot_command(command),
         Command::Merge { dir } => merge_dir(&dir),
     }
 }
@@ -398,8 +476,10 @@ fn reproduce(registry: &Registry, args: ReproduceArgs) -> Result<(), String> {
         quick,
         learn,
         config,
+        robot,
     } = args;
     let mut config = load_config_learning(registry, config, learn)?;
+    use_robot_option(robot.as_deref(), &mut config)?;
     if quick {
         config.settings.scale = 0.1;
     }
@@ -492,10 +572,12 @@ fn experiment(registry: &Registry, args: ExperimentArgs) -> Result<(), String> {
         push_direction,
         learn,
         config,
+        robot,
         out,
         overwrite,
     } = args;
     let mut config = load_config_learning(registry, config, learn)?;
+    use_robot_option(robot.as_deref(), &mut config)?;
     registry
         .check_combination(&approx, &rule)
         .map_err(|e| e.to_string())?;
@@ -561,7 +643,8 @@ fn experiment(registry: &Registry, args: ExperimentArgs) -> Result<(), String> {
 
 /// The [`Bench`] the command line's bench arguments select.
 fn bench_of<'r>(registry: &'r Registry, args: &BenchArgs) -> Result<Bench<'r>, String> {
-    let config = load_config(registry, args.config.clone())?;
+    let mut config = load_config(registry, args.config.clone())?;
+    use_robot_option(args.robot.as_deref(), &mut config)?;
     let mut bench = Bench::new(registry)
         .seeds(args.seeds)
         .first_seed(args.first_seed)

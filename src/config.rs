@@ -164,8 +164,8 @@ pub mod limits {
     pub const MIN_BIN_S: f64 = 0.01;
     /// Time bins after a change or a push (horizon / bin).
     pub const MAX_BINS: f64 = 10_000.0;
-    /// A push impulse (Ns): 100 Ns sends the 13.5 kg robot off at 7 m/s, far past every fall.
-    pub const MAX_IMPULSE_NS: f64 = 100.0;
+    /// A push impulse (Ns): 1000 Ns sends a 90 kg robot off at 11 m/s, far past every fall.
+    pub const MAX_IMPULSE_NS: f64 = 1000.0;
     /// A reference step size or its range (m), either way.
     pub const MAX_STEP_M: f64 = 1.0;
     /// Points per axis of a dF map or an input grid.

@@ -373,11 +373,14 @@ impl Registry {
                 result.name()
             )));
         }
+        let robot = crate::experiments::harness::robot_setup::robot_summary(settings)
+            .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
         Ok(Summary {
             approx: spec.approx.clone(),
             rule: spec.rule.clone(),
             seed: spec.seed,
             learn: settings.learner.learn,
+            robot: Some(robot),
             result,
         })
     }

@@ -6,6 +6,7 @@
 pub mod capture_step;
 pub mod coupled;
 pub mod estimator;
+pub mod for_robot;
 pub mod learner;
 pub mod learner_config;
 pub mod learner_error;

@@ -81,6 +81,15 @@ impl LegJoint {
         LegJoint::AnkleRoll,
     ];
 
+    /// The axis this joint turns about, in the trunk frame of the zero pose.
+    pub fn axis(self) -> [f64; 3] {
+        match self {
+            LegJoint::HipYaw => [0.0, 0.0, 1.0],
+            LegJoint::HipRoll | LegJoint::AnkleRoll => [1.0, 0.0, 0.0],
+            LegJoint::HipPitch | LegJoint::Knee | LegJoint::AnklePitch => [0.0, 1.0, 0.0],
+        }
+    }
+
     /// Index of this joint of leg `side` in the 12-element joint arrays.
     pub fn index(self, side: Side) -> usize {
         side.index() * JOINTS_PER_LEG + self as usize

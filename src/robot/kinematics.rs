@@ -40,6 +40,20 @@ pub struct LegGeometry {
     pub foot_width: f64,
     /// Sole centre forward of the point below the ankle centre.
     pub sole_offset_x: f64,
+    /// Sole centre to the left of the point below the ankle centre (left leg; mirrored).
+    #[serde(default)]
+    pub sole_offset_y: f64,
+    /// Sagittal angle of the hip-to-knee line from straight down (rad; positive: the knee
+    /// lies forward of the hip in the zero pose).
+    #[serde(default)]
+    pub thigh_angle: f64,
+    /// Sagittal angle of the knee-to-ankle line from straight down (rad).
+    #[serde(default)]
+    pub shank_angle: f64,
+    /// Hip centre minus the point where the hip yaw axis passes, in x and y (left leg;
+    /// mirrored): zero when the yaw axis runs through the hip centre.
+    #[serde(default)]
+    pub yaw_offset: [f64; 2],
 }
 
 /// What can go wrong with leg kinematics.
@@ -77,6 +91,10 @@ impl Default for LegGeometry {
             foot_length: 0.30,
             foot_width: 0.11,
             sole_offset_x: 0.05,
+            sole_offset_y: 0.0,
+            thigh_angle: 0.0,
+            shank_angle: 0.0,
+            yaw_offset: [0.0, 0.0],
         }
     }
 }
@@ -92,6 +110,11 @@ impl LegGeometry {
             self.hip_offset[1],
             self.hip_offset[2],
             self.sole_offset_x,
+            self.sole_offset_y,
+            self.thigh_angle,
+            self.shank_angle,
+            self.yaw_offset[0],
+            self.yaw_offset[1],
         ];
         if all.iter().any(|v| !v.is_finite()) {
             return Err(KinematicsError::InvalidGeometry(format!(
@@ -127,13 +150,59 @@ impl LegGeometry {
 
     /// Forward kinematics: the pose of the sole centre of leg `side` in the torso frame.
     pub fn forward(&self, side: Side, q: &LegAngles) -> Isometry3<f64> {
+        let hip = self.hip_at_yaw(side, q[0]);
+        self.forward_from(hip, side, &self.to_straight(q))
+    }
+
+    /// Whether the leg is straight in the zero pose and its yaw axis runs through the hip.
+    fn is_plain(&self) -> bool {
+        self.thigh_angle == 0.0 && self.shank_angle == 0.0 && self.yaw_offset == [0.0, 0.0]
+    }
+
+    /// The angles of the equivalent straight leg (thigh and shank along -z in the zero pose).
+    fn to_straight(&self, q: &LegAngles) -> LegAngles {
+        if self.thigh_angle == 0.0 && self.shank_angle == 0.0 {
+            return *q;
+        }
+        let (a, b) = (self.thigh_angle, self.shank_angle);
+        let mut s = *q;
+        s[2] -= a;
+        s[3] += a - b;
+        s[4] += b;
+        s
+    }
+
+    /// The robot's angles from those of the equivalent straight leg.
+    fn from_straight(&self, s: &LegAngles) -> LegAngles {
+        if self.thigh_angle == 0.0 && self.shank_angle == 0.0 {
+            return *s;
+        }
+        let (a, b) = (self.thigh_angle, self.shank_angle);
+        let mut q = *s;
+        q[2] += a;
+        q[3] -= a - b;
+        q[4] -= b;
+        q
+    }
+
+    /// Hip centre of leg `side` with the hip yawed by `yaw`.
+    fn hip_at_yaw(&self, side: Side, yaw: f64) -> Vector3<f64> {
+        let hip = self.hip_centre(side);
+        if self.yaw_offset == [0.0, 0.0] {
+            return hip;
+        }
+        let off = Vector3::new(self.yaw_offset[0], side.sign() * self.yaw_offset[1], 0.0);
+        hip - off + rot_z(yaw) * off
+    }
+
+    fn forward_from(&self, hip: Vector3<f64>, side: Side, q: &LegAngles) -> Isometry3<f64> {
         let [yaw, roll, pitch, knee, ankle_pitch, ankle_roll] = *q;
         let hip_rot = rot_z(yaw) * rot_x(roll) * rot_y(pitch);
-        let knee_pos = self.hip_centre(side) + hip_rot * Vector3::new(0.0, 0.0, -self.thigh);
+        let knee_pos = hip + hip_rot * Vector3::new(0.0, 0.0, -self.thigh);
         let shank_rot = hip_rot * rot_y(knee);
         let ankle_pos = knee_pos + shank_rot * Vector3::new(0.0, 0.0, -self.shank);
         let foot_rot = shank_rot * rot_y(ankle_pitch) * rot_x(ankle_roll);
-        let sole = ankle_pos + foot_rot * self.ankle_to_sole();
+        let sole = ankle_pos + foot_rot * self.ankle_to_sole(side);
         Isometry3::from_parts(
             Translation3::from(sole),
             UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(foot_rot)),
@@ -142,16 +211,35 @@ impl LegGeometry {
 
     /// Inverse kinematics: the angles of leg `side` that put the sole centre at `foot` (torso
     /// frame). Closed form; the solution with the knee bent forward (knee >= 0).
+    /// With a yaw axis off the hip centre, the hip's place follows from the yaw, which
+    /// follows from the hip's place: a few fixed-point rounds settle it.
     pub fn inverse(&self, side: Side, foot: &Isometry3<f64>) -> Result<LegAngles, KinematicsError> {
         let t = foot.translation.vector;
         let qv = foot.rotation.coords;
         if t.iter().chain(qv.iter()).any(|v| !v.is_finite()) {
             return Err(KinematicsError::NonFinite(format!("foot pose {foot:?}")));
         }
+        if self.is_plain() {
+            return self.inverse_from(self.hip_centre(side), side, foot);
+        }
+        let mut q = self.inverse_from(self.hip_at_yaw(side, 0.0), side, foot)?;
+        for _ in 0..4 {
+            q = self.inverse_from(self.hip_at_yaw(side, q[0]), side, foot)?;
+        }
+        Ok(self.from_straight(&q))
+    }
+
+    fn inverse_from(
+        &self,
+        hip: Vector3<f64>,
+        side: Side,
+        foot: &Isometry3<f64>,
+    ) -> Result<LegAngles, KinematicsError> {
+        let t = foot.translation.vector;
         let foot_rot = foot.rotation.to_rotation_matrix();
-        let ankle = t - foot_rot * self.ankle_to_sole();
+        let ankle = t - foot_rot * self.ankle_to_sole(side);
         // Hip seen from the ankle, in the foot frame.
-        let r = foot_rot.inverse() * (self.hip_centre(side) - ankle);
+        let r = foot_rot.inverse() * (hip - ankle);
         let (l1, l2) = (self.thigh, self.shank);
         let dist = r.norm();
         let (min, max) = ((l1 - l2).abs(), l1 + l2);
@@ -177,8 +265,15 @@ impl LegGeometry {
     }
 
     /// Sole centre relative to the ankle centre, in the foot frame.
-    fn ankle_to_sole(&self) -> Vector3<f64> {
-        Vector3::new(self.sole_offset_x, 0.0, -self.ankle_height)
+    fn ankle_to_sole(&self, side: Side) -> Vector3<f64> {
+        if self.sole_offset_y == 0.0 {
+            return Vector3::new(self.sole_offset_x, 0.0, -self.ankle_height);
+        }
+        Vector3::new(
+            self.sole_offset_x,
+            side.sign() * self.sole_offset_y,
+            -self.ankle_height,
+        )
     }
 }
 

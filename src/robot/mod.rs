@@ -2,8 +2,12 @@
 //! both sides compute with. Both [`crate::control`] and the simulator use this module; it uses
 //! neither.
 
+pub mod description;
+pub mod file;
 mod io;
 pub mod kinematics;
+pub mod scale;
+pub mod urdf;
 
 /// Standard gravity (m/s^2): the simulator's default and the gravity of the LIPM rules.
 pub const STANDARD_GRAVITY: f64 = 9.81;

@@ -234,6 +234,7 @@ impl BodyConfig {
             foot_length: self.foot.length,
             foot_width: self.foot.width,
             sole_offset_x: self.foot.sole_offset_x,
+            ..LegGeometry::default()
         }
     }
 

@@ -5,14 +5,19 @@ use serde::{Deserialize, Serialize};
 use super::body::BodyConfig;
 use super::error::{SimError, in_range, non_negative, positive};
 use crate::robot::NUM_JOINTS;
+use crate::robot::file::RobotFile;
 
 /// Everything that defines a simulation run besides the control inputs: the body, the physics
 /// step, solver settings, ground friction, control tick, push delivery and fall detection.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SimConfig {
-    /// The robot.
+    /// The built-in humanoid's body (and the paper's robot that another robot's servos are
+    /// scaled from).
     pub body: BodyConfig,
+    /// A robot from a URDF file instead of the built-in humanoid (`--robot PATH`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot: Option<RobotFile>,
     /// Physics step (s), in [1e-4, 5e-3].
     pub dt: f64,
     /// Physics steps per control tick (>= 1): a control tick lasts `dt * steps_per_tick`.
@@ -39,6 +44,7 @@ impl Default for SimConfig {
     fn default() -> Self {
         SimConfig {
             body: BodyConfig::default(),
+            robot: None,
             dt: 0.002,
             steps_per_tick: 5,
             solver_iterations: 1,

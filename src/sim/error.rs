@@ -37,6 +37,9 @@ pub enum SimError {
         /// What was found.
         what: String,
     },
+    /// The robot's description was refused.
+    #[error("{0}")]
+    Robot(#[from] crate::robot::description::RobotError),
     /// A config file could not be parsed.
     #[error("cannot parse body config: {0}")]
     Parse(String),

@@ -11,13 +11,17 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::body::{BodyConfig, Segment, head_neck_length};
+use std::sync::Arc;
+
+use super::body::BodyConfig;
 use super::config::SimConfig;
 use super::error::SimError;
 use super::fall::{BodyPart, Fall, FallTrigger};
 use super::sensors::{foot_contact, imu_of};
 use super::truth::{GroundTruth, Skeleton, pose_of};
-use crate::robot::{JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+use crate::robot::description::{Description, Geometry, Link, Shape};
+use crate::robot::scale::Scale;
+use crate::robot::{JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
 
 /// Index of the free angular axis of a revolute joint in rapier's spatial layout.
 const REVOLUTE_AXIS: usize = 3;
@@ -25,6 +29,8 @@ const REVOLUTE_AXIS: usize = 3;
 /// The simulated humanoid: a rapier world holding the robot and the ground.
 pub struct Humanoid {
     config: SimConfig,
+    robot: Arc<Description>,
+    scale: Scale,
     world: PhysicsWorld,
     multibody: MultibodyIndex,
     torso: RigidBodyHandle,
@@ -49,30 +55,6 @@ pub struct Humanoid {
 
 fn v3(a: [f64; 3]) -> Vector {
     Vector::new(a[0], a[1], a[2])
-}
-
-fn capsule_below(length: f64, radius: f64, clearance: f64) -> Collider {
-    let half = (length / 2.0 - radius - clearance).max(1e-3);
-    ColliderBuilder::capsule_z(half, radius)
-        .translation(Vector::new(0.0, 0.0, -length / 2.0))
-        .density(0.0)
-        .build()
-}
-
-fn segment_mass(
-    length: f64,
-    mass: f64,
-    com_fraction: f64,
-    gyr: f64,
-    radius: f64,
-) -> MassProperties {
-    let i_long = mass * (gyr * length).powi(2);
-    let i_axial = 0.5 * mass * radius * radius;
-    MassProperties::new(
-        Vector::new(0.0, 0.0, -com_fraction * length),
-        mass,
-        Vector::new(i_long, i_long, i_axial),
-    )
 }
 
 /// The robot's colliders as they are attached, each with its body part, all with the ground's
@@ -119,172 +101,119 @@ fn world_with_ground(config: &SimConfig) -> (PhysicsWorld, ColliderHandle) {
     (world, ground)
 }
 
-/// The torso (trunk, pelvis, head, arms): the floating root, its frame midway between the hip
-/// centres.
-fn add_torso(world: &mut PhysicsWorld, body: &BodyConfig, parts: &mut Parts) -> RigidBodyHandle {
-    let t = &body.torso;
-    let torso = world.bodies.insert(
-        RigidBodyBuilder::dynamic()
-            .can_sleep(false)
-            .additional_mass_properties(MassProperties::new(
-                Vector::new(0.0, 0.0, t.com_height),
-                t.mass,
-                v3(t.inertia),
-            )),
-    );
-    let pelvis_h = 0.12;
-    parts.attach(
-        world,
-        ColliderBuilder::cuboid(t.depth / 2.0, t.width / 2.0, t.length / 2.0)
-            .translation(Vector::new(
-                0.0,
-                0.0,
-                t.length / 2.0 - pelvis_h / 2.0 + 0.02,
-            ))
-            .density(0.0)
-            .build(),
-        torso,
-        BodyPart::Torso,
-    );
-    parts.attach(
-        world,
-        ColliderBuilder::ball(t.head_radius)
-            .translation(Vector::new(
-                0.0,
-                0.0,
-                t.length + head_neck_length(t) - t.head_radius,
-            ))
-            .density(0.0)
-            .build(),
-        torso,
-        BodyPart::Torso,
-    );
-    for s in [1.0, -1.0] {
-        parts.attach(
-            world,
-            ColliderBuilder::capsule_z(t.arm_length / 2.0 - t.arm_radius, t.arm_radius)
-                .translation(Vector::new(
-                    0.0,
-                    s * (t.width / 2.0 + t.arm_radius + 0.01),
-                    t.length - t.arm_length / 2.0,
-                ))
-                .density(0.0)
-                .build(),
-            torso,
-            BodyPart::Torso,
-        );
-    }
-    torso
+/// A rotation from a unit quaternion `[w, x, y, z]`.
+fn rotation(q: [f64; 4]) -> Rotation {
+    Rotation::from_xyzw(q[1], q[2], q[3], q[0])
 }
 
-/// A dynamic body with the given mass properties that never sleeps.
-fn link_body(mass: MassProperties) -> RigidBodyBuilder {
+/// The collider of one shape of a description (density 0: a link's mass is its own).
+fn collider(shape: &Shape) -> Collider {
+    let builder = match shape.geometry {
+        Geometry::Box { half_extents: h } => ColliderBuilder::cuboid(h[0], h[1], h[2]),
+        Geometry::Sphere { radius } => ColliderBuilder::ball(radius),
+        Geometry::Capsule {
+            half_height,
+            radius,
+        } => ColliderBuilder::capsule_z(half_height, radius),
+        Geometry::Cylinder {
+            half_height,
+            radius,
+        } => ColliderBuilder::cylinder(half_height, radius),
+    };
+    let mut builder = builder.translation(v3(shape.position));
+    // rapier's cylinder runs along y; the description's along z.
+    let turn = match shape.geometry {
+        Geometry::Cylinder { .. } => Some(
+            rotation(shape.orientation) * Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2),
+        ),
+        _ if shape.orientation != [1.0, 0.0, 0.0, 0.0] => Some(rotation(shape.orientation)),
+        _ => None,
+    };
+    if let Some(r) = turn {
+        builder = builder.rotation(r.to_scaled_axis());
+    }
+    builder.density(0.0).build()
+}
+
+/// A dynamic body with a link's mass properties that never sleeps.
+fn link_body(link: &Link) -> RigidBodyBuilder {
     RigidBodyBuilder::dynamic()
         .can_sleep(false)
-        .additional_mass_properties(mass)
+        .additional_mass_properties(MassProperties::with_principal_inertia_frame(
+            v3(link.com),
+            link.mass,
+            v3(link.inertia.principal),
+            rotation(link.inertia.axes),
+        ))
 }
 
-/// A leg segment (thigh or shank) of `mass` (kg): its body and its capsule, `clearance` (m)
-/// short of the segment's ends.
-fn add_segment(
+/// A link's body and its colliders, each counted as `part`.
+fn add_link(
     world: &mut PhysicsWorld,
     parts: &mut Parts,
-    segment: &Segment,
-    mass: f64,
-    clearance: f64,
+    link: &Link,
     part: BodyPart,
-) -> RigidBodyHandle {
-    let handle = world.bodies.insert(link_body(segment_mass(
-        segment.length,
-        mass,
-        segment.com_fraction,
-        segment.gyration_fraction,
-        segment.radius,
-    )));
-    parts.attach(
-        world,
-        capsule_below(segment.length, segment.radius, clearance),
-        handle,
-        part,
-    );
-    handle
+) -> (RigidBodyHandle, Vec<ColliderHandle>) {
+    let handle = world.bodies.insert(link_body(link));
+    let colliders = link
+        .shapes
+        .iter()
+        .map(|s| parts.attach(world, collider(s), handle, part))
+        .collect();
+    (handle, colliders)
 }
 
-/// One leg on `side`, hung from the torso: its bodies (two hip gimbals, thigh, shank, ankle
-/// gimbal, foot), their colliders and the six revolute joints. Writes the body each joint
-/// moves into `links` and returns the foot's collider.
+/// The body part a leg's link belongs to: hip links and thigh, shank, ankle link and foot.
+fn leg_part(k: usize, side: Side) -> BodyPart {
+    match k {
+        0..=2 => BodyPart::Thigh(side),
+        3 => BodyPart::Shank(side),
+        _ => BodyPart::Foot(side),
+    }
+}
+
+/// One leg on `side`, hung from the trunk: its bodies, their colliders and the six revolute
+/// joints. Writes the body each joint moves into `links` and returns the sole's collider.
 fn add_leg(
     world: &mut PhysicsWorld,
-    body: &BodyConfig,
+    robot: &Description,
     parts: &mut Parts,
     torso: RigidBodyHandle,
     side: Side,
     links: &mut [RigidBodyHandle; NUM_JOINTS],
 ) -> Result<ColliderHandle, SimError> {
-    let gimbal = || {
-        link_body(MassProperties::new(
-            Vector::ZERO,
-            body.gimbal_mass,
-            Vector::splat(1e-4),
-        ))
-    };
-    let (th, sh, f) = (&body.thigh, &body.shank, &body.foot);
-    let hip_yaw = world.bodies.insert(gimbal());
-    let hip_roll = world.bodies.insert(gimbal());
-    let thigh = add_segment(
-        world,
-        parts,
-        th,
-        th.mass - 2.0 * body.gimbal_mass,
-        0.0,
-        BodyPart::Thigh(side),
-    );
-    let shank = add_segment(world, parts, sh, sh.mass, 0.01, BodyPart::Shank(side));
-    let ankle = world.bodies.insert(gimbal());
-    let fm = f.mass - body.gimbal_mass;
-    let (lx, ly, lz) = (f.length, f.width, f.ankle_height);
-    let foot = world.bodies.insert(link_body(MassProperties::new(
-        Vector::new(f.sole_offset_x, 0.0, -lz / 2.0),
-        fm,
-        Vector::new(
-            fm * (ly * ly + lz * lz) / 12.0,
-            fm * (lx * lx + lz * lz) / 12.0,
-            fm * (lx * lx + ly * ly) / 12.0,
-        ),
-    )));
-    let foot_collider = parts.attach(
-        world,
-        ColliderBuilder::cuboid(lx / 2.0, ly / 2.0, lz / 2.0)
-            .translation(Vector::new(f.sole_offset_x, 0.0, -lz / 2.0))
-            .density(0.0)
-            .build(),
-        foot,
-        BodyPart::Foot(side),
-    );
-    let hip = Vector::new(0.0, side.sign() * body.hip_half_width, 0.0);
-    let chain = [
-        (torso, hip_yaw, Vector::Z, hip),
-        (hip_yaw, hip_roll, Vector::X, Vector::ZERO),
-        (hip_roll, thigh, Vector::Y, Vector::ZERO),
-        (thigh, shank, Vector::Y, Vector::new(0.0, 0.0, -th.length)),
-        (shank, ankle, Vector::Y, Vector::new(0.0, 0.0, -sh.length)),
-        (ankle, foot, Vector::X, Vector::ZERO),
-    ];
-    for (j, (parent, child, axis, anchor)) in LegJoint::ALL.iter().zip(chain) {
-        let joint = RevoluteJointBuilder::new(axis)
-            .local_anchor1(anchor)
+    let leg = &robot.legs[side.index()];
+    let mut bodies = [torso; JOINTS_PER_LEG];
+    let mut sole = None;
+    for (k, link) in leg.links.iter().enumerate() {
+        let (handle, colliders) = add_link(world, parts, link, leg_part(k, side));
+        bodies[k] = handle;
+        if k == JOINTS_PER_LEG - 1 {
+            sole = colliders.get(leg.sole.shape).copied();
+        }
+    }
+    let sole = sole.ok_or_else(|| SimError::BlowUp {
+        time: 0.0,
+        what: format!("leg {side:?} has no sole collider"),
+    })?;
+    let mut parent = torso;
+    for (k, (j, joint)) in LegJoint::ALL.iter().zip(&leg.joints).enumerate() {
+        let child = bodies[k];
+        let revolute = RevoluteJointBuilder::new(v3(joint.axis))
+            .local_anchor1(v3(joint.origin))
             .local_anchor2(Vector::ZERO)
             .contacts_enabled(false);
         world
             .multibody_joints
-            .insert(parent, child, joint, true)
+            .insert(parent, child, revolute, true)
             .ok_or_else(|| SimError::BlowUp {
                 time: 0.0,
-                what: "rapier refused a joint".into(),
+                what: format!("rapier refused joint '{}'", joint.name),
             })?;
         links[j.index(side)] = child;
+        parent = child;
     }
-    Ok(foot_collider)
+    Ok(sole)
 }
 
 /// The multibody of the robot rooted at `torso`, with each joint's link id and
@@ -292,7 +221,7 @@ fn add_leg(
 /// joint's servo damping on its own coordinate.
 fn configure_multibody(
     world: &mut PhysicsWorld,
-    body: &BodyConfig,
+    robot: &Description,
     torso: RigidBodyHandle,
     links: &[RigidBodyHandle; NUM_JOINTS],
 ) -> Result<(MultibodyIndex, [usize; NUM_JOINTS], [usize; NUM_JOINTS]), SimError> {
@@ -328,7 +257,8 @@ fn configure_multibody(
     }
     for side in Side::BOTH {
         for j in LegJoint::ALL {
-            damping[dofs[j.index(side)]] = body.joint(j).damping;
+            damping[dofs[j.index(side)]] =
+                robot.legs[side.index()].joints[j as usize].servo.damping;
         }
     }
     Ok((multibody, link_ids, dofs))
@@ -357,24 +287,37 @@ impl Humanoid {
     /// `config.initial_clearance` above the ground. Rejects invalid configs.
     pub fn new(config: SimConfig) -> Result<Self, SimError> {
         config.validate()?;
-        let body = &config.body;
+        let robot = match &config.robot {
+            None => config.body.description(),
+            Some(file) => file.load(&config.body.servo_reference())?,
+        };
+        Self::with_robot(config, Arc::new(robot))
+    }
+
+    fn with_robot(config: SimConfig, robot: Arc<Description>) -> Result<Self, SimError> {
         let (mut world, ground) = world_with_ground(&config);
         let mut parts = Parts {
             friction: config.friction,
             list: Vec::new(),
         };
-        let torso = add_torso(&mut world, body, &mut parts);
+        let (torso, _) = add_link(&mut world, &mut parts, &robot.trunk, BodyPart::Torso);
         let mut links = [torso; NUM_JOINTS];
         let mut feet = [ground; 2];
         for side in Side::BOTH {
-            feet[side.index()] = add_leg(&mut world, body, &mut parts, torso, side, &mut links)?;
+            feet[side.index()] = add_leg(&mut world, &robot, &mut parts, torso, side, &mut links)?;
         }
-        let (multibody, link_ids, dofs) = configure_multibody(&mut world, body, torso, &links)?;
+        let (multibody, link_ids, dofs) = configure_multibody(&mut world, &robot, torso, &links)?;
         let masses = link_masses(&mut world);
+        let scale = match config.robot {
+            None => Scale::ONE,
+            Some(_) => Scale::between(&robot, &config.body.description(), &config.initial_joints),
+        };
         let mut sim = Humanoid {
             masses,
             targets: config.initial_joints,
             config,
+            robot,
+            scale,
             world,
             multibody,
             torso,
@@ -439,9 +382,21 @@ impl Humanoid {
         &self.config
     }
 
-    /// The body description.
+    /// The built-in body's parameters (meaningless when the robot comes from a file: see
+    /// [`Humanoid::robot`]).
     pub fn body(&self) -> &BodyConfig {
         &self.config.body
+    }
+
+    /// The robot being simulated.
+    pub fn robot(&self) -> &Description {
+        &self.robot
+    }
+
+    /// The robot's factors against the paper's robot (`config.body`): [`Scale::ONE`] for the
+    /// built-in humanoid.
+    pub fn scale(&self) -> Scale {
+        self.scale
     }
 
     /// Simulation time (s).
@@ -508,16 +463,11 @@ impl Humanoid {
 
     /// Joint limits of joint `j` of leg `side` (roll and yaw limits mirror on the right leg).
     pub fn limits(&self, j: LegJoint, side: Side) -> [f64; 2] {
-        let [lo, hi] = self.config.body.joint(j).limits;
-        match (j, side) {
-            (LegJoint::HipYaw | LegJoint::HipRoll | LegJoint::AnkleRoll, Side::Right) => [-hi, -lo],
-            _ => [lo, hi],
-        }
+        self.robot.legs[side.index()].joints[j as usize].limits
     }
 
     fn set_servo(&mut self, i: usize, target: f64, max_torque_override: f64) {
-        let j = LegJoint::ALL[i % LegJoint::ALL.len()];
-        let spec = *self.config.body.joint(j);
+        let spec = self.robot.legs[i / JOINTS_PER_LEG].joints[i % JOINTS_PER_LEG].servo;
         let q = self.joint_angle(i);
         let v = self.mb().generalized_velocity()[self.dofs[i]];
         let k = spec.stiffness;
@@ -639,11 +589,12 @@ impl Humanoid {
 
     /// Puts the robot back in its initial standing pose at time zero, as if newly built.
     pub fn reset(&mut self) {
-        *self = Humanoid::new(self.config.clone()).expect("config validated at construction");
+        *self = Humanoid::with_robot(self.config.clone(), self.robot.clone())
+            .expect("robot built at construction");
     }
 
     fn sole_corners(&self, side: Side) -> [[f64; 3]; 4] {
-        let f = &self.config.body.foot;
+        let sole = &self.robot.legs[side.index()].sole;
         let pose = self.world.bodies[self.links[LegJoint::AnkleRoll.index(side)]].position();
         let mut out = [[0.0; 3]; 4];
         for (k, (sx, sy)) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)]
@@ -651,9 +602,9 @@ impl Humanoid {
             .enumerate()
         {
             let p = pose.transform_point(Vector::new(
-                f.sole_offset_x + sx * f.length / 2.0,
-                sy * f.width / 2.0,
-                -f.ankle_height,
+                sole.centre[0] + sx * sole.length / 2.0,
+                sole.centre[1] + sy * sole.width / 2.0,
+                sole.centre[2],
             ));
             out[k] = [p.x, p.y, p.z];
         }
@@ -675,46 +626,44 @@ impl Humanoid {
         }
         let com = com / m;
         let vel = momentum / m;
-        let b = &self.config.body;
+        let robot = &self.robot;
         let torso = bodies[self.torso].position();
         let point = |pose: &Pose, p: [f64; 3]| {
             let w = pose.transform_point(v3(p));
             [w.x, w.y, w.z]
         };
+        let sole_point = |s: Side, dx: f64| {
+            let sole = &robot.legs[s.index()].sole;
+            [
+                sole.centre[0] + dx * sole.length / 2.0,
+                sole.centre[1],
+                sole.centre[2],
+            ]
+        };
         let legs = Side::BOTH.map(|s| {
-            let hip = point(torso, [0.0, s.sign() * b.hip_half_width, 0.0]);
+            let h = robot.hip_centre(s);
+            let hip = point(torso, [h.x, h.y, h.z]);
             let knee = point(
                 bodies[self.links[LegJoint::Knee.index(s)]].position(),
                 [0.0; 3],
             );
             let foot = bodies[self.links[LegJoint::AnkleRoll.index(s)]].position();
             let ankle = point(foot, [0.0; 3]);
-            let f = &b.foot;
-            let heel = point(
-                foot,
-                [f.sole_offset_x - f.length / 2.0, 0.0, -f.ankle_height],
-            );
-            let toe = point(
-                foot,
-                [f.sole_offset_x + f.length / 2.0, 0.0, -f.ankle_height],
-            );
+            let heel = point(foot, sole_point(s, -1.0));
+            let toe = point(foot, sole_point(s, 1.0));
             [hip, knee, ankle, heel, toe]
         });
-        let t = &b.torso;
+        let figure = &robot.figure;
         let skeleton = Skeleton {
             pelvis: point(torso, [0.0; 3]),
-            neck: point(torso, [0.0, 0.0, t.length]),
-            head: point(
-                torso,
-                [0.0, 0.0, t.length + head_neck_length(t) - t.head_radius],
-            ),
-            head_radius: t.head_radius,
+            neck: point(torso, figure.neck),
+            head: point(torso, figure.head),
+            head_radius: figure.head_radius,
             legs,
         };
         let soles = Side::BOTH.map(|s| {
             let foot = bodies[self.links[LegJoint::AnkleRoll.index(s)]].position();
-            let f = &b.foot;
-            let sole = foot.transform_point(Vector::new(f.sole_offset_x, 0.0, -f.ankle_height));
+            let sole = foot.transform_point(v3(robot.legs[s.index()].sole.centre));
             pose_of(sole, foot.rotation)
         });
         GroundTruth {

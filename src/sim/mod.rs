@@ -3,6 +3,7 @@
 //! [`crate::robot::JointTargets`]; control never sees rapier.
 
 mod body;
+mod builtin;
 mod config;
 mod error;
 mod fall;

@@ -9,6 +9,7 @@ pub mod fall_causes;
 pub mod protocol;
 pub(crate) mod push_options;
 pub mod replay_plan;
+pub mod robot_setup;
 pub mod schedule;
 pub mod settings;
 pub mod trial;

@@ -7,6 +7,7 @@
 //! learner, generator) -> `Humanoid::step`. After a fall the robot and the walker are reset and
 //! the learner keeps what it learned (its unfinished step is discarded).
 
+use crate::control::for_robot::ScaledPolicy;
 use crate::control::step_parameter::StepParameter;
 use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
 use crate::experiments::schedule::{Push, ReferenceSchedule};
@@ -267,12 +268,28 @@ pub trait Observer {
 /// Runs one trial. `policy` is the learner (none for the open-loop walker and the model).
 pub fn run_trial(
     setup: &TrialSetup,
-    mut policy: Option<&mut (dyn FootstepPolicy + '_)>,
+    policy: Option<&mut (dyn FootstepPolicy + '_)>,
     observers: &mut [&mut dyn Observer],
 ) -> Result<TrialLog, TrialError> {
     setup.validate()?;
     let mut robot = Humanoid::new(setup.sim.clone())?;
-    let mut walker = Walker::new(setup.walker, robot.body().leg_geometry())?;
+    // Another robot than the paper's: its gait scaled from the settings, and the learner kept
+    // in the paper robot's units.
+    let scale = robot.scale();
+    let walker_config = if scale.is_one() {
+        setup.walker
+    } else {
+        setup.walker.for_robot(&scale)
+    };
+    let mut walker = Walker::new(walker_config, robot.robot().leg_geometry())?;
+    let mut scaled;
+    let mut policy = match policy {
+        Some(p) if !scale.is_one() => {
+            scaled = ScaledPolicy::new(p, scale);
+            Some(&mut scaled as &mut dyn FootstepPolicy)
+        }
+        other => other.map(|p| p as &mut dyn FootstepPolicy),
+    };
     let mut log = TrialLog::default();
     let mut next_push = 0;
     // The push being watched: (record index in log.pushes, deadline).

@@ -506,7 +506,7 @@ pub const PRINTED: &[KeyDoc] = &[
     ),
     k(
         "protocols.disturbance.impulse",
-        "[0, 100] Ns",
+        "[0, 1000] Ns",
         "B: push impulse",
     ),
     k(
@@ -526,7 +526,7 @@ pub const PRINTED: &[KeyDoc] = &[
     ),
     k(
         "protocols.omnidirectional.impulse",
-        "0 <= lo <= hi <= 100 Ns",
+        "0 <= lo <= hi <= 1000 Ns",
         "omnidirectional: impulse range",
     ),
     k(
@@ -556,7 +556,7 @@ pub const PRINTED: &[KeyDoc] = &[
     ),
     k(
         "protocols.robustness.impulse",
-        "[0, 100] Ns",
+        "[0, 1000] Ns",
         "D: push impulse (calibrated so that the walker without learning falls)",
     ),
     k(
@@ -586,7 +586,7 @@ pub const PRINTED: &[KeyDoc] = &[
     ),
     k(
         "protocols.stability.impulse",
-        "0 <= lo <= hi <= 100 Ns",
+        "0 <= lo <= hi <= 1000 Ns",
         "C: impulse range",
     ),
     k(

@@ -194,12 +194,27 @@ pub struct Summary {
     /// The step parameters the run's learner learned (`[settings.learner] learn`; older
     /// summaries: the paper's `step-x`).
     pub learn: LearnSet,
+    /// The robot it ran on (older summaries: none).
+    pub robot: Option<RobotSummary>,
     /// `"experiment"` and the experiment's fields.
     pub result: ExperimentResult,
 }
 
+/// The robot a run walked on: its name, mass and the SHA-256 of its URDF (the built-in
+/// humanoid's: of its `steplearn robot export`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotSummary {
+    /// The robot's name.
+    pub name: String,
+    /// Its mass (kg).
+    pub mass_kg: f64,
+    /// SHA-256 of its URDF, lower-case hex.
+    pub sha256: String,
+}
+
 /// The fields every summary has.
-const COMMON_FIELDS: [&str; 5] = ["approx", "rule", "seed", "learn", "experiment"];
+const COMMON_FIELDS: [&str; 6] = ["approx", "rule", "seed", "learn", "robot", "experiment"];
 
 #[derive(Serialize)]
 struct Out<'a, F: Serialize + ?Sized> {
@@ -207,6 +222,8 @@ struct Out<'a, F: Serialize + ?Sized> {
     rule: &'a str,
     seed: u64,
     learn: LearnSet,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    robot: &'a Option<RobotSummary>,
     experiment: &'a str,
     #[serde(flatten)]
     fields: &'a F,
@@ -219,6 +236,8 @@ struct SummaryIn {
     seed: u64,
     #[serde(default)]
     learn: LearnSet,
+    #[serde(default)]
+    robot: Option<RobotSummary>,
     experiment: String,
     #[serde(flatten)]
     fields: serde_json::Map<String, serde_json::Value>,
@@ -232,6 +251,7 @@ impl Serialize for Summary {
                 rule: &s.rule,
                 seed: s.seed,
                 learn: s.learn,
+                robot: &s.robot,
                 experiment: s.result.name(),
                 fields,
             }
@@ -251,6 +271,7 @@ impl<'de> Deserialize<'de> for Summary {
             rule,
             seed,
             learn,
+            robot,
             experiment,
             fields,
         } = SummaryIn::deserialize(deserializer)?;
@@ -259,6 +280,7 @@ impl<'de> Deserialize<'de> for Summary {
             rule,
             seed,
             learn,
+            robot,
             result: ExperimentResult::Custom(CustomResult {
                 experiment,
                 fields,
@@ -418,6 +440,7 @@ mod tests {
             rule: "pendulum-cart".into(),
             seed: 3,
             learn: LearnSet::default(),
+            robot: None,
             result,
         }
     }

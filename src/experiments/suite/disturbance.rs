@@ -1062,6 +1062,7 @@ mod tests {
             rule: "pendulum-cart".into(),
             seed: 0,
             learn: Default::default(),
+            robot: None,
             result,
         })
         .unwrap();

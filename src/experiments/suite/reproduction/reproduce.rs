@@ -335,6 +335,7 @@ mod tests {
             rule: "pendulum-cart".into(),
             seed,
             learn: Default::default(),
+            robot: None,
             result: result.into_result().unwrap(),
         }
     }
