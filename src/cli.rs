@@ -390,7 +390,7 @@ fn load_config(registry: &Registry, config: Option<PathBuf>) -> Result<ConfigFil
 /// it.
 fn use_robot_option(robot: Option<&Path>, config: &mut ConfigFile) -> Result<(), String> {
     if let Some(path) = robot {
-        crate::experiments::harness::robot_setup::use_robot(
+        crate::experiments::robot_setup::use_robot(
             path,
             &mut config.settings,
             &mut config.protocols,
@@ -404,7 +404,7 @@ fn use_robot_option(robot: Option<&Path>, config: &mut ConfigFile) -> Result<(),
 fn robot_command(command: RobotCommand) -> Result<(), String> {
     match command {
         RobotCommand::Show { path, json } => {
-            let report = crate::experiments::harness::robot_setup::robot_report(&path)
+            let report = crate::experiments::robot_setup::robot_report(&path)
                 .map_err(|e| format!("robot {}: {e}", path.display()))?;
             if json {
                 println!(

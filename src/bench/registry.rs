@@ -373,7 +373,7 @@ impl Registry {
                 result.name()
             )));
         }
-        let robot = crate::experiments::harness::robot_setup::robot_summary(settings)
+        let robot = crate::experiments::robot_setup::robot_summary(settings)
             .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
         Ok(Summary {
             approx: spec.approx.clone(),

@@ -378,6 +378,7 @@ fn custom_results_round_trip_and_cannot_pose_as_built_ins() {
         rule: "doubled".into(),
         seed: 7,
         learn: Default::default(),
+        robot: None,
         result: ExperimentResult::Custom(c),
     };
     let json = s.to_json().unwrap();

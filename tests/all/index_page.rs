@@ -86,6 +86,7 @@ fn reproduction(dir: &Path, seeds: u64) {
             rule: "pendulum-cart".into(),
             seed,
             learn: Default::default(),
+            robot: None,
             result: result.into_result().unwrap(),
         }
         .write(&d.join(SUMMARY_FILE))

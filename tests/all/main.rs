@@ -42,6 +42,7 @@ mod motion_generator;
 mod omnidirectional;
 mod rbf_properties;
 mod replay;
+mod robots;
 mod rules_policy_gradient;
 mod sim_body;
 mod sim_dynamics;

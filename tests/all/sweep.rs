@@ -97,6 +97,7 @@ fn fake(spec: &RunSpec, dir: &Path) -> Result<Summary, RunError> {
         rule: spec.rule.clone(),
         seed: spec.seed,
         learn: Default::default(),
+        robot: None,
         result,
     })
 }

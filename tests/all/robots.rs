@@ -1,0 +1,272 @@
+//! Robots from URDF files: the built-in humanoid exported and loaded back is the same robot,
+//! bit for bit; the shipped robots (igus-like, Talos as its makers ship it, a stranger written
+//! by someone else) load and walk in place; every hostile file is refused naming its element.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use steplearn::control::walker::WalkerMode;
+use steplearn::experiments::protocol::ProtocolTables;
+use steplearn::experiments::robot_setup::{robot_report, use_robot};
+use steplearn::experiments::schedule::ReferenceSchedule;
+use steplearn::experiments::settings::Settings;
+use steplearn::experiments::trial::run_trial;
+use steplearn::robot::description::Description;
+use steplearn::robot::urdf::ServoReference;
+use steplearn::sim::BodyConfig;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Talos's URDF from the example-robot-data wheel, installed by the project's script.
+fn talos() -> PathBuf {
+    let out = Command::new("bash")
+        .arg(root().join("scripts/install-robots.sh"))
+        .output()
+        .expect("bash");
+    assert!(
+        out.status.success(),
+        "scripts/install-robots.sh failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let path = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .last()
+        .expect("a path")
+        .to_string();
+    PathBuf::from(path)
+}
+
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("steplearn-robots-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn the_exported_humanoid_loads_as_the_same_description() {
+    let body = BodyConfig::default();
+    let builtin = body.description();
+    let text = builtin.to_urdf();
+    let loaded =
+        Description::from_urdf_str(&text, Path::new("."), &body.servo_reference()).unwrap();
+    // Everything but the drawn stick figure, which a URDF does not carry, bit for bit.
+    assert_eq!(loaded.trunk, builtin.trunk);
+    assert_eq!(loaded.legs, builtin.legs);
+    assert_eq!(loaded.name, builtin.name);
+    assert!(loaded.held_joints.is_empty());
+    // The lean default reference agrees with the body's to within rounding.
+    let lean = ServoReference::default();
+    let exact = body.servo_reference();
+    assert_eq!(lean.servos, exact.servos);
+    assert_eq!(lean.limits, exact.limits);
+    assert!(
+        (lean.mass - exact.mass).abs() < 1e-12
+            && (lean.leg_length - exact.leg_length).abs() < 1e-12
+    );
+}
+
+/// Walks `path` in place for 60 s with the Capture Step walker, undisturbed; the falls.
+fn falls_in_place(path: &Path) -> usize {
+    let mut settings = Settings::default();
+    let mut protocols = ProtocolTables::new();
+    use_robot(path, &mut settings, &mut protocols).unwrap();
+    let setup = settings.trial(
+        WalkerMode::CaptureStep,
+        ReferenceSchedule::constant(0.0),
+        Vec::new(),
+        [1.0, 0.0, 0.0],
+        60.0,
+    );
+    let log = run_trial(&setup, None, &mut []).unwrap();
+    assert!(log.sim_time_s >= 59.9, "{}", log.sim_time_s);
+    assert!(log.steps.len() > 100, "{} steps", log.steps.len());
+    log.falls.len()
+}
+
+#[test]
+fn the_igus_like_robot_walks_in_place_for_60_s() {
+    assert_eq!(falls_in_place(&root().join("robots/igus_like.urdf")), 0);
+}
+
+#[test]
+fn talos_as_shipped_walks_in_place_for_60_s() {
+    assert_eq!(falls_in_place(&talos()), 0);
+}
+
+#[test]
+fn a_strangers_robot_walks_in_place_for_60_s() {
+    assert_eq!(
+        falls_in_place(&root().join("tests/robots/stranger.urdf")),
+        0
+    );
+}
+
+#[test]
+fn robot_show_describes_talos_with_its_legs_and_held_joints() {
+    let r = robot_report(&talos()).unwrap();
+    assert_eq!(r.name, "talos");
+    assert!((r.mass_kg - 90.27).abs() < 0.01, "{}", r.mass_kg);
+    let names: Vec<String> = (1..=6).map(|k| format!("leg_left_{k}_joint")).collect();
+    assert_eq!(r.legs.left.joints.to_vec(), names);
+    assert_eq!(r.legs.right.joints[3], "leg_right_4_joint");
+    assert!(r.held_joints.iter().any(|j| j == "torso_1_joint"));
+    assert!(r.held_joints.iter().any(|j| j == "arm_right_7_joint"));
+    assert!(!r.held_joints.iter().any(|j| j.starts_with("leg_")));
+    // C = sqrt(g/h) of its own centre-of-mass height, calibrated as the paper robot's.
+    assert!(
+        r.com_height_m > 0.85 && r.com_height_m < 1.0,
+        "{}",
+        r.com_height_m
+    );
+    let own = (9.81 / r.com_height_m).sqrt();
+    assert!(
+        (r.c / own - 1.0).abs() < 0.05,
+        "C {} against sqrt(g/h) {own}",
+        r.c
+    );
+}
+
+fn cli(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_steplearn"))
+        .args(args)
+        .output()
+        .expect("steplearn runs")
+}
+
+#[test]
+fn robot_show_json_has_the_binding_fields() {
+    let out = cli(&["robot", "show", "robots/igus_like.urdf", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "name",
+        "mass_kg",
+        "com_height_m",
+        "c",
+        "held_joints",
+        "leg_geometry",
+        "gait",
+    ] {
+        assert!(v.get(key).is_some(), "{key} missing in {v}");
+    }
+    let left = v["legs"]["left"]["joints"].as_array().unwrap();
+    assert_eq!(left.len(), 6);
+    assert_eq!(left[3], "l_knee");
+    assert_eq!(v["legs"]["right"]["joints"][0], "r_hip_yaw");
+    assert!((v["mass_kg"].as_f64().unwrap() - 6.465).abs() < 0.01);
+}
+
+/// Every hostile file, and the element its refusal must name.
+const HOSTILE: &[(&str, &str)] = &[
+    ("malformed", "79:"),
+    ("missing_joint", "l_foot"),
+    ("extra_joint", "l_shank_twist"),
+    ("knee_about_x", "l_knee"),
+    ("locked_knee", "l_knee"),
+    ("equal_limits", "r_hip_roll"),
+    ("one_leg", "Right"),
+    ("negative_mass", "l_shank"),
+    ("zero_mass", "r_thigh"),
+    ("triangle_inertia", "trunk"),
+    ("nan", "l_hip_pitch"),
+    ("inf", "r_foot"),
+    ("mimic_leg", "r_knee"),
+    ("missing_mesh", "package://nowhere/foot.stl"),
+    ("dangling_parent", "head"),
+    ("cycle", "l_shank"),
+    ("com_outside_feet", "trunk"),
+];
+
+#[test]
+fn every_hostile_robot_is_refused_naming_its_element() {
+    let dir = root().join("tests/robots/hostile");
+    let out_dir = temp("hostile");
+    for (file, element) in HOSTILE {
+        let path = dir.join(format!("{file}.urdf"));
+        let p = path.to_str().unwrap();
+        let show = cli(&["robot", "show", p]);
+        let err = String::from_utf8_lossy(&show.stderr);
+        assert!(!show.status.success(), "{file} was accepted");
+        assert!(err.contains(element), "{file}: {err}");
+        assert!(!err.contains("panicked"), "{file}: {err}");
+        let out = out_dir.join(file);
+        let run = cli(&[
+            "experiment",
+            "stability",
+            "--robot",
+            p,
+            "--pushes",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(!run.status.success(), "{file}: experiment ran");
+        assert!(err.contains(element), "{file}: {err}");
+        assert!(
+            !out.join("summary.json").exists(),
+            "{file}: a summary was written"
+        );
+    }
+    // Each defect is a copy of this valid robot, which loads.
+    assert!(
+        cli(&["robot", "show", "tests/robots/minimal.urdf"])
+            .status
+            .success()
+    );
+}
+
+#[test]
+fn a_changed_robot_file_is_never_answered_with_old_results() {
+    let dir = temp("changed");
+    let urdf = dir.join("robot.urdf");
+    std::fs::copy(root().join("tests/robots/minimal.urdf"), &urdf).unwrap();
+    let out = dir.join("run");
+    let args = |u: &Path, o: &Path| {
+        vec![
+            "experiment".to_string(),
+            "stability".into(),
+            "--robot".into(),
+            u.display().to_string(),
+            "--pushes".into(),
+            "1".into(),
+            "--out".into(),
+            o.display().to_string(),
+        ]
+    };
+    let run = |a: Vec<String>| {
+        Command::new(env!("CARGO_BIN_EXE_steplearn"))
+            .args(a)
+            .output()
+            .unwrap()
+    };
+    let first = run(args(&urdf, &out));
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"sha256\""));
+    // The same file reuses the run; a changed one is a different run, refused in the same
+    // directory without --overwrite.
+    let text = std::fs::read_to_string(&urdf)
+        .unwrap()
+        .replace("mass value=\"4", "mass value=\"4.1");
+    std::fs::write(&urdf, text).unwrap();
+    let second = run(args(&urdf, &out));
+    assert!(
+        !second.status.success(),
+        "a changed robot reused the old run"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("summary.json")).unwrap(),
+        summary
+    );
+}
