@@ -680,6 +680,7 @@ mod tests {
             rule: "pendulum-cart".into(),
             seed: 3,
             learn: LearnSet::default(),
+            robot: None,
             result: r.into_result().unwrap(),
         }
     }
