@@ -100,7 +100,7 @@ impl<'a, 'p> ScaledPolicy<'a, 'p> {
     fn input(&self, i: LearnerInput) -> LearnerInput {
         LearnerInput {
             theta_e: i.theta_e,
-            theta_e_dot: i.theta_e_dot * self.scale.length.sqrt(),
+            theta_e_dot: i.theta_e_dot * self.scale.time_factor(),
             f_r: i.f_r / self.scale.length,
         }
     }
@@ -108,7 +108,7 @@ impl<'a, 'p> ScaledPolicy<'a, 'p> {
     fn outcomes(&self, o: &PerParameter<StepOutcome>) -> PerParameter<StepOutcome> {
         o.map(|o| StepOutcome {
             theta_e: o.theta_e,
-            theta_e_dot: o.theta_e_dot * self.scale.length.sqrt(),
+            theta_e_dot: o.theta_e_dot * self.scale.time_factor(),
             f_e: o.f_e / self.scale.length,
             f_r: o.f_r / self.scale.length,
         })

@@ -465,6 +465,21 @@ impl Description {
             .sum()
     }
 
+    /// The left leg's moment of inertia about its hip pitch axis in the zero pose (kg m^2).
+    pub fn leg_inertia(&self) -> f64 {
+        let hip = self.hip_centre(Side::Left);
+        let poses = self.link_poses(Side::Left, &[0.0; NUM_JOINTS]);
+        self.legs[Side::Left.index()]
+            .links
+            .iter()
+            .zip(poses)
+            .map(|(link, (p, r))| {
+                let c = p + r * Vector3::from(link.com) - hip;
+                link.mass * (c.x * c.x + c.z * c.z) + link.inertia.matrix()[(1, 1)]
+            })
+            .sum()
+    }
+
     /// Leg length: hip centre to sole, straight (m).
     pub fn leg_length(&self) -> f64 {
         let g = self.leg_geometry();

@@ -63,14 +63,21 @@ impl Scale {
         x * self.length
     }
 
-    /// A time (s): times scale with `sqrt(l/g)`.
+    /// The time factor `sqrt(l/g)` over the paper robot's, with `l` the leg length. (Times
+    /// from the centre-of-mass height instead, which keeps the Capture Step's `C T`, were
+    /// measured weaker on the igus-like robot: docs/robot.md.)
+    pub fn time_factor(&self) -> f64 {
+        self.length.sqrt()
+    }
+
+    /// A time (s).
     pub fn time(&self, t: f64) -> f64 {
-        t * self.length.sqrt()
+        t * self.time_factor()
     }
 
     /// A rate (1/s, rad/s).
     pub fn rate(&self, r: f64) -> f64 {
-        r / self.length.sqrt()
+        r / self.time_factor()
     }
 
     /// A force (N): forces scale with `m g`.

@@ -850,6 +850,8 @@ pub struct ServoReference {
     pub leg_length: f64,
     /// Mass (kg).
     pub mass: f64,
+    /// A leg's moment of inertia about the hip pitch axis in the zero pose (kg m^2).
+    pub leg_inertia: f64,
 }
 
 impl Description {
@@ -1053,14 +1055,16 @@ fn build(tree: &Tree, name: String, reference: &ServoReference) -> Result<Descri
         held_joints,
         figure,
     };
-    // Servos by dynamic similarity: torques scale with m g l, damping with m l sqrt(g l).
+    // Servos: torque limits by dynamic similarity (m g l); stiffness and damping keep the
+    // servo's bandwidth on the leg's own inertia about the hip, I g / l and I sqrt(g / l).
     let length = d.leg_length() / reference.leg_length;
     let mass = d.mass() / reference.mass;
+    let inertia = d.leg_inertia() / reference.leg_inertia;
     for leg in &mut d.legs {
         for (joint, r) in leg.joints.iter_mut().zip(&reference.servos) {
             joint.servo = Servo {
-                stiffness: r.stiffness * mass * length,
-                damping: r.damping * mass * length * length.sqrt(),
+                stiffness: r.stiffness * inertia / length,
+                damping: r.damping * inertia / length.sqrt(),
                 max_torque: r.max_torque * mass * length,
             };
         }
@@ -1248,6 +1252,7 @@ impl Default for ServoReference {
             ],
             leg_length: 0.245 * 2.0 + 0.246 * 2.0 + 0.039 * 2.0,
             mass: 13.5,
+            leg_inertia: 0.620_594,
         }
     }
 }

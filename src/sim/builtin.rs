@@ -60,6 +60,7 @@ impl BodyConfig {
             limits: LegJoint::ALL.map(|j| self.joint(j).limits),
             leg_length: d.leg_length(),
             mass: d.mass(),
+            leg_inertia: d.leg_inertia(),
         }
     }
 
