@@ -17,3 +17,20 @@ pub const STANDARD_GRAVITY: f64 = 9.81;
 pub const HUMANOID_C: f64 = 2.95;
 
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+
+/// Knee bend of the initial standing pose (rad): the simulator starts every robot in
+/// `standing_pose(STANCE_KNEE)`, and a robot's stance quantities (centre-of-mass height, C) are
+/// taken there.
+pub const STANCE_KNEE: f64 = 0.25;
+
+/// Joint angles of a symmetric stance with knees bent by `knee` (rad): hips and ankles each
+/// take half the bend so the trunk and soles stay level.
+pub fn standing_pose(knee: f64) -> [f64; NUM_JOINTS] {
+    let mut q = [0.0; NUM_JOINTS];
+    for side in Side::BOTH {
+        q[LegJoint::HipPitch.index(side)] = -knee / 2.0;
+        q[LegJoint::Knee.index(side)] = knee;
+        q[LegJoint::AnklePitch.index(side)] = -knee / 2.0;
+    }
+    q
+}

@@ -4,8 +4,8 @@ use serde::{Deserialize, Serialize};
 
 use super::body::BodyConfig;
 use super::error::{SimError, in_range, non_negative, positive};
-use crate::robot::NUM_JOINTS;
 use crate::robot::file::RobotFile;
+use crate::robot::{NUM_JOINTS, STANCE_KNEE, standing_pose};
 
 /// Everything that defines a simulation run besides the control inputs: the body, the physics
 /// step, solver settings, ground friction, control tick, push delivery and fall detection.
@@ -53,23 +53,10 @@ impl Default for SimConfig {
             gravity: crate::robot::STANDARD_GRAVITY,
             push_steps: 5,
             fall_tilt: 0.7,
-            initial_joints: standing_pose(0.25),
+            initial_joints: standing_pose(STANCE_KNEE),
             initial_clearance: 0.0,
         }
     }
-}
-
-/// Joint angles of a symmetric stance with knees bent by `knee` (rad): hips and ankles each
-/// take half the bend so the trunk and soles stay level.
-pub fn standing_pose(knee: f64) -> [f64; NUM_JOINTS] {
-    use crate::robot::{LegJoint, Side};
-    let mut q = [0.0; NUM_JOINTS];
-    for side in Side::BOTH {
-        q[LegJoint::HipPitch.index(side)] = -knee / 2.0;
-        q[LegJoint::Knee.index(side)] = knee;
-        q[LegJoint::AnklePitch.index(side)] = -knee / 2.0;
-    }
-    q
 }
 
 impl SimConfig {

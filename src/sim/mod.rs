@@ -13,7 +13,7 @@ mod sensors;
 mod truth;
 
 pub use body::{BodyConfig, Foot, JointSpec, Segment, Torso};
-pub use config::{SimConfig, standing_pose};
+pub use config::SimConfig;
 pub use error::SimError;
 pub use fall::{BodyPart, Fall, FallTrigger};
 pub use humanoid::Humanoid;
