@@ -318,11 +318,9 @@ fn replay_trials(
                 .map(|mut w| {
                     // The pushes after K cannot change what comes before them.
                     w.setup.pushes.truncate(push);
-                    let gravity = w.setup.sim.gravity;
-                    (
-                        w,
-                        Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S).gravity(gravity),
-                    )
+                    let recorder = Recorder::around_push(push, BEFORE_PUSH_S, after, FRAME_S)
+                        .for_sim(&w.setup.sim);
+                    (w, recorder)
                 })
                 .collect()
         }
@@ -346,8 +344,8 @@ fn replay_trials(
                 .map(|mut w| {
                     // Nothing after `to` can change what comes before it.
                     w.setup.duration_s = to;
-                    let gravity = w.setup.sim.gravity;
-                    (w, Recorder::new(from, to, FRAME_S).gravity(gravity))
+                    let recorder = Recorder::new(from, to, FRAME_S).for_sim(&w.setup.sim);
+                    (w, recorder)
                 })
                 .collect()
         }
@@ -418,10 +416,9 @@ fn replay_episodes(
     let push_time = setup.pushes.first().map_or(0.0, |p| p.time);
     let from = (push_time - BEFORE_PUSH_S).max(0.0);
     let to = setup.duration_s;
-    let g = setup.sim.gravity;
-    let mut learned = Recorder::new(from, to, FRAME_S).gravity(g);
+    let mut learned = Recorder::new(from, to, FRAME_S).for_sim(&setup.sim);
     run_trial(setup, Some(&mut learner), &mut [&mut learned])?;
-    let mut without = Recorder::new(from, to, FRAME_S).gravity(g);
+    let mut without = Recorder::new(from, to, FRAME_S).for_sim(&setup.sim);
     run_trial(setup, None, &mut [&mut without])?;
     Ok(Replay {
         experiment: config.experiment.clone(),

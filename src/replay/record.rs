@@ -10,6 +10,7 @@ use crate::control::step_parameter::StepParameter;
 use crate::control::walker::Tick;
 use crate::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord};
 use crate::robot::Side;
+use crate::robot::description::{Description, Geometry};
 use crate::sim::GroundTruth;
 use serde::{Deserialize, Serialize};
 
@@ -51,6 +52,71 @@ pub struct Frame {
     pub d_r: f64,
     /// Trunk deviation angle theta_E (rad, positive leaning forward).
     pub lean: f64,
+    /// Every drawn link's frame `[x, y, z, qw, qx, qy, qz]`, in [`Walk::bodies`]' order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub links: Vec<[f64; 7]>,
+}
+
+/// A shape drawn for a link, in the link's frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DrawnShape {
+    /// `box`, `sphere`, `capsule` or `cylinder` (capsules and cylinders along z).
+    pub kind: String,
+    /// A box's full extents; a sphere's `[r, 0, 0]`; a capsule's or cylinder's `[r, length, 0]`
+    /// (length of the straight part) (m).
+    pub size: [f64; 3],
+    /// Centre in the link frame (m).
+    pub pos: [f64; 3],
+    /// Orientation in the link frame `[w, x, y, z]`.
+    pub quat: [f64; 4],
+}
+
+/// The shapes drawn for each link of `robot` (the trunk, then the legs' links): its collision
+/// shapes, or for a link without any a box of its mass and inertia; links lighter than 0.5% of
+/// the robot without shapes (joint gimbals) are left undrawn.
+pub fn drawn_bodies(robot: &Description) -> Vec<Vec<DrawnShape>> {
+    let total = robot.mass();
+    let links = std::iter::once(&robot.trunk).chain(robot.legs.iter().flat_map(|l| l.links.iter()));
+    links
+        .map(|link| {
+            if link.shapes.is_empty() {
+                if link.mass < 0.005 * total {
+                    return Vec::new();
+                }
+                let [a, b, c] = link.inertia.principal;
+                let side = |x: f64| (6.0 * x.max(0.0) / link.mass).sqrt();
+                return vec![DrawnShape {
+                    kind: "box".into(),
+                    size: [side(b + c - a), side(a + c - b), side(a + b - c)],
+                    pos: link.com,
+                    quat: link.inertia.axes,
+                }];
+            }
+            link.shapes
+                .iter()
+                .map(|s| {
+                    let (kind, size) = match s.geometry {
+                        Geometry::Box { half_extents: h } => ("box", h.map(|v| 2.0 * v)),
+                        Geometry::Sphere { radius } => ("sphere", [radius, 0.0, 0.0]),
+                        Geometry::Capsule {
+                            half_height,
+                            radius,
+                        } => ("capsule", [radius, 2.0 * half_height, 0.0]),
+                        Geometry::Cylinder {
+                            half_height,
+                            radius,
+                        } => ("cylinder", [radius, 2.0 * half_height, 0.0]),
+                    };
+                    DrawnShape {
+                        kind: kind.into(),
+                        size: round3(size),
+                        pos: round3(s.position),
+                        quat: s.orientation.map(round),
+                    }
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// A touch-down: where the step was commanded and where the foot landed.
@@ -83,6 +149,9 @@ pub struct Walk {
     pub falls: usize,
     /// Touch-downs in the whole trial.
     pub trial_steps: usize,
+    /// The robot's drawn links (trunk, then the legs'); each frame's `links` places them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<Vec<DrawnShape>>,
 }
 
 /// Records frames between `from` and `to` (trial time), one every `every` seconds, and the
@@ -114,6 +183,7 @@ pub struct Recorder {
     trial_steps: usize,
     /// Gravity of the capture point drawn (m/s^2).
     gravity: f64,
+    bodies: Vec<Vec<DrawnShape>>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -163,13 +233,22 @@ impl Recorder {
             falls: 0,
             trial_steps: 0,
             gravity: crate::sim::SimConfig::default().gravity,
+            bodies: Vec::new(),
         }
     }
 
-    /// The same recorder drawing the capture point for gravity `g` (m/s^2; the trial's
-    /// simulator's, the default simulator's without it).
-    pub fn gravity(self, g: f64) -> Self {
-        Recorder { gravity: g, ..self }
+    /// The same recorder for a trial of `sim`: the capture point with its gravity, and its
+    /// robot's own links drawn.
+    pub fn for_sim(self, sim: &crate::sim::SimConfig) -> Self {
+        let robot = match &sim.robot {
+            None => Some(sim.body.description()),
+            Some(file) => file.load(&sim.body.servo_reference()).ok(),
+        };
+        Recorder {
+            gravity: sim.gravity,
+            bodies: robot.as_ref().map(drawn_bodies).unwrap_or_default(),
+            ..self
+        }
     }
 
     /// A recorder of the `push`-th push (1-based) of a trial: from `before` seconds before its
@@ -220,6 +299,7 @@ impl Recorder {
             fell: self.push.is_none_or(|p| p.fell),
             falls: self.falls,
             trial_steps: self.trial_steps,
+            bodies: self.bodies,
         }
     }
 }
@@ -337,6 +417,19 @@ impl Observer for Recorder {
             d_a: round(p.d_a),
             d_r: round(p.d_r),
             lean: round(p.lean),
+            links: if self.bodies.is_empty() {
+                Vec::new()
+            } else {
+                truth
+                    .links
+                    .iter()
+                    .map(|l| {
+                        let [x, y, z] = round3(l.position);
+                        let [w, i, j, k] = l.orientation.map(round);
+                        [x, y, z, w, i, j, k]
+                    })
+                    .collect()
+            },
         });
     }
 }

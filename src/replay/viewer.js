@@ -54,6 +54,28 @@ function main() {
     });
     const head = new THREE.Mesh(new THREE.SphereGeometry(0.07, 16, 12), mat);
     group.add(head);
+    // the robot's own links: its collision shapes, or boxes of its links' inertias
+    const bodies = (w.bodies || []).map((shapes) => {
+      const link = new THREE.Group();
+      for (const sh of shapes) {
+        let geo;
+        if (sh.kind === 'box') geo = new THREE.BoxGeometry(sh.size[0], sh.size[1], sh.size[2]);
+        else if (sh.kind === 'sphere') geo = new THREE.SphereGeometry(sh.size[0], 16, 12);
+        else if (sh.kind === 'capsule') geo = new THREE.CapsuleGeometry(sh.size[0], sh.size[1], 4, 12);
+        else geo = new THREE.CylinderGeometry(sh.size[0], sh.size[0], sh.size[1], 16);
+        const mesh = new THREE.Mesh(geo, mat);
+        if (sh.kind === 'capsule' || sh.kind === 'cylinder') mesh.rotation.x = Math.PI / 2;
+        const holder = new THREE.Group();
+        holder.position.set(sh.pos[0], sh.pos[1], sh.pos[2]);
+        holder.quaternion.set(sh.quat[1], sh.quat[2], sh.quat[3], sh.quat[0]);
+        holder.add(mesh);
+        link.add(holder);
+      }
+      group.add(link);
+      return link;
+    });
+    const drawn = bodies.length > 0 && w.frames.length > 0 && (w.frames[0].links || []).length === bodies.length;
+    if (drawn) { for (const s of sticks) s.visible = false; head.visible = false; }
     const com = new THREE.Mesh(new THREE.SphereGeometry(0.03, 12, 8), new THREE.MeshLambertMaterial({ color: 0xd62728 }));
     group.add(com);
     const cp = new THREE.Mesh(new THREE.CylinderGeometry(0.03, 0.03, 0.004, 16), new THREE.MeshLambertMaterial({ color: 0xff7f0e }));
@@ -84,7 +106,7 @@ function main() {
       fall.add(bar);
     }
     group.add(fall);
-    return { w, group, sticks, head, com, cp, cmd, steps, arrow, fall, color: colors[i % colors.length] };
+    return { w, group, sticks, head, bodies, drawn, com, cp, cmd, steps, arrow, fall, color: colors[i % colors.length] };
   });
 
   // --- orbit -------------------------------------------------------------------------
@@ -189,6 +211,13 @@ function main() {
       s.quaternion.setFromUnitVectors(up, d3.divideScalar(len));
     });
     a.head.position.set(...f.pts[2]);
+    if (a.drawn) {
+      a.bodies.forEach((link, k) => {
+        const l = f.links[k];
+        link.position.set(l[0], l[1], l[2]);
+        link.quaternion.set(l[4], l[5], l[6], l[3]);
+      });
+    }
     a.com.position.set(...f.com);
     a.cp.position.set(f.cp[0], f.cp[1], 0.004);
     a.cmd.visible = !!f.cmd;

@@ -666,7 +666,17 @@ impl Humanoid {
             let sole = foot.transform_point(v3(robot.legs[s.index()].sole.centre));
             pose_of(sole, foot.rotation)
         });
+        let links = std::array::from_fn(|k| {
+            let h = if k == 0 {
+                self.torso
+            } else {
+                self.links[k - 1]
+            };
+            let p = bodies[h].position();
+            pose_of(p.translation, p.rotation)
+        });
         GroundTruth {
+            links,
             time: self.time,
             mass: m,
             com: [com.x, com.y, com.z],

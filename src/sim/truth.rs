@@ -53,4 +53,7 @@ pub struct GroundTruth {
     pub soles: [WorldPose; 2],
     /// Stick-figure points.
     pub skeleton: Skeleton,
+    /// Every link's frame: the trunk, then the left leg's six links and the right leg's, in
+    /// [`crate::robot::LegJoint::ALL`] order (the robot description's order).
+    pub links: [WorldPose; 1 + crate::robot::NUM_JOINTS],
 }

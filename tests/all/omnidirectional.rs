@@ -56,7 +56,7 @@ fn the_summary_holds_i50_per_sector_for_every_walker_and_runs_repeat_bit_for_bit
     // What the experiment is for: the Capture Step model recovers from pushes by stepping,
     // the open-loop walker cannot, so the model's I50 is higher, here in the sectors' mean
     // (measured on this seed: 9.18 against 7.14 Ns; the full protocol gives about twice the
-    // open-loop walker's I50, docs/robot.md), and no sector is lower (at this length the two
+    // open-loop walker's I50, docs/research/robot-variants.md), and no sector is lower (at this length the two
     // are tied in five of eight).
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
     let (model, open_loop) = (i50("model"), i50("open_loop"));

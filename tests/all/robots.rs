@@ -270,3 +270,38 @@ fn a_changed_robot_file_is_never_answered_with_old_results() {
         summary
     );
 }
+
+#[test]
+fn the_shipped_paper_robot_file_is_the_builtin_export() {
+    let shipped = std::fs::read_to_string(root().join("robots/steplearn_humanoid.urdf")).unwrap();
+    assert_eq!(shipped, BodyConfig::default().description().to_urdf());
+}
+
+#[test]
+fn a_replay_draws_the_robots_own_links() {
+    use steplearn::replay::record::Recorder;
+    let mut settings = Settings::default();
+    let mut protocols = ProtocolTables::new();
+    use_robot(&talos(), &mut settings, &mut protocols).unwrap();
+    let setup = settings.trial(
+        WalkerMode::CaptureStep,
+        ReferenceSchedule::constant(0.0),
+        Vec::new(),
+        [1.0, 0.0, 0.0],
+        1.0,
+    );
+    let mut recorder = Recorder::new(0.0, 1.0, 0.1).for_sim(&setup.sim);
+    run_trial(&setup, None, &mut [&mut recorder]).unwrap();
+    let walk = recorder.finish("talos");
+    // The trunk and every leg link drawn (Talos's links have meshes: boxes of their inertia).
+    assert_eq!(walk.bodies.len(), 13);
+    assert!(walk.bodies.iter().all(|b| !b.is_empty()));
+    let frame = &walk.frames[3];
+    assert_eq!(frame.links.len(), 13);
+    // The trunk frame sits about a leg length above the ground.
+    assert!(
+        frame.links[0][2] > 0.8 && frame.links[0][2] < 1.2,
+        "{:?}",
+        frame.links[0]
+    );
+}
