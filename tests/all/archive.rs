@@ -9,7 +9,7 @@ use steplearn::bench::Registry;
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::config_keys::key_table;
 use steplearn::experiments::reproduce::Claims;
-use steplearn::experiments::suite::reproduction::claims_table::claims_table;
+use steplearn::experiments::suite::reproduction::claims_table::{claims_table, robots_table};
 use steplearn::experiments::summary::Summary;
 use steplearn::experiments::sweep::RunSpec;
 
@@ -87,6 +87,45 @@ fn the_readme_claims_table_is_the_stored_main_jobs_of_todays_code() {
     assert!(
         readme.contains(&table),
         "README.md's claims table differs from the stored main jobs; it should read:\n{table}"
+    );
+}
+
+/// The stored main job of a robot: today's code judges its summaries as stored.
+fn robot_job(dir: &str) -> Claims {
+    let job = root().join(dir);
+    let mut summaries = Vec::new();
+    for entry in std::fs::read_dir(&job).unwrap() {
+        let path = entry.unwrap().path().join("summary.json");
+        if path.exists() {
+            summaries.push(Summary::read(&path).unwrap());
+        }
+    }
+    assert_eq!(summaries.len(), 20, "{dir}: four experiments x five seeds");
+    let stored: Claims =
+        serde_json::from_str(&std::fs::read_to_string(job.join("claims.json")).unwrap()).unwrap();
+    let today = Claims::from_summaries(&summaries, 0.15);
+    assert_eq!(
+        serde_json::to_value(&today).unwrap(),
+        serde_json::to_value(&stored).unwrap(),
+        "{dir}: today's code judges the stored summaries otherwise"
+    );
+    stored
+}
+
+#[test]
+fn the_readme_robot_table_is_the_stored_robot_jobs() {
+    let paper = check_job("results-archive/paper", None);
+    let igus = robot_job("results-archive/robots/igus_like");
+    let talos = robot_job("results-archive/robots/talos");
+    let table = robots_table(&[
+        ("the paper's humanoid (built in)", &paper, "35 x"),
+        ("igus-like (6.5 kg)", &igus, "42 x"),
+        ("Talos (90 kg, as shipped)", &talos, "42 x"),
+    ]);
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.contains(&table),
+        "README.md's robot table differs from the stored robot jobs; it should read:\n{table}"
     );
 }
 

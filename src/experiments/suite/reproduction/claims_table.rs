@@ -119,3 +119,37 @@ pub fn claims_table(paper: &Claims, improved: &Claims) -> String {
     }
     out
 }
+
+/// The README's robot table (Markdown): one row per robot with each claim's headline over
+/// seeds (learned against the model, paired by seed), the model's I50 over the open-loop
+/// walker's, and the robot's real-time factor (`speed`, as measured by `benches/robots.rs`).
+pub fn robots_table(robots: &[(&str, &Claims, &str)]) -> String {
+    let mut out = String::from(
+        "| robot | seeds | claim 1 (cm) | claim 2 (s) | claim 3 | claim 4 (pushes) | model / open-loop I50 | real time |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    for (name, claims, speed) in robots {
+        let cells: Vec<String> = ROWS
+            .iter()
+            .map(|row| {
+                let cell = headline(&Row { unit: "", ..*row }, claim_of(claims, row.number));
+                cell.replace("**", "")
+            })
+            .collect();
+        let open_loop = claims
+            .stability
+            .over_seeds
+            .get(1)
+            .map_or("no figure".to_string(), |p| {
+                format!("{:.2} [{:.2}, {:.2}]", p.mean, p.ci95.0, p.ci95.1)
+            });
+        out.push_str(&format!(
+            "| {name} | {} | {} | {} | {} | {} | {open_loop} | {speed} |\n",
+            claims.stability.seeds.len(),
+            cells[0],
+            cells[1],
+            cells[2],
+            cells[3],
+        ));
+    }
+    out
+}
