@@ -151,7 +151,7 @@ impl LegGeometry {
     /// Forward kinematics: the pose of the sole centre of leg `side` in the torso frame.
     pub fn forward(&self, side: Side, q: &LegAngles) -> Isometry3<f64> {
         let hip = self.hip_at_yaw(side, q[0]);
-        self.forward_from(hip, side, &self.to_straight(q))
+        self.forward_from(hip, side, &self.straight_angles(q))
     }
 
     /// Whether the leg is straight in the zero pose and its yaw axis runs through the hip.
@@ -160,7 +160,7 @@ impl LegGeometry {
     }
 
     /// The angles of the equivalent straight leg (thigh and shank along -z in the zero pose).
-    fn to_straight(&self, q: &LegAngles) -> LegAngles {
+    fn straight_angles(&self, q: &LegAngles) -> LegAngles {
         if self.thigh_angle == 0.0 && self.shank_angle == 0.0 {
             return *q;
         }
@@ -173,7 +173,7 @@ impl LegGeometry {
     }
 
     /// The robot's angles from those of the equivalent straight leg.
-    fn from_straight(&self, s: &LegAngles) -> LegAngles {
+    fn robot_angles(&self, s: &LegAngles) -> LegAngles {
         if self.thigh_angle == 0.0 && self.shank_angle == 0.0 {
             return *s;
         }
@@ -226,7 +226,7 @@ impl LegGeometry {
         for _ in 0..4 {
             q = self.inverse_from(self.hip_at_yaw(side, q[0]), side, foot)?;
         }
-        Ok(self.from_straight(&q))
+        Ok(self.robot_angles(&q))
     }
 
     fn inverse_from(

@@ -611,6 +611,9 @@ fn leg_chain(tree: &Tree, foot: usize, side: Side) -> Result<[usize; JOINTS_PER_
     Ok(chain)
 }
 
+/// An axis-aligned box: lower and upper corner.
+type Bounds = (Vector3<f64>, Vector3<f64>);
+
 /// A rigid body made of link `base` and every link hanging from it through non-leg joints;
 /// its frame is aligned with the root frame, its origin at `base`'s.
 fn merged_body(
@@ -618,7 +621,7 @@ fn merged_body(
     base: usize,
     members: &[usize],
     shapes_from_meshes: bool,
-) -> Result<(Link, Vec<(Vector3<f64>, Vector3<f64>)>), RobotError> {
+) -> Result<(Link, Vec<Bounds>), RobotError> {
     let origin = tree.place[base].pos;
     let rel = |l: usize| -> (Vector3<f64>, Place) {
         let p = tree.place[l];
@@ -705,7 +708,7 @@ fn merged_body(
     let name = tree.links[base].name.clone();
     let el = link_el(&name);
     let mass: f64 = parts.iter().map(|p| p.0).sum();
-    if parts.is_empty() || !(mass > 0.0) {
+    if parts.is_empty() || mass <= 0.0 || mass.is_nan() {
         return Err(RobotError::invalid(
             el,
             "has no mass (no <inertial> in it or in the links fixed to it)",
@@ -742,7 +745,7 @@ fn axis_permutation(rot: &Rotation3<f64>) -> Option<Matrix3<f64>> {
 }
 
 /// Bounds of the vertices of an STL file (binary or ASCII).
-fn stl_bounds(el: &str, path: &Path) -> Result<(Vector3<f64>, Vector3<f64>), RobotError> {
+fn stl_bounds(el: &str, path: &Path) -> Result<Bounds, RobotError> {
     let bytes = std::fs::read(path).map_err(|e| {
         RobotError::invalid(el, format!("cannot read mesh {}: {e}", path.display()))
     })?;
@@ -788,7 +791,7 @@ fn stl_bounds(el: &str, path: &Path) -> Result<(Vector3<f64>, Vector3<f64>), Rob
 
 /// The sole of a foot: its lowest level box, else a box from its mesh bounds (added to its
 /// shapes).
-fn sole_of(foot: &mut Link, meshes: &[(Vector3<f64>, Vector3<f64>)]) -> Result<Sole, RobotError> {
+fn sole_of(foot: &mut Link, meshes: &[Bounds]) -> Result<Sole, RobotError> {
     let el = link_el(&foot.name);
     let boxes = foot
         .shapes

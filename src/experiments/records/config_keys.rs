@@ -624,6 +624,11 @@ pub const PRINTED: &[KeyDoc] = &[
 /// The keys that hold no value by default (`steplearn config` leaves them out).
 pub const ABSENT: &[KeyDoc] = &[
     k(
+        "settings.sim.robot",
+        "`{ path, sha256 }` of a URDF that loads, or absent",
+        "a robot from a URDF file instead of the built-in humanoid (`--robot PATH` sets it)",
+    ),
+    k(
         "settings.learner.max_offset",
         "> 0, or absent",
         "clamp on the queried offset",
