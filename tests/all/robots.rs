@@ -305,3 +305,36 @@ fn a_replay_draws_the_robots_own_links() {
         frame.links[0]
     );
 }
+
+#[test]
+fn the_exported_humanoid_gives_the_built_in_summaries_bit_for_bit() {
+    let dir = temp("exported");
+    let urdf = dir.join("humanoid.urdf");
+    assert!(
+        cli(&["robot", "export", "--out", urdf.to_str().unwrap()])
+            .status
+            .success()
+    );
+    let run = |robot: Option<&Path>, out: &Path| {
+        let mut args = vec!["experiment", "stability", "--pushes", "3", "--seed", "4"];
+        let o = out.to_str().unwrap().to_string();
+        args.extend(["--out", &o]);
+        let r = robot.map(|p| p.to_str().unwrap().to_string());
+        if let Some(r) = &r {
+            args.extend(["--robot", r]);
+        }
+        let res = cli(&args);
+        assert!(
+            res.status.success(),
+            "{}",
+            String::from_utf8_lossy(&res.stderr)
+        );
+        std::fs::read(out.join("summary.json")).unwrap()
+    };
+    let built_in = run(None, &dir.join("built-in"));
+    let exported = run(Some(&urdf), &dir.join("exported"));
+    assert!(
+        built_in == exported,
+        "the exported humanoid's summary differs"
+    );
+}
