@@ -99,10 +99,4 @@ impl Scale {
     pub fn lipm_c(&self, c: f64) -> f64 {
         c / self.com_height.sqrt()
     }
-
-    /// The unit of impulse of this robot, `m sqrt(g l)` (N s), for a robot of mass `mass_kg`
-    /// and leg length `leg_m`.
-    pub fn impulse_unit(mass_kg: f64, leg_m: f64, g: f64) -> f64 {
-        mass_kg * (g * leg_m).sqrt()
-    }
 }

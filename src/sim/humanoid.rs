@@ -291,10 +291,20 @@ impl Humanoid {
             None => config.body.description(),
             Some(file) => file.load(&config.body.servo_reference())?,
         };
-        Self::with_robot(config, Arc::new(robot))
+        let scale = match config.robot {
+            None => Scale::ONE,
+            Some(_) => Scale::between(&robot, &config.body.description(), &config.initial_joints),
+        };
+        Self::with_robot(config, Arc::new(robot), scale)
     }
 
-    fn with_robot(config: SimConfig, robot: Arc<Description>) -> Result<Self, SimError> {
+    /// The robot built from its description and scale (both computed once, in [`Self::new`],
+    /// and kept across resets).
+    fn with_robot(
+        config: SimConfig,
+        robot: Arc<Description>,
+        scale: Scale,
+    ) -> Result<Self, SimError> {
         let (mut world, ground) = world_with_ground(&config);
         let mut parts = Parts {
             friction: config.friction,
@@ -308,10 +318,6 @@ impl Humanoid {
         }
         let (multibody, link_ids, dofs) = configure_multibody(&mut world, &robot, torso, &links)?;
         let masses = link_masses(&mut world);
-        let scale = match config.robot {
-            None => Scale::ONE,
-            Some(_) => Scale::between(&robot, &config.body.description(), &config.initial_joints),
-        };
         let mut sim = Humanoid {
             masses,
             targets: config.initial_joints,
@@ -589,7 +595,7 @@ impl Humanoid {
 
     /// Puts the robot back in its initial standing pose at time zero, as if newly built.
     pub fn reset(&mut self) {
-        *self = Humanoid::with_robot(self.config.clone(), self.robot.clone())
+        *self = Humanoid::with_robot(self.config.clone(), self.robot.clone(), self.scale)
             .expect("robot built at construction");
     }
 

@@ -66,9 +66,14 @@ fn check_job(job: &str, config: Option<&str>) -> Claims {
         );
         summaries.push(Summary::read(&dir.join("summary.json")).unwrap());
     }
+    judged_as_stored(&job, &summaries)
+}
+
+/// The job's stored `claims.json`, after checking that today's code judges `summaries` so.
+fn judged_as_stored(job: &Path, summaries: &[Summary]) -> Claims {
     let stored: Claims =
         serde_json::from_str(&std::fs::read_to_string(job.join("claims.json")).unwrap()).unwrap();
-    let today = Claims::from_summaries(&summaries, 0.15);
+    let today = Claims::from_summaries(summaries, 0.15);
     assert_eq!(
         serde_json::to_value(&today).unwrap(),
         serde_json::to_value(&stored).unwrap(),
@@ -101,15 +106,7 @@ fn robot_job(dir: &str) -> Claims {
         }
     }
     assert_eq!(summaries.len(), 20, "{dir}: four experiments x five seeds");
-    let stored: Claims =
-        serde_json::from_str(&std::fs::read_to_string(job.join("claims.json")).unwrap()).unwrap();
-    let today = Claims::from_summaries(&summaries, 0.15);
-    assert_eq!(
-        serde_json::to_value(&today).unwrap(),
-        serde_json::to_value(&stored).unwrap(),
-        "{dir}: today's code judges the stored summaries otherwise"
-    );
-    stored
+    judged_as_stored(&job, &summaries)
 }
 
 #[test]
