@@ -34,8 +34,9 @@ fn walker_tick(c: &mut Criterion) {
         let mut config = SimConfig::default();
         if let Some(p) = path {
             let body = BodyConfig::default();
-            let (file, _) = RobotFile::open(&p, &body.servo_reference(), &config.initial_joints)
-                .expect("robot loads");
+            let (file, _) =
+                RobotFile::open(&p, None, &body.servo_reference(), &config.initial_joints)
+                    .expect("robot loads");
             config.robot = Some(file);
         }
         let tick = config.tick();

@@ -30,7 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let seconds: f64 = args.next().map_or(Ok(10.0), |s| s.parse())?;
     let body = BodyConfig::default();
     let stance = SimConfig::default().initial_joints;
-    let (file, _) = RobotFile::open(robot.as_ref(), &body.servo_reference(), &stance)?;
+    let (file, _) = RobotFile::open(robot.as_ref(), None, &body.servo_reference(), &stance)?;
     let mut sim = Humanoid::new(SimConfig {
         robot: Some(file),
         ..SimConfig::default()

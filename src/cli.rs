@@ -32,6 +32,7 @@ use crate::experiments::sweep::{
     check_identity, run_sweep,
 };
 use crate::report::write_file;
+use crate::robot::urdf::Feet;
 use crate::rules::PendulumCart;
 use clap::{Args, Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -104,6 +105,10 @@ enum RobotCommand {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// The links that end the robot's legs, LEFT,RIGHT, where the lowest leaf link on each
+        /// side is not the foot (docs/robot.md).
+        #[arg(long, value_name = "LEFT,RIGHT", value_parser = parse_feet)]
+        feet: Option<Feet>,
     },
     /// Writes the built-in humanoid as URDF (loaded with --robot it runs bit for bit as the
     /// built-in one).
@@ -144,6 +149,10 @@ struct ReproduceArgs {
     /// protocols follow it by dynamic similarity (docs/robot.md).
     #[arg(long, value_name = "PATH")]
     robot: Option<PathBuf>,
+    /// The links that end the robot's legs, LEFT,RIGHT, where the lowest leaf link on each
+    /// side is not the foot (docs/robot.md).
+    #[arg(long, value_name = "LEFT,RIGHT", value_parser = parse_feet)]
+    feet: Option<Feet>,
 }
 
 // The arguments of `steplearn experiment`.
@@ -183,6 +192,10 @@ struct ExperimentArgs {
     /// protocols follow it by dynamic similarity (docs/robot.md).
     #[arg(long, value_name = "PATH")]
     robot: Option<PathBuf>,
+    /// The links that end the robot's legs, LEFT,RIGHT, where the lowest leaf link on each
+    /// side is not the foot (docs/robot.md).
+    #[arg(long, value_name = "LEFT,RIGHT", value_parser = parse_feet)]
+    feet: Option<Feet>,
     /// Output directory: new or empty, or holding this same run (then reused); anything
     /// else is refused unless --overwrite is given.
     #[arg(long)]
@@ -223,10 +236,16 @@ struct BenchArgs {
     /// Settings and protocols as TOML or JSON (`[settings]`, `[protocols]`).
     #[arg(long)]
     config: Option<PathBuf>,
-    /// A robot from a URDF file instead of the built-in humanoid; its gait, learner units and
-    /// protocols follow it by dynamic similarity (docs/robot.md).
-    #[arg(long, value_name = "PATH")]
-    robot: Option<PathBuf>,
+    /// Robots from URDF files instead of the built-in humanoid (repeat, or separate by commas);
+    /// each one's gait, learner units and protocols follow it by dynamic similarity
+    /// (docs/robot.md). With several, each robot's runs get a directory of their own and the
+    /// leaderboard one column per robot.
+    #[arg(long, value_name = "PATH", value_delimiter = ',')]
+    robot: Vec<PathBuf>,
+    /// The links that end the robot's legs (one robot only), LEFT,RIGHT, where the lowest leaf link on each
+    /// side is not the foot (docs/robot.md).
+    #[arg(long, value_name = "LEFT,RIGHT", value_parser = parse_feet)]
+    feet: Option<Feet>,
     /// The combination every other is compared with, APPROX+RULE [default:
     /// lwpr+pendulum-cart when selected].
     #[arg(long, value_parser = parse_baseline)]
@@ -329,6 +348,16 @@ fn parse_span(s: &str) -> Result<(f64, f64), String> {
     Ok((a, b))
 }
 
+fn parse_feet(s: &str) -> Result<Feet, String> {
+    match s.split(',').map(str::trim).collect::<Vec<_>>()[..] {
+        [left, right] if !left.is_empty() && !right.is_empty() => Ok(Feet {
+            left: left.to_string(),
+            right: right.to_string(),
+        }),
+        _ => Err(format!("expected LEFT,RIGHT (two link names), got '{s}'")),
+    }
+}
+
 fn parse_baseline(s: &str) -> Result<(String, String), String> {
     let (a, r) = s
         .split_once('+')
@@ -388,14 +417,23 @@ fn load_config(registry: &Registry, config: Option<PathBuf>) -> Result<ConfigFil
 
 /// With `--robot PATH`: the robot named in `config`'s settings and its protocols rewritten for
 /// it.
-fn use_robot_option(robot: Option<&Path>, config: &mut ConfigFile) -> Result<(), String> {
-    if let Some(path) = robot {
-        crate::experiments::robot_setup::use_robot(
-            path,
-            &mut config.settings,
-            &mut config.protocols,
-        )
-        .map_err(|e| format!("robot {}: {e}", path.display()))?;
+fn use_robot_option(
+    robot: Option<&Path>,
+    feet: Option<&Feet>,
+    config: &mut ConfigFile,
+) -> Result<(), String> {
+    match (robot, feet) {
+        (Some(path), feet) => {
+            crate::experiments::robot_setup::use_robot(
+                path,
+                feet,
+                &mut config.settings,
+                &mut config.protocols,
+            )
+            .map_err(|e| format!("robot {}: {e}", path.display()))?;
+        }
+        (None, Some(_)) => return Err("--feet names the feet of a --robot; none given".into()),
+        (None, None) => {}
     }
     Ok(())
 }
@@ -403,8 +441,8 @@ fn use_robot_option(robot: Option<&Path>, config: &mut ConfigFile) -> Result<(),
 /// `steplearn robot show` and `steplearn robot export`.
 fn robot_command(command: RobotCommand) -> Result<(), String> {
     match command {
-        RobotCommand::Show { path, json } => {
-            let report = crate::experiments::robot_setup::robot_report(&path)
+        RobotCommand::Show { path, json, feet } => {
+            let report = crate::experiments::robot_setup::robot_report(&path, feet.as_ref())
                 .map_err(|e| format!("robot {}: {e}", path.display()))?;
             if json {
                 println!(
@@ -477,9 +515,10 @@ fn reproduce(registry: &Registry, args: ReproduceArgs) -> Result<(), String> {
         learn,
         config,
         robot,
+        feet,
     } = args;
     let mut config = load_config_learning(registry, config, learn)?;
-    use_robot_option(robot.as_deref(), &mut config)?;
+    use_robot_option(robot.as_deref(), feet.as_ref(), &mut config)?;
     if quick {
         config.settings.scale = 0.1;
     }
@@ -573,11 +612,12 @@ fn experiment(registry: &Registry, args: ExperimentArgs) -> Result<(), String> {
         learn,
         config,
         robot,
+        feet,
         out,
         overwrite,
     } = args;
     let mut config = load_config_learning(registry, config, learn)?;
-    use_robot_option(robot.as_deref(), &mut config)?;
+    use_robot_option(robot.as_deref(), feet.as_ref(), &mut config)?;
     registry
         .check_combination(&approx, &rule)
         .map_err(|e| e.to_string())?;
@@ -644,13 +684,24 @@ fn experiment(registry: &Registry, args: ExperimentArgs) -> Result<(), String> {
 /// The [`Bench`] the command line's bench arguments select.
 fn bench_of<'r>(registry: &'r Registry, args: &BenchArgs) -> Result<Bench<'r>, String> {
     let mut config = load_config(registry, args.config.clone())?;
-    use_robot_option(args.robot.as_deref(), &mut config)?;
+    // Named feet go with one robot, named in the configuration.
+    let robots: &[PathBuf] = match (args.robot.as_slice(), &args.feet) {
+        (_, None) => &args.robot,
+        ([one], Some(feet)) => {
+            use_robot_option(Some(one), Some(feet), &mut config)?;
+            &[]
+        }
+        _ => return Err("--feet names the feet of one --robot".into()),
+    };
     let mut bench = Bench::new(registry)
         .seeds(args.seeds)
         .first_seed(args.first_seed)
         .config(config)
         .out(&args.out)
         .command(&command_line());
+    if !robots.is_empty() {
+        bench = bench.robots(robots);
+    }
     if !args.approx.is_empty() {
         bench = bench.approximators(&args.approx);
     }
@@ -688,7 +739,7 @@ fn bench(registry: &Registry, args: BenchArgs) -> Result<(), String> {
     let out = &args.out;
     let grid = bench.grid().map_err(|e| e.to_string())?;
     let runs = grid.runs().map_err(|e| e.to_string())?;
-    let total = args.shard.map_or(runs.len(), |s| s.select(&runs).len());
+    let total = args.shard.map_or(runs.len(), |s| s.select(&runs).len()) * args.robot.len().max(1);
     let bar = progress_bar(total)?;
     let started = std::time::Instant::now();
     let result = bench
@@ -714,7 +765,10 @@ fn bench(registry: &Registry, args: BenchArgs) -> Result<(), String> {
         }
         Err(e) => return Err(e.to_string()),
     };
-    print!("{}", report.leaderboard.to_markdown());
+    match &report.robots {
+        Some(robots) => print!("{}", robots.to_markdown()),
+        None => print!("{}", report.leaderboard.to_markdown()),
+    }
     println!(
         "{} runs ({} finished earlier) in {:.0} s; leaderboard: {}",
         report.outcomes.len(),

@@ -34,6 +34,15 @@ pub enum BenchError {
         /// The factory's error.
         reason: String,
     },
+    /// A robot of the bench was refused (its file unreadable, or a robot the walker cannot
+    /// take).
+    #[error("robot {}: {source}", path.display())]
+    Robot {
+        /// The URDF file.
+        path: std::path::PathBuf,
+        /// Why it was refused.
+        source: crate::robot::description::RobotError,
+    },
     /// The output directory holds results of another configuration.
     #[error("{0}")]
     ConfigChanged(String),

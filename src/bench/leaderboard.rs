@@ -62,7 +62,7 @@ impl From<&Paired> for Comparison {
 
 impl Comparison {
     /// `mean [lo, hi] verdict`, or `-`.
-    fn cell(&self) -> String {
+    pub(crate) fn cell(&self) -> String {
         match self.verdict {
             Some(v) => format!(
                 "{:.3} [{:.3}, {:.3}] {v}",
@@ -94,6 +94,10 @@ pub struct LeaderboardRow {
     /// This combination's per-seed comparison values minus the baseline's (learning the same
     /// set), paired by seed (empty for the baseline itself).
     pub vs_baseline: Vec<Comparison>,
+    /// The robot the runs walked on, in a bench over several robots (its directory name,
+    /// [`crate::bench::RobotColumn::id`]); absent in a bench over one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robot: Option<String>,
 }
 
 /// The approximator and rule every combination is compared with.
@@ -247,6 +251,7 @@ impl Leaderboard {
                             } else {
                                 versus_baseline(experiment, &runs, base)
                             },
+                            robot: None,
                         });
                     }
                 }
@@ -272,7 +277,7 @@ impl Leaderboard {
             .collect()
     }
 
-    fn experiments(&self) -> Vec<&str> {
+    pub(crate) fn experiments(&self) -> Vec<&str> {
         let mut names: Vec<&str> = Vec::new();
         for r in &self.rows {
             if !names.contains(&r.experiment.as_str()) {
@@ -490,7 +495,7 @@ fn number(v: f64) -> String {
     }
 }
 
-fn describe_seeds(seeds: &[u64]) -> String {
+pub(crate) fn describe_seeds(seeds: &[u64]) -> String {
     match (seeds.first(), seeds.last()) {
         (Some(a), Some(b)) if seeds.len() > 1 => format!("{a}-{b}"),
         (Some(a), _) => a.to_string(),

@@ -27,9 +27,11 @@
 mod error;
 pub mod leaderboard;
 mod registry;
+mod robots;
 mod runner;
 
 pub use error::BenchError;
 pub use leaderboard::{Comparison, Leaderboard, LeaderboardRow};
 pub use registry::{RESULTS_FORMAT, Registry, RegistryRunner};
+pub use robots::{RobotColumn, RobotLeaderboard};
 pub use runner::{Bench, Report};

@@ -1,6 +1,7 @@
 //! [`Bench`]: a selection of registered names, run and reported.
 
 use super::leaderboard::Leaderboard;
+use super::robots::{RobotLeaderboard, check_distinct, robot_column, robot_config};
 use super::{BenchError, Registry};
 use crate::config::limits::MAX_SEEDS;
 use crate::control::step_parameter::LearnSet;
@@ -42,6 +43,7 @@ pub struct Bench<'r> {
     command: String,
     on_run: Option<Box<OnRun<'r>>>,
     replays: Option<Box<Replays<'r>>>,
+    robots: Vec<PathBuf>,
 }
 
 /// A callback called as each run ends.
@@ -57,10 +59,14 @@ type Replays<'r> = dyn Fn(&Leaderboard, &Path) -> Vec<ReplayLink> + 'r;
 pub struct Report {
     /// The runs of this call (its shard), in grid order.
     pub outcomes: Vec<RunOutcome>,
-    /// The leaderboard of the whole selection (runs of other shards included once finished).
+    /// The leaderboard of the whole selection (runs of other shards included once finished);
+    /// over several robots, every robot's rows, each naming its robot.
     pub leaderboard: Leaderboard,
     /// The output directory.
     pub out: PathBuf,
+    /// Over several robots ([`Bench::robots`]): the robots, and the leaderboard with one
+    /// column per robot.
+    pub robots: Option<RobotLeaderboard>,
 }
 
 /// Checks that each of `names` is among the registered `known` names of a `what` and appears
@@ -106,7 +112,22 @@ impl<'r> Bench<'r> {
             command: String::new(),
             on_run: None,
             replays: None,
+            robots: Vec::new(),
         }
+    }
+
+    /// The robots to run on, from URDF files ([`crate::experiments::robot_setup::use_robot`]:
+    /// the gait and the protocols follow each robot's size). One robot runs in the output
+    /// directory, as `--robot PATH` does; with several, each robot's runs go into a
+    /// directory of its own, named by its file ([`RobotColumn::id`](super::RobotColumn::id)), and the output
+    /// directory gets the leaderboard with one column per robot ([`RobotLeaderboard`]).
+    /// Default: none, the configuration's robot.
+    pub fn robots<I: IntoIterator<Item = P>, P: AsRef<Path>>(mut self, paths: I) -> Self {
+        self.robots = paths
+            .into_iter()
+            .map(|p| p.as_ref().to_path_buf())
+            .collect();
+        self
     }
 
     /// The approximators to run, by registered name.
@@ -262,8 +283,8 @@ impl<'r> Bench<'r> {
     /// The configuration of the runs: the scale set here, and the set of learned parameters
     /// left at the paper's, since each run learns its own set ([`Bench::learn_sets`]), so
     /// that the record of a directory does not depend on the sets selected.
-    fn resolved_config(&self) -> Result<ConfigFile, BenchError> {
-        let mut config = self.config.clone();
+    fn resolved_config(&self, config: &ConfigFile) -> Result<ConfigFile, BenchError> {
+        let mut config = config.clone();
         if let Some(scale) = self.scale {
             config.settings.scale = scale;
         }
@@ -306,8 +327,13 @@ impl<'r> Bench<'r> {
     /// Another configuration means other settings, or another protocol table for an
     /// experiment both records hold: an experiment registered since (or not any more) changes
     /// nothing its runs measured, so its table joins the record.
-    fn guard_config(&self, config_toml: &str, selected: &[String]) -> Result<(), BenchError> {
-        let path = self.out.join(CONFIG_RECORD);
+    fn guard_config(
+        &self,
+        out: &Path,
+        config_toml: &str,
+        selected: &[String],
+    ) -> Result<(), BenchError> {
+        let path = out.join(CONFIG_RECORD);
         match std::fs::read_to_string(&path) {
             Ok(existing) if existing == config_toml => Ok(()),
             Ok(existing) => match merged_record(&existing, config_toml, selected) {
@@ -321,13 +347,12 @@ impl<'r> Bench<'r> {
                     "{} holds runs of another configuration ({} differs from this run's \
                      settings and protocols); choose another --out, or delete the directory to \
                      start over",
-                    self.out.display(),
+                    out.display(),
                     path.display()
                 ))),
             },
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                std::fs::create_dir_all(&self.out)
-                    .map_err(|e| crate::report::ReportError::io(&self.out, e))?;
+                std::fs::create_dir_all(out).map_err(|e| crate::report::ReportError::io(out, e))?;
                 write_file(&path, config_toml.as_bytes())?;
                 Ok(())
             }
@@ -341,15 +366,65 @@ impl<'r> Bench<'r> {
     /// ([`BenchError::CannotBuild`]: nothing is written); [`BenchError::RunsFailed`] after
     /// writing the leaderboard if some runs failed.
     pub fn run(&self) -> Result<Report, BenchError> {
+        match self.robots.as_slice() {
+            [] => self.run_in(&self.config, &self.out)?.finished(),
+            [one] => {
+                let config = robot_config(one, &self.registry.resolve_config(&self.config)?)?;
+                self.run_in(&config, &self.out)?.finished()
+            }
+            many => self.run_robots(many),
+        }
+    }
+
+    /// Every robot's bench in its own directory, then the leaderboard over them. Every robot
+    /// is loaded and checked before any run.
+    fn run_robots(&self, paths: &[PathBuf]) -> Result<Report, BenchError> {
+        // Every protocol table in full before the robot rewrites them for its size.
+        let base = self.registry.resolve_config(&self.config)?;
+        let mut configs = Vec::new();
+        let mut columns = Vec::new();
+        for path in paths {
+            let config = robot_config(path, &base)?;
+            columns.push(robot_column(path, &config)?);
+            configs.push(config);
+        }
+        check_distinct(&columns)?;
+        let (mut outcomes, mut boards, mut failed) = (Vec::new(), Vec::new(), Vec::new());
+        for (column, config) in columns.iter().zip(&configs) {
+            let ran = self.run_in(config, &self.out.join(&column.id))?;
+            outcomes.extend(ran.report.outcomes);
+            boards.push(ran.report.leaderboard);
+            failed.extend(
+                ran.failed
+                    .into_iter()
+                    .map(|(id, m)| (format!("{}/{id}", column.id), m)),
+            );
+        }
+        let robots = RobotLeaderboard::join(columns, boards);
+        robots.write(&self.out, &self.command)?;
+        if !failed.is_empty() {
+            return Err(BenchError::RunsFailed(failed));
+        }
+        Ok(Report {
+            outcomes,
+            leaderboard: robots.leaderboard.clone(),
+            out: self.out.clone(),
+            robots: Some(robots),
+        })
+    }
+
+    /// The selection run with `config` into `out`, and its leaderboard written there; the
+    /// runs that failed beside the report.
+    fn run_in(&self, config: &ConfigFile, out: &Path) -> Result<Ran, BenchError> {
         let grid = self.grid()?;
         let baseline = self.baseline_of(&grid)?;
         self.check_builds(&grid)?;
-        let config = self.resolved_config()?;
+        let config = self.resolved_config(config)?;
         let config_toml = config
             .to_toml()
             .map_err(|e| BenchError::Selection(e.to_string()))?;
         let runs = self.shard.select(&grid.runs()?);
-        self.guard_config(&config_toml, &grid.experiments)?;
+        self.guard_config(out, &config_toml, &grid.experiments)?;
         let runner = self.registry.runner(&config.settings, &config.protocols);
         let options = SweepOptions {
             threads: self.threads,
@@ -359,11 +434,11 @@ impl<'r> Bench<'r> {
             Some(f) => f.as_ref(),
             None => &noop,
         };
-        let outcomes = run_sweep(&runs, &self.out, &runner, &options, on_run)?;
+        let outcomes = run_sweep(&runs, out, &runner, &options, on_run)?;
         let leaderboard = Leaderboard::collect(
             self.registry,
             &grid,
-            &self.out,
+            out,
             &baseline,
             config.settings.scale,
             &runner,
@@ -371,8 +446,8 @@ impl<'r> Bench<'r> {
         let replays = self
             .replays
             .as_ref()
-            .map_or_else(Vec::new, |f| f(&leaderboard, &self.out));
-        leaderboard.write_with_replays(&self.out, &self.command, &config_toml, &replays)?;
+            .map_or_else(Vec::new, |f| f(&leaderboard, out));
+        leaderboard.write_with_replays(out, &self.command, &config_toml, &replays)?;
         let failed: Vec<(String, String)> = outcomes
             .iter()
             .filter_map(|o| match &o.status {
@@ -380,14 +455,32 @@ impl<'r> Bench<'r> {
                 _ => None,
             })
             .collect();
-        if !failed.is_empty() {
-            return Err(BenchError::RunsFailed(failed));
-        }
-        Ok(Report {
-            outcomes,
-            leaderboard,
-            out: self.out.clone(),
+        Ok(Ran {
+            report: Report {
+                outcomes,
+                leaderboard,
+                out: out.to_path_buf(),
+                robots: None,
+            },
+            failed,
         })
+    }
+}
+
+/// A bench directory's runs done: the report, and the runs that failed (id, message).
+struct Ran {
+    report: Report,
+    failed: Vec<(String, String)>,
+}
+
+impl Ran {
+    /// The report, or [`BenchError::RunsFailed`] if some runs failed.
+    fn finished(self) -> Result<Report, BenchError> {
+        if self.failed.is_empty() {
+            Ok(self.report)
+        } else {
+            Err(BenchError::RunsFailed(self.failed))
+        }
     }
 }
 

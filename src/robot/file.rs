@@ -8,9 +8,10 @@ use sha2::{Digest, Sha256};
 
 use super::NUM_JOINTS;
 use super::description::{Description, RobotError};
-use super::urdf::ServoReference;
+use super::urdf::{Feet, ServoReference};
 
-/// A URDF file and the SHA-256 of its content (lower-case hex).
+/// A URDF file and the SHA-256 of its content (lower-case hex), with the links that end its
+/// legs where the loader is told them.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RobotFile {
@@ -18,6 +19,9 @@ pub struct RobotFile {
     pub path: PathBuf,
     /// SHA-256 of its bytes.
     pub sha256: String,
+    /// The foot links, where named (otherwise the lowest leaf on each side).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub feet: Option<Feet>,
 }
 
 /// SHA-256 of `bytes` as lower-case hex.
@@ -36,10 +40,11 @@ fn read(path: &Path) -> Result<Vec<u8>, RobotError> {
 }
 
 impl RobotFile {
-    /// Names `path` with the hash of what it holds now, after checking that it loads and
-    /// stands in `stance`.
+    /// Names `path` with the hash of what it holds now, after checking that it loads (its
+    /// legs ending at `feet` where given) and stands in `stance`.
     pub fn open(
         path: &Path,
+        feet: Option<&Feet>,
         reference: &ServoReference,
         stance: &[f64; NUM_JOINTS],
     ) -> Result<(Self, Description), RobotError> {
@@ -47,6 +52,7 @@ impl RobotFile {
         let file = RobotFile {
             path: path.to_path_buf(),
             sha256: sha256_hex(&bytes),
+            feet: feet.cloned(),
         };
         let d = file.parse(&bytes, reference)?;
         d.validate_standing(stance)?;
@@ -73,7 +79,7 @@ impl RobotFile {
         let text = std::str::from_utf8(bytes)
             .map_err(|e| RobotError::Xml(format!("{}: not UTF-8 ({e})", self.path.display())))?;
         let dir = self.path.parent().unwrap_or(Path::new("."));
-        let d = Description::from_urdf_str(text, dir, reference)?;
+        let d = Description::from_urdf_feet(text, dir, reference, self.feet.as_ref())?;
         d.validate()?;
         Ok(d)
     }

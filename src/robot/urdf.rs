@@ -2,7 +2,8 @@
 //! joint and merges it into the trunk; [`Description::to_urdf`] writes a description back.
 //!
 //! The supported robot: the root link is the trunk. On each side (left: positive y in the zero
-//! pose) the lowest leaf link ends a leg, and its path from the trunk has exactly six revolute
+//! pose) the lowest leaf link ends a leg (or the link [`Feet`] names, where the lowest leaf is
+//! not the foot), and its path from the trunk has exactly six revolute
 //! (or continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
 //! pitch, knee, ankle pitch, roll), each with either sign. Links hanging from a leg link
 //! through fixed joints (a sole frame, a sensor) join that link; every other joint is held.
@@ -19,6 +20,27 @@ use super::description::{
     Description, Figure, Geometry, Inertia, Joint, Leg, Link, RobotError, Servo, Shape, Sole, quat,
 };
 use super::{JOINTS_PER_LEG, LegJoint, Side};
+
+/// The links that end the legs, named where the loader's choice (the lowest leaf on each side)
+/// is not the foot: a toe, a cable or a sensor hanging lower, say.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Feet {
+    /// The left foot's link.
+    pub left: String,
+    /// The right foot's link.
+    pub right: String,
+}
+
+impl Feet {
+    /// The foot link on `side`.
+    pub fn on(&self, side: Side) -> &str {
+        match side {
+            Side::Left => &self.left,
+            Side::Right => &self.right,
+        }
+    }
+}
 
 /// How far (cosine) a leg joint's axis may stray from its steplearn axis.
 const AXIS_COS: f64 = 0.99;
@@ -875,6 +897,16 @@ impl Description {
         dir: &Path,
         reference: &ServoReference,
     ) -> Result<Self, RobotError> {
+        Self::from_urdf_feet(text, dir, reference, None)
+    }
+
+    /// [`Description::from_urdf_str`], the legs ending at the links `feet` names when given.
+    pub fn from_urdf_feet(
+        text: &str,
+        dir: &Path,
+        reference: &ServoReference,
+        feet: Option<&Feet>,
+    ) -> Result<Self, RobotError> {
         let doc = roxmltree::Document::parse(text).map_err(|e| RobotError::Xml(e.to_string()))?;
         let robot = doc.root_element();
         if robot.tag_name().name() != "robot" {
@@ -909,11 +941,31 @@ impl Description {
             return Err(RobotError::invalid("the robot", "has no links"));
         }
         let tree = Tree::new(links, joints)?;
-        build(&tree, name, reference)
+        let feet = match feet {
+            None => None,
+            Some(f) => {
+                let mut found = [0; 2];
+                for (slot, side) in found.iter_mut().zip(Side::BOTH) {
+                    *slot = *index.get(f.on(side)).ok_or_else(|| {
+                        RobotError::invalid(
+                            link_el(f.on(side)),
+                            format!("is named as the {side:?} foot but the robot has no such link"),
+                        )
+                    })?;
+                }
+                Some(found)
+            }
+        };
+        build(&tree, name, reference, feet)
     }
 }
 
-fn build(tree: &Tree, name: String, reference: &ServoReference) -> Result<Description, RobotError> {
+fn build(
+    tree: &Tree,
+    name: String,
+    reference: &ServoReference,
+    feet: Option<[usize; 2]>,
+) -> Result<Description, RobotError> {
     // The lowest leaf on each side ends a leg.
     let lowest = |side: Side| {
         tree.order
@@ -928,13 +980,25 @@ fn build(tree: &Tree, name: String, reference: &ServoReference) -> Result<Descri
             })
     };
     let mut chains = Vec::new();
-    for side in Side::BOTH {
-        let foot = lowest(side).ok_or_else(|| {
-            RobotError::invalid(
-                "the robot",
-                format!("has one leg only: no leg found on the {side:?} side (y of that sign)"),
-            )
-        })?;
+    for (i, side) in Side::BOTH.into_iter().enumerate() {
+        let foot = match feet {
+            Some(named) => {
+                let foot = named[i];
+                if tree.place[foot].pos.y * side.sign() <= 1e-9 {
+                    return Err(RobotError::invalid(
+                        link_el(&tree.links[foot].name),
+                        format!("is named as the {side:?} foot but is not on that side (y)"),
+                    ));
+                }
+                foot
+            }
+            None => lowest(side).ok_or_else(|| {
+                RobotError::invalid(
+                    "the robot",
+                    format!("has one leg only: no leg found on the {side:?} side (y of that sign)"),
+                )
+            })?,
+        };
         chains.push(leg_chain(tree, foot, side)?);
     }
     if tree.joints[chains[0][0]].parent != tree.joints[chains[1][0]].parent {

@@ -71,7 +71,7 @@ fn the_exported_humanoid_loads_as_the_same_description() {
 fn falls_in_place(path: &Path) -> usize {
     let mut settings = Settings::default();
     let mut protocols = ProtocolTables::new();
-    use_robot(path, &mut settings, &mut protocols).unwrap();
+    use_robot(path, None, &mut settings, &mut protocols).unwrap();
     let setup = settings.trial(
         WalkerMode::CaptureStep,
         ReferenceSchedule::constant(0.0),
@@ -105,7 +105,7 @@ fn a_strangers_robot_walks_in_place_for_60_s() {
 
 #[test]
 fn robot_show_describes_talos_with_its_legs_and_held_joints() {
-    let r = robot_report(&talos()).unwrap();
+    let r = robot_report(&talos(), None).unwrap();
     assert_eq!(r.name, "talos");
     assert!((r.mass_kg - 90.27).abs() < 0.01, "{}", r.mass_kg);
     let names: Vec<String> = (1..=6).map(|k| format!("leg_left_{k}_joint")).collect();
@@ -282,7 +282,7 @@ fn a_replay_draws_the_robots_own_links() {
     use steplearn::replay::record::Recorder;
     let mut settings = Settings::default();
     let mut protocols = ProtocolTables::new();
-    use_robot(&talos(), &mut settings, &mut protocols).unwrap();
+    use_robot(&talos(), None, &mut settings, &mut protocols).unwrap();
     let setup = settings.trial(
         WalkerMode::CaptureStep,
         ReferenceSchedule::constant(0.0),
@@ -337,4 +337,194 @@ fn the_exported_humanoid_gives_the_built_in_summaries_bit_for_bit() {
         built_in == exported,
         "the exported humanoid's summary differs"
     );
+}
+
+#[test]
+fn a_bench_over_two_robots_gives_each_its_directory_and_a_column() {
+    use steplearn::bench::{Bench, BenchError, Registry};
+    use steplearn::experiments::sweep::RunStatus;
+    let dir = temp("bench-robots");
+    let registry = Registry::builtin();
+    let (minimal, igus) = (
+        root().join("tests/robots/minimal.urdf"),
+        root().join("robots/igus_like.urdf"),
+    );
+    let bench = |robots: &[&Path], out: &Path| {
+        Bench::new(&registry)
+            .approximators(["lwpr"])
+            .rules(["pendulum-cart"])
+            .experiments(["stability"])
+            .seeds(2)
+            .scale(0.03)
+            .robots(robots)
+            .out(out)
+    };
+    let both = bench(&[&minimal, &igus], &dir.join("both")).run().unwrap();
+    let robots = both.robots.as_ref().expect("a bench over robots");
+    let ids: Vec<&str> = robots.robots.iter().map(|r| r.id.as_str()).collect();
+    assert_eq!(ids, ["minimal", "igus_like"]);
+    assert_ne!(robots.robots[0].sha256, robots.robots[1].sha256);
+    // Each robot's rows are the leaderboard a bench on that robot alone writes.
+    let alone = bench(&[&igus], &dir.join("alone")).run().unwrap();
+    assert!(alone.robots.is_none());
+    let mine: Vec<_> = both
+        .leaderboard
+        .rows
+        .iter()
+        .filter(|r| r.robot.as_deref() == Some("igus_like"))
+        .cloned()
+        .map(|mut r| {
+            r.robot = None;
+            r
+        })
+        .collect();
+    assert_eq!(mine, alone.leaderboard.rows);
+    assert!(!mine.is_empty());
+    assert!(dir.join("both/minimal/leaderboard.json").exists());
+    assert!(dir.join("both/igus_like/index.html").exists());
+    // One column per robot in the Markdown; the JSON names every row's robot.
+    let md = std::fs::read_to_string(dir.join("both/leaderboard.md")).unwrap();
+    assert!(
+        md.contains("| approx | rule | learn | minimal | igus_like |"),
+        "{md}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("both/leaderboard.json")).unwrap())
+            .unwrap();
+    let rows = json["leaderboard"]["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0]["robot"], "minimal");
+    assert_eq!(rows[1]["robot"], "igus_like");
+    // Run again: every run is reused.
+    let again = bench(&[&minimal, &igus], &dir.join("both")).run().unwrap();
+    assert!(
+        again
+            .outcomes
+            .iter()
+            .all(|o| o.status == RunStatus::Skipped)
+    );
+    assert_eq!(again.leaderboard, both.leaderboard);
+    // The command line takes the robots separated by commas, and reuses the same runs.
+    let robots_arg = format!("{},{}", minimal.display(), igus.display());
+    let out_arg = dir.join("both").display().to_string();
+    let listed = cli(&[
+        "bench",
+        "--robot",
+        &robots_arg,
+        "--approx",
+        "lwpr",
+        "--rule",
+        "pendulum-cart",
+        "--experiments",
+        "stability",
+        "--seeds",
+        "2",
+        "--scale",
+        "0.03",
+        "--out",
+        &out_arg,
+    ]);
+    let stdout = String::from_utf8_lossy(&listed.stdout);
+    assert!(
+        listed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&listed.stderr)
+    );
+    assert!(
+        stdout.contains("| approx | rule | learn | minimal | igus_like |"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("4 runs (4 finished earlier)"), "{stdout}");
+    // Two files of one name, and a hostile robot, are refused before any run.
+    let copy = dir.join("copy");
+    std::fs::create_dir_all(&copy).unwrap();
+    std::fs::copy(&igus, copy.join("igus_like.urdf")).unwrap();
+    let twice = bench(&[&igus, &copy.join("igus_like.urdf")], &dir.join("twice")).run();
+    assert!(matches!(twice, Err(BenchError::Selection(_))), "{twice:?}");
+    let hostile = root().join("tests/robots/hostile/one_leg.urdf");
+    let refused = bench(&[&igus, &hostile], &dir.join("hostile")).run();
+    assert!(
+        matches!(refused, Err(BenchError::Robot { .. })),
+        "{refused:?}"
+    );
+    assert!(!dir.join("twice").exists() && !dir.join("hostile").exists());
+}
+
+#[test]
+fn feet_named_where_a_lower_leaf_is_not_the_foot() {
+    // A toe on the left foot, on a joint of its own and lower than the foot's frame: the
+    // lowest leaf on that side is the toe, so the leg would have seven joints.
+    let dir = temp("feet");
+    let toe = r#"  <joint name="l_toe_joint" type="revolute">
+    <parent link="l_foot"/>
+    <child link="l_toe"/>
+    <origin xyz="0.06 0 -0.05" rpy="0 0 0"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="5"/>
+  </joint>
+  <link name="l_toe">
+    <inertial>
+      <origin xyz="0 0 0" rpy="0 0 0"/>
+      <mass value="0.05"/>
+      <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/>
+    </inertial>
+  </link>
+</robot>"#;
+    let text = std::fs::read_to_string(root().join("tests/robots/minimal.urdf"))
+        .unwrap()
+        .replace("</robot>", toe);
+    let urdf = dir.join("toe.urdf");
+    std::fs::write(&urdf, text).unwrap();
+    let u = urdf.to_str().unwrap();
+    let guessed = cli(&["robot", "show", u]);
+    assert!(!guessed.status.success());
+    let why = String::from_utf8_lossy(&guessed.stderr);
+    assert!(why.contains("l_toe"), "{why}");
+    let named = cli(&["robot", "show", u, "--feet", "l_foot,r_foot", "--json"]);
+    assert!(
+        named.status.success(),
+        "{}",
+        String::from_utf8_lossy(&named.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&named.stdout).unwrap();
+    assert_eq!(json["legs"]["left"]["foot"], "l_foot");
+    assert_eq!(json["legs"]["left"]["joints"][5], "l_ankle_roll");
+    assert!(
+        json["held_joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|j| j == "l_toe_joint"),
+        "{json}"
+    );
+    // A link that is not there, or feet on the wrong sides, are refused naming the link.
+    for (feet, names) in [("l_heel,r_foot", "l_heel"), ("r_foot,l_foot", "r_foot")] {
+        let refused = cli(&["robot", "show", u, "--feet", feet]);
+        assert!(!refused.status.success());
+        let why = String::from_utf8_lossy(&refused.stderr);
+        assert!(why.contains(names), "{feet}: {why}");
+    }
+    // An experiment walks on it, with the feet recorded in the run's settings.
+    let out = dir.join("run");
+    let run = cli(&[
+        "experiment",
+        "stability",
+        "--robot",
+        u,
+        "--feet",
+        "l_foot,r_foot",
+        "--pushes",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let config = std::fs::read_to_string(out.join("run-config.toml")).unwrap();
+    assert!(config.contains("left = \"l_foot\""), "{config}");
+    let lonely = cli(&["experiment", "stability", "--feet", "l_foot,r_foot"]);
+    assert!(!lonely.status.success());
 }

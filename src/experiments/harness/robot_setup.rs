@@ -15,6 +15,7 @@ use crate::experiments::summary::RobotSummary;
 use crate::robot::description::{Description, RobotError};
 use crate::robot::file::{RobotFile, sha256_hex};
 use crate::robot::scale::Scale;
+use crate::robot::urdf::Feet;
 
 /// What `--robot PATH` found: the description and its scale against the paper's robot.
 #[derive(Debug, Clone)]
@@ -25,16 +26,18 @@ pub struct RobotRun {
     pub scale: Scale,
 }
 
-/// Loads the robot at `path` (checked, standing in the settings' initial pose), names it in
-/// `settings`, and rewrites `settings`' harness times and every protocol table for it.
+/// Loads the robot at `path` (checked, standing in the settings' initial pose; its legs ending
+/// at `feet` where given), names it in `settings`, and rewrites `settings`' harness times and
+/// every protocol table for it.
 pub fn use_robot(
     path: &Path,
+    feet: Option<&Feet>,
     settings: &mut Settings,
     protocols: &mut ProtocolTables,
 ) -> Result<RobotRun, RobotError> {
     let sim = &settings.sim;
     let (file, description) =
-        RobotFile::open(path, &sim.body.servo_reference(), &sim.initial_joints)?;
+        RobotFile::open(path, feet, &sim.body.servo_reference(), &sim.initial_joints)?;
     let scale = Scale::between(&description, &sim.body.description(), &sim.initial_joints);
     settings.sim.robot = Some(file);
     settings.push_window_s = scale.time(settings.push_window_s);
@@ -171,15 +174,16 @@ pub struct Legs {
     pub right: LegReport,
 }
 
-/// Loads and checks the robot at `path` against the default settings, and describes it.
-pub fn robot_report(path: &Path) -> Result<RobotReport, RobotError> {
+/// Loads and checks the robot at `path` (its legs ending at `feet` where given) against the
+/// default settings, and describes it.
+pub fn robot_report(path: &Path, feet: Option<&Feet>) -> Result<RobotReport, RobotError> {
     let mut settings = Settings::default();
     let mut protocols = ProtocolTables::new();
     let stability: crate::experiments::stability::StabilityProtocol = Default::default();
     protocols
         .set("stability", &stability)
         .map_err(|e| RobotError::invalid("protocols.stability", e.to_string()))?;
-    let run = use_robot(path, &mut settings, &mut protocols)?;
+    let run = use_robot(path, feet, &mut settings, &mut protocols)?;
     let d = &run.description;
     let s = &run.scale;
     let walker = settings.walker.for_robot(s);

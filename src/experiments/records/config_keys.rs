@@ -625,8 +625,8 @@ pub const PRINTED: &[KeyDoc] = &[
 pub const ABSENT: &[KeyDoc] = &[
     k(
         "settings.sim.robot",
-        "`{ path, sha256 }` of a URDF that loads, or absent",
-        "a robot from a URDF file instead of the built-in humanoid (`--robot PATH` sets it)",
+        "`{ path, sha256, feet }` of a URDF that loads (`feet = { left, right }` link names optional), or absent",
+        "a robot from a URDF file instead of the built-in humanoid (`--robot PATH` and `--feet LEFT,RIGHT` set it)",
     ),
     k(
         "settings.learner.max_offset",
