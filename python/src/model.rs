@@ -1,6 +1,6 @@
 //! The four approximator classes, sharing one generic core ([`Core`]).
 
-use crate::arrays::{self, Matrix};
+use crate::arrays;
 use crate::settings::{self, dim};
 use ndarray::{Array2, ArrayView2};
 use numpy::{IntoPyArray, PyArray1, PyArray2};

@@ -38,7 +38,7 @@ pub(crate) fn to_json(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<Value> {
         return Ok(Value::Bool(b.is_true()));
     }
     if let Ok(s) = obj.cast::<PyString>() {
-        return Ok(Value::String(s.to_str()?.to_owned()));
+        return Ok(Value::String(s.to_string()));
     }
     if let Ok(i) = obj.extract::<i64>() {
         return Ok(Value::from(i));
@@ -107,9 +107,8 @@ pub(crate) fn apply<C: Serialize + DeserializeOwned>(
     }
     fixup(&mut map)?;
     let mut unknown = Vec::new();
-    let de = serde_ignored::Deserializer::new(Value::Object(map), &mut |path| {
-        unknown.push(path.to_string())
-    });
+    let mut record = |path: serde_ignored::Path<'_>| unknown.push(path.to_string());
+    let de = serde_ignored::Deserializer::new(Value::Object(map), &mut record);
     let result: Result<C, _> = serde_path_to_error::deserialize(de);
     if !unknown.is_empty() {
         return Err(PyTypeError::new_err(format!(

@@ -64,9 +64,9 @@ def test_bad_predict_is_refused(make, x, exc, msg):
 def test_lwpr_out_of_range_sample():
     m = trained(lambda: steplearn.Lwpr(2, 1))
     before = snapshot(m)
-    with pytest.raises(ValueError, match=r"input x\[1\] = 1e\+16 is beyond the model's range"):
+    with pytest.raises(ValueError, match=r"input x\[1\] = 10000000000000000 is beyond the model's range"):
         m.update([0.0, 1e16], [0.0])
-    with pytest.raises(ValueError, match=r"target y\[0\] = 1e\+21 is beyond"):
+    with pytest.raises(ValueError, match=r"target y\[0\] = 1000000000000000000000 is beyond"):
         m.update([0.0, 0.0], [1e21])
     assert snapshot(m) == before
     with pytest.raises(ValueError, match="confidence|input x"):
@@ -114,7 +114,7 @@ def test_lwpr_batch_refused_late_by_the_model_keeps_earlier_rows_out():
     before = snapshot(m)
     X, Y = stream(20, seed=14)
     X[15, 1] = 1e16
-    with pytest.raises(ValueError, match=r"row 15: input x\[1\] = 1e\+16 is beyond .*unchanged"):
+    with pytest.raises(ValueError, match=r"row 15: input x\[1\] = 10000000000000000 is beyond .*unchanged"):
         m.update_many(X, Y)
     assert snapshot(m) == before
 
@@ -125,7 +125,7 @@ UNKNOWN = [
     (lambda: steplearn.Grid([0], [1], [3], widths=[1.0]), "'widths'"),
     (lambda: steplearn.KernelRidge([1.0], n_in=3), "'n_in'"),
     (lambda: steplearn.Rbf([0], [1], [3], update={"Nlms": {"learning_rate": 0.1, "x": 1}}),
-     "'update.Nlms.x'"),
+     "'update.x'"),
 ]
 
 
