@@ -11,7 +11,10 @@ use steplearn::approx::{FunctionApproximator, Lwpr, LwprConfig};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 7 {
-        return Err("usage: lwpr_stream <config.json> <stream.f64> <n_train> <n_test> <reps> <out.f64>".into());
+        return Err(
+            "usage: lwpr_stream <config.json> <stream.f64> <n_train> <n_test> <reps> <out.f64>"
+                .into(),
+        );
     }
     let config: LwprConfig = serde_json::from_str(&std::fs::read_to_string(&args[1])?)?;
     let bytes = std::fs::read(&args[2])?;
@@ -41,7 +44,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut yo = vec![0.0; n_out];
     for xi in test.chunks_exact(n_in) {
         model.predict(xi, &mut yo)?;
-        yo.iter().for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
+        yo.iter()
+            .for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
     }
     std::fs::write(&args[6], out)?;
     println!(

@@ -10,17 +10,13 @@ use pyo3::types::{PyDict, PyTuple};
 use serde_json::Value;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
-use steplearn::approx::{
-    self as rs, ApproxError, FunctionApproximator, InputBox, Persist,
-};
+use steplearn::approx::{self as rs, ApproxError, FunctionApproximator, InputBox, Persist};
 
 /// A Rust error as a Python exception: `OSError` (or its subclasses) for file errors other
 /// than undecodable contents, `ValueError` for everything else, with the Rust message.
 pub(crate) fn py_err(e: ApproxError) -> PyErr {
     match e {
-        ApproxError::Io(io) if io.kind() != std::io::ErrorKind::InvalidData => {
-            PyErr::from(io)
-        }
+        ApproxError::Io(io) if io.kind() != std::io::ErrorKind::InvalidData => PyErr::from(io),
         ApproxError::Io(io) => {
             PyValueError::new_err(format!("corrupt or incompatible saved model: {io}"))
         }
@@ -222,8 +218,7 @@ where
 
 /// A JSON value as the Python object `json.loads` would give.
 fn json_to_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
-    py.import("json")?
-        .call_method1("loads", (v.to_string(),))
+    py.import("json")?.call_method1("loads", (v.to_string(),))
 }
 
 /// Declares a class around [`Core`], with the methods every approximator has, plus `extra`
@@ -509,9 +504,8 @@ fn lwpr_init_d(
         return Ok(());
     };
     let base = rs::LwprConfig::new(n_in, n_out);
-    let numbers = |items: &[Value]| -> Option<Vec<f64>> {
-        items.iter().map(Value::as_f64).collect()
-    };
+    let numbers =
+        |items: &[Value]| -> Option<Vec<f64>> { items.iter().map(Value::as_f64).collect() };
     let d = match v {
         Value::Number(n) => base.init_d(n.as_f64().unwrap_or(f64::NAN)).init_d,
         Value::Array(items) if items.iter().all(Value::is_array) && !items.is_empty() => {

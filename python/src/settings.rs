@@ -44,11 +44,13 @@ pub(crate) fn to_json(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<Value> {
         return Ok(Value::from(i));
     }
     if let Ok(f) = obj.extract::<f64>() {
-        return serde_json::Number::from_f64(f).map(Value::Number).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "invalid configuration: {key} must be finite, got {f}"
-            ))
-        });
+        return serde_json::Number::from_f64(f)
+            .map(Value::Number)
+            .ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "invalid configuration: {key} must be finite, got {f}"
+                ))
+            });
     }
     if let Ok(d) = obj.cast::<PyDict>() {
         let mut map = Map::new();
