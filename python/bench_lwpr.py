@@ -85,6 +85,9 @@ def main() -> int:
             model.update_many(X, Y)
             py_ns.append((time.perf_counter() - t) / args.n_train * 1e9)
         rust_pred = np.frombuffer(out.read_bytes(), dtype="<f8")
+        # the model the Rust crate saved loads in Python and predicts the same bits
+        from_rust = steplearn.Lwpr.load(str(out) + ".json")
+        loaded_same = bool(np.array_equal(from_rust.predict_many(Xt)[:, 0], rust_pred))
 
     chunked = steplearn.Lwpr(2, 1, **SETTINGS)
     t = time.perf_counter()
@@ -113,7 +116,8 @@ def main() -> int:
     print(f"receptive fields: Python {model.num_receptive_fields}, Rust {rust['rfs']}")
     print(f"test RMSE vs noise-free f: Python {rmse(py_pred):.5f}, Rust {rmse(rust_pred):.5f}; "
           f"predictions bit-identical: {identical}")
-    return 0 if identical else 1
+    print(f"Rust-saved model loaded in Python predicts the same bits: {loaded_same}")
+    return 0 if identical and loaded_same else 1
 
 
 if __name__ == "__main__":

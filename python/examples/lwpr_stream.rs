@@ -3,10 +3,11 @@
 //!
 //! Usage: `lwpr_stream <config.json> <stream.f64> <n_train> <n_test> <reps> <predictions.f64>`.
 //! The stream file holds little-endian f64: `n_train x n_in` inputs, `n_train x n_out` targets,
-//! `n_test x n_in` test inputs. Prints `{"ns_per_update": [..one per rep..], "rfs": N}`.
+//! `n_test x n_in` test inputs. The trained model is also saved (`Persist::save`) to
+//! `<predictions.f64>.json`. Prints `{"ns_per_update": [..one per rep..], "rfs": N}`.
 
 use std::time::Instant;
-use steplearn::approx::{FunctionApproximator, Lwpr, LwprConfig};
+use steplearn::approx::{FunctionApproximator, Lwpr, LwprConfig, Persist};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -48,6 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
     }
     std::fs::write(&args[6], out)?;
+    model.save(format!("{}.json", args[6]))?;
     println!(
         "{{\"ns_per_update\": {times:?}, \"rfs\": {}}}",
         model.num_receptive_fields()

@@ -216,6 +216,9 @@ where
     }
 }
 
+/// Two 1-D arrays (LWPR's prediction and confidence).
+type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// A JSON value as the Python object `json.loads` would give.
 fn json_to_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (v.to_string(),))
@@ -368,7 +371,7 @@ approximator!(
         &self,
         py: Python<'py>,
         x: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    ) -> PyResult<ArrayPair<'py>> {
         let model = self.core.ok()?;
         let x = arrays::vector(x, "x")?;
         let mut y = vec![0.0; model.output_dim()];
