@@ -134,7 +134,7 @@ pub enum EnvError {
 
 /// The pushes of an episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(rename_all = "kebab-case")]
 pub enum PushProtocol {
     /// No pushes.
     None,
@@ -631,7 +631,7 @@ impl FootstepEnv {
         let tick = self
             .walker
             .tick_2d(&sensors, [self.reference, 0.0], Some(&mut policy))?;
-        let applied = self.parameters.iter().map(|p| tick.offsets[*p]).collect();
+        let applied: Vec<f64> = self.parameters.iter().map(|p| tick.offsets[*p]).collect();
         let reach = policy.reach.map_or_else(Vec::new, |r| {
             self.parameters.iter().map(|p| r[*p]).collect()
         });
