@@ -3,7 +3,7 @@
 //! pendulum-cart balance law without learning), on the same pushes; prints each policy's mean
 //! return, falls and footsteps, and the wall-clock cost per footstep.
 //!
-//! `cargo run --release --example footstep_env -- --episodes 5 --max-footsteps 100 --gain 0.3`
+//! `cargo run --release --example footstep_env -- --episodes 5 --max-footsteps 100 --gain 1.0`
 
 use clap::Parser;
 use std::path::PathBuf;
@@ -19,12 +19,15 @@ struct Args {
     #[arg(long, default_value_t = 100)]
     max_footsteps: usize,
     /// The proportional policy's gain k (m of dF per rad of theta_E).
-    #[arg(long, default_value_t = 0.3)]
+    #[arg(long, default_value_t = 1.0)]
     gain: f64,
     /// A URDF robot instead of the built-in humanoid.
     #[arg(long)]
     robot: Option<PathBuf>,
 }
+
+/// An action from an observation.
+type Policy = dyn Fn(&[f64]) -> f64;
 
 /// One policy's episodes: total return, falls, footsteps and stepping time (s).
 fn run(
@@ -73,7 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         env.action_bounds()
     );
     let gain = args.gain;
-    let policies: [(&str, Box<dyn Fn(&[f64]) -> f64>); 2] = [
+    let policies: [(&str, Box<Policy>); 2] = [
         ("zero (the model)", Box::new(|_| 0.0)),
         ("dF = k theta_E", Box::new(move |o| gain * o[0])),
     ];

@@ -92,19 +92,17 @@ fn zero_actions_walk_as_the_model_on_experiment_c_pushes() {
         settle: 3.0,
         gap: gap_s,
     };
-    let setup = Settings::default().push_trial(
-        WalkerMode::CaptureStep,
-        0.0,
-        &plan,
-        seed,
-        [1.0, 0.0, 0.0],
-    );
+    let setup =
+        Settings::default().push_trial(WalkerMode::CaptureStep, 0.0, &plan, seed, [1.0, 0.0, 0.0]);
     let log = run_trial(&setup, None, &mut []).unwrap();
 
     // The pushes are the trial's, in order, each delivered within a tick of its time.
     let delivered: Vec<_> = steps.iter().flat_map(|s| s.info.pushes.clone()).collect();
     assert!(delivered.len() >= 5, "{}", delivered.len());
-    for (d, (p, t)) in delivered.iter().zip(plan.draw(seed).iter().zip(&log.pushes)) {
+    for (d, (p, t)) in delivered
+        .iter()
+        .zip(plan.draw(seed).iter().zip(&log.pushes))
+    {
         assert_eq!(d.impulse, p.impulse);
         assert_eq!(d.time, t.time);
         assert!(d.time >= p.time && d.time < p.time + 0.0101);

@@ -380,6 +380,15 @@ struct Decision {
     sensors: Sensors,
 }
 
+/// The random pushes of [`PushProtocol::Random`], scaled for the robot.
+#[derive(Debug, Clone, Copy)]
+struct RandomPushes {
+    impulse: (f64, f64),
+    gap_s: (f64, f64),
+    settle_s: f64,
+    direction: [f64; 3],
+}
+
 /// Where an episode stands.
 #[derive(Debug, Clone)]
 enum Phase {
@@ -394,8 +403,8 @@ pub struct FootstepEnv {
     robot: Humanoid,
     walker_config: WalkerConfig,
     scale: Scale,
-    /// The pushes' impulse, gap (scaled) and settle times and direction.
-    pushes: Option<((f64, f64), (f64, f64), f64, [f64; 3])>,
+    /// The random pushes, scaled for the robot.
+    pushes: Option<RandomPushes>,
     reference: f64,
     planes: Vec<Plane>,
     parameters: Vec<StepParameter>,
@@ -439,7 +448,12 @@ impl FootstepEnv {
             None => None,
             Some(_) => {
                 let c: StabilityProtocol = protocols.get(crate::experiments::stability::NAME)?;
-                Some((c.impulse, c.gap_s, config.settle_s(), c.direction))
+                Some(RandomPushes {
+                    impulse: c.impulse,
+                    gap_s: c.gap_s,
+                    settle_s: config.settle_s(),
+                    direction: c.direction,
+                })
             }
         };
         let robot = Humanoid::new(settings.sim.clone())?;
@@ -568,7 +582,7 @@ impl FootstepEnv {
         self.walker = Walker::new(self.walker_config, self.robot.robot().leg_geometry())?;
         self.rng = ChaCha8Rng::seed_from_u64(seed);
         self.next_push = None;
-        self.draw_push(self.pushes.map_or(0.0, |p| p.2));
+        self.draw_push(self.pushes.map_or(0.0, |p| p.settle_s));
         self.pushes_delivered = 0;
         self.footsteps = 0;
         let mut policy = self.held(&vec![0.0; self.action_len()]);
@@ -810,18 +824,18 @@ impl FootstepEnv {
 
     /// Draws the next push after `after` (s), as [`PushPlan::draw`] does.
     fn draw_push(&mut self, after: f64) {
-        self.next_push = self.pushes.map(|(impulse, gap, _, _)| {
-            let time = after + uniform(&mut self.rng, gap);
-            (time, uniform(&mut self.rng, impulse))
+        self.next_push = self.pushes.map(|p| {
+            let time = after + uniform(&mut self.rng, p.gap_s);
+            (time, uniform(&mut self.rng, p.impulse))
         });
     }
 
     /// Delivers the next push if it is due at `t`.
     fn deliver_push(&mut self, t: f64, out: &mut Vec<DeliveredPush>) -> Result<(), EnvError> {
-        if let (Some((time, impulse)), Some((_, _, _, direction))) = (self.next_push, self.pushes)
+        if let (Some((time, impulse)), Some(p)) = (self.next_push, self.pushes)
             && t >= time
         {
-            self.robot.push(direction.map(|d| d * impulse))?;
+            self.robot.push(p.direction.map(|d| d * impulse))?;
             self.pushes_delivered += 1;
             out.push(DeliveredPush { time: t, impulse });
             self.draw_push(time);
