@@ -12,8 +12,8 @@ pub mod suite;
 
 // Every module at its path of old, so that `steplearn::experiments::trial` and the like stay.
 pub use harness::{
-    aligned, catch_step, compare, fall_causes, protocol, replay_plan, robot_setup, schedule,
-    settings, trial,
+    aligned, catch_step, compare, fall_causes, footstep_env, protocol, replay_plan, robot_setup,
+    schedule, settings, trial,
 };
 pub use records::{claim, config_file, config_keys, index_page, paired, summary, sweep};
 pub use suite::reproduction::{ablation, reproduce};

@@ -22,6 +22,7 @@ mod exact_kernel_ridge;
 mod experiment_stability;
 mod experiments_short;
 mod fall_causes;
+mod footstep_env;
 mod grid_properties;
 mod index_page;
 mod kernel_ridge_properties;

@@ -6,6 +6,7 @@ pub mod aligned;
 pub mod catch_step;
 pub mod compare;
 pub mod fall_causes;
+pub mod footstep_env;
 pub mod protocol;
 pub(crate) mod push_options;
 pub mod replay_plan;
