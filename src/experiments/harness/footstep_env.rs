@@ -442,7 +442,7 @@ impl FootstepEnv {
             protocols.set(crate::experiments::stability::NAME, c)?;
         }
         if let Some(path) = &config.robot {
-            use_robot(path, &mut settings, &mut protocols)?;
+            use_robot(path, None, &mut settings, &mut protocols)?;
         }
         let pushes = match stability {
             None => None,
