@@ -72,7 +72,7 @@ fn pushes(obj: Option<&Bound<'_, PyAny>>) -> PyResult<PushProtocol> {
         return Ok(PushProtocol::default());
     };
     if let Ok(s) = obj.cast::<PyString>() {
-        return match s.to_str()? {
+        return match s.to_cow()?.as_ref() {
             "experiment-c" => Ok(PushProtocol::default()),
             "none" => Ok(PushProtocol::None),
             other => Err(PyValueError::new_err(format!(
@@ -128,7 +128,7 @@ fn learn_set(obj: Option<&Bound<'_, PyAny>>) -> PyResult<LearnSet> {
         return Ok(LearnSet::default());
     };
     let parsed = if let Ok(s) = obj.cast::<PyString>() {
-        s.to_str()?.parse::<LearnSet>()
+        s.to_cow()?.parse::<LearnSet>()
     } else if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         let names: Vec<String> = obj.extract().map_err(|_| {
             PyTypeError::new_err("learn must be a str or a sequence of str (step parameter names)")

@@ -4,6 +4,7 @@ set). Episodes are short (a few footsteps, about 20 ms each; a reset walks about
 simulated time first)."""
 
 import pathlib
+import warnings
 
 import gymnasium
 import numpy as np
@@ -63,7 +64,8 @@ def test_registered_and_spaces():
 def test_check_env_passes():
     env = steplearn.gym.FootstepEnv(max_footsteps=4)
     check_env(env, skip_render_check=True)
-    with pytest.warns(UserWarning):  # check_env warns that make's env is wrapped
+    with warnings.catch_warnings():  # it warns that make's env is wrapped, and of inf bounds
+        warnings.simplefilter("ignore")
         check_env(make(max_footsteps=4), skip_render_check=True)
 
 
@@ -187,14 +189,18 @@ def test_bad_options_raise(options, error, match):
 
 def test_push_protocols():
     # Pushes arrive in the chosen window; without pushes none arrive.
-    env = make(max_footsteps=12, pushes={"impulse": [5.0, 5.0], "gap_s": [1.0, 1.0],
-                                         "settle_s": 0.0})
+    env = make(max_footsteps=12, pushes={"impulse": [5.0, 5.0], "gap_s": [1.0, 1.0]})
     _, steps = episode(env, 0, lambda k: np.zeros(1))
     pushes = [p for s in steps for p in s[4]["pushes"]]
     assert pushes and all(p["impulse"] == 5.0 for p in pushes)
     quiet = make(max_footsteps=12, pushes="none")
     _, steps = episode(quiet, 0, lambda k: np.zeros(1))
     assert all(s[4]["pushes_delivered"] == 0 for s in steps)
+    # A push during the walk to the first decision point that fells the robot: reset raises.
+    harsh = make(max_footsteps=2, pushes={"impulse": [60.0, 60.0], "gap_s": [0.5, 0.5],
+                                          "settle_s": 0.0})
+    with pytest.raises(RuntimeError, match="no first decision point"):
+        harsh.reset(seed=0)
 
 
 def test_igus_like_robot():
