@@ -124,7 +124,8 @@ def main(argv: Optional[List[str]] = None) -> None:
               f"w = {np.array2string(mean, precision=3)}", flush=True)
 
     print(f"\nheld-out seeds {test}, experiment C pushes, max_footsteps {args.max_footsteps}")
-    print(f"{'policy':<22}" + "".join(f"  seed {s:>2}: return (falls)" for s in test))
+    print(f"{'policy':<22}" + "".join(f"  {'seed ' + str(s) + ': return (fell) steps':<25}"
+                                      for s in test))
     rows = []
     env = envs[0]
     for name, make_policy in [

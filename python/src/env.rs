@@ -155,7 +155,10 @@ fn to_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
         },
         Value::String(s) => s.into_pyobject(py)?.into_any(),
         Value::Array(a) => {
-            let items = a.iter().map(|x| to_py(py, x)).collect::<PyResult<Vec<_>>>()?;
+            let items = a
+                .iter()
+                .map(|x| to_py(py, x))
+                .collect::<PyResult<Vec<_>>>()?;
             PyList::new(py, items)?.into_any()
         }
         Value::Object(m) => {
@@ -331,9 +334,10 @@ impl FootstepEnv {
         let c = self.env.config();
         format!(
             "FootstepEnv(robot={}, learn={:?}, max_footsteps={})",
-            c.robot
-                .as_ref()
-                .map_or("None".to_string(), |p| format!("{:?}", p.display().to_string())),
+            c.robot.as_ref().map_or("None".to_string(), |p| format!(
+                "{:?}",
+                p.display().to_string()
+            )),
             c.learn.to_string(),
             c.max_footsteps
         )
