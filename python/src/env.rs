@@ -197,6 +197,7 @@ impl FootstepEnv {
     /// the paper robot's); `reward`: a dict of the pendulum-cart `p_theta`, `p_f`; `settings`:
     /// a dict of top-level fields of the experiments' `Settings` (sim, walker, ...).
     #[new]
+    #[allow(clippy::too_many_arguments)] // one per Python keyword
     #[pyo3(signature = (robot=None, pushes=None, learn=None, max_footsteps=200, reference=0.0, reward=None, settings=None))]
     fn new(
         py: Python<'_>,
