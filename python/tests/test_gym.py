@@ -224,3 +224,4 @@ def test_two_learned_parameters_give_a_2d_action():
     assert len(info["g"]) == 2 and abs(info["applied_offsets"][1]) == 0.02
     same = make(learn="step-x,step-y", max_footsteps=3, pushes="none")
     assert same.action_space == env.action_space
+    check_env(same.unwrapped, skip_render_check=True)
