@@ -27,6 +27,9 @@ Episodes run in threads, one environment each: `step` releases the GIL.
 from __future__ import annotations
 
 import argparse
+import csv
+import os
+import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, List, Optional, Tuple
@@ -54,6 +57,41 @@ def episode(env: steplearn.gym.FootstepEnv, seed: int, policy, learner=None) -> 
         obs = nxt
         if terminated or truncated:
             return total, terminated, steps
+
+
+def pushes_absorbed(env: steplearn.gym.FootstepEnv, seed: int, policy: Policy, k: int) -> int:
+    """How many of the first `k` pushes of `seed` the policy absorbs before its first fall."""
+    obs, _ = env.reset(seed=seed)
+    lo, hi = env.action_space.low[0], env.action_space.high[0]
+    while True:
+        obs, _, terminated, truncated, info = env.step(np.array([float(np.clip(policy(obs), lo, hi))]))
+        delivered = info["pushes_delivered"]
+        if terminated:
+            return min(max(delivered - 1, 0), k)
+        if delivered > k:
+            return k
+        if truncated:
+            raise RuntimeError(f"seed {seed}: {k} pushes need more than max_footsteps footsteps")
+
+
+def paper_learner(seeds: List[int], k: int, out: str) -> dict:
+    """Experiment C through the Rust bench, LWPR + pendulum-cart (the paper's learner, queried
+    every control tick and trained at every touch-down): per seed, the pushes of the first `k`
+    the learned walker and the model absorb before their first fall (its `pushes.csv`)."""
+    bench = (steplearn.Bench(steplearn.Registry.builtin()).approximators(["lwpr"])
+             .rules(["pendulum-cart"]).experiments(["stability"])
+             .first_seed(seeds[0]).seeds(len(seeds)).out(out))
+    bench.run()
+    result = {}
+    for s in seeds:
+        fell = {"model": [], "learned": []}
+        with open(os.path.join(out, f"stability__lwpr__pendulum-cart__s{s}", "pushes.csv")) as f:
+            for row in csv.DictReader(f):
+                if row["controller"] in fell:
+                    fell[row["controller"]].append(row["fell"] == "true")
+        result[s] = {c: next((i for i, x in enumerate(v[:k]) if x), min(k, len(v)))
+                     for c, v in fell.items()}
+    return result
 
 
 def linear(theta: np.ndarray) -> Policy:
@@ -87,6 +125,8 @@ def main(argv: Optional[List[str]] = None) -> None:
     p.add_argument("--max-footsteps", type=int, default=60)
     p.add_argument("--eta", type=float, default=0.2, help="eq. (6) rate of the footstep LWPR (m/rad)")
     p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--compare-pushes", type=int, default=10,
+                   help="compare pushes absorbed of the first K with experiment C's learner (0: skip)")
     p.add_argument("--seed", type=int, default=0, help="the CEM's own sampling seed")
     args = p.parse_args(argv)
     if args.quick:
@@ -145,6 +185,22 @@ def main(argv: Optional[List[str]] = None) -> None:
         rets = [r for r, _, _ in results]
         print(f"{name:<22} mean return {np.mean(rets):9.3f}, falls {sum(f for _, f, _ in results)}"
               f"/{len(results)}, footsteps {sum(n for _, _, n in results)}")
+    # The same pushes, counted as pushes absorbed before the first fall: the CEM policy, the
+    # model in the environment, and experiment C's learned walker and model (the Rust learner).
+    k = args.compare_pushes
+    if k > 0:
+        long_env = steplearn.gym.FootstepEnv(pushes="experiment-c", max_footsteps=40 * k)
+        cem = [pushes_absorbed(long_env, s, linear(mean), k) for s in test]
+        zero = [pushes_absorbed(long_env, s, lambda obs: 0.0, k) for s in test]
+        with tempfile.TemporaryDirectory() as out:
+            c = paper_learner(test, k, out)
+        print(f"\npushes absorbed of the first {k} before the first fall, seeds {test}:")
+        print(f"{'CEM linear (environment)':<34} {cem}  mean {np.mean(cem):.1f}")
+        print(f"{'model (environment, zero actions)':<34} {zero}  mean {np.mean(zero):.1f}")
+        model = [c[s]['model'] for s in test]
+        learned = [c[s]['learned'] for s in test]
+        print(f"{'model (experiment C)':<34} {model}  mean {np.mean(model):.1f}")
+        print(f"{'LWPR + pendulum-cart (experiment C)':<34} {learned}  mean {np.mean(learned):.1f}")
     print(f"\ntotal {time.perf_counter() - t0:.1f} s")
 
 
