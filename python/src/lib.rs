@@ -5,6 +5,7 @@
 //! panic, which the crate never intends) becomes a Python exception.
 
 mod arrays;
+mod bench;
 mod model;
 mod settings;
 
@@ -17,6 +18,7 @@ fn _steplearn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Rbf>()?;
     m.add_class::<model::Grid>()?;
     m.add_class::<model::KernelRidge>()?;
+    bench::add_classes(m)?;
     m.add("MAX_INPUT", steplearn::approx::MAX_INPUT)?;
     m.add("MAX_TARGET", steplearn::approx::MAX_TARGET)?;
     Ok(())
