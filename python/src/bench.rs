@@ -268,7 +268,7 @@ impl Serialize for PyModel {
 /// A bench approximator: a Rust model (from one of the package's classes) or a Python object.
 enum BenchApprox {
     /// One of the crate's approximators, run with no Python call.
-    Native(AnyApproximator),
+    Native(Box<AnyApproximator>),
     /// A Python object with `predict` and `update`.
     Python(PyModel),
 }
@@ -320,7 +320,7 @@ impl Serialize for BenchApprox {
 
 /// Parses the hex of [`PyModel`]'s JSON.
 fn unhex(s: &str) -> Option<Vec<u8>> {
-    if s.len() % 2 != 0 {
+    if !s.len().is_multiple_of(2) {
         return None;
     }
     (0..s.len())
@@ -335,10 +335,13 @@ impl<'de> Deserialize<'de> for BenchApprox {
         let v = serde_json::Value::deserialize(d)?;
         let Some(pickle) = v.get("python_pickle") else {
             return AnyApproximator::deserialize(v)
-                .map(BenchApprox::Native)
+                .map(|a| BenchApprox::Native(Box::new(a)))
                 .map_err(D::Error::custom);
         };
-        let field = |k: &str| v.get(k).ok_or_else(|| D::Error::missing_field("python_pickle"));
+        let field = |k: &str| {
+            v.get(k)
+                .ok_or_else(|| D::Error::custom(format!("missing field {k}")))
+        };
         let bytes = pickle
             .as_str()
             .and_then(unhex)
@@ -419,7 +422,7 @@ fn build_approx(
     )?;
     let obj = factory.bind(py).call1((b,))?;
     if let Some(model) = native(&obj)? {
-        return Ok(BenchApprox::Native(model));
+        return Ok(BenchApprox::Native(Box::new(model)));
     }
     for method in ["predict", "update"] {
         if !obj.getattr(method).is_ok_and(|m| m.is_callable()) {
@@ -496,7 +499,8 @@ impl PyRule {
                     .as_ref()
                     .is_ok_and(|o| o.getattr(k).is_ok_and(|m| m.is_callable()))
             };
-            let (has_reseed, has_explore, has_learn) = (has("reseed"), has("explore"), has("learn"));
+            let (has_reseed, has_explore, has_learn) =
+                (has("reseed"), has("explore"), has("learn"));
             PyRule {
                 obj: built
                     .map(Bound::unbind)
@@ -519,7 +523,9 @@ impl PyRule {
         f: impl FnOnce(&Bound<'_, PyAny>) -> PyResult<T>,
     ) -> T {
         let result = match &self.obj {
-            Ok(obj) => Python::attach(|py| f(obj.bind(py)).map_err(|e| format!("{what} raised {e}"))),
+            Ok(obj) => {
+                Python::attach(|py| f(obj.bind(py)).map_err(|e| format!("{what} raised {e}")))
+            }
             Err(why) => Err(why.clone()),
         };
         result.unwrap_or_else(|message| {
@@ -541,7 +547,8 @@ impl LearningRule for PyRule {
     fn reseed(&mut self, seed: u64) {
         if self.has_reseed {
             self.call("reseed(seed)", (), |o| {
-                o.call_method1(intern!(o.py(), "reseed"), (seed,)).map(|_| ())
+                o.call_method1(intern!(o.py(), "reseed"), (seed,))
+                    .map(|_| ())
             });
         }
     }
@@ -757,10 +764,7 @@ pub(crate) struct PyBench {
 }
 
 /// Applies `f` to the bench's choices and returns the bench (builder style).
-fn choose<'py>(
-    slf: Bound<'py, PyBench>,
-    f: impl FnOnce(&mut Choices),
-) -> Bound<'py, PyBench> {
+fn choose<'py>(slf: Bound<'py, PyBench>, f: impl FnOnce(&mut Choices)) -> Bound<'py, PyBench> {
     f(&mut slf.borrow_mut().choices);
     slf
 }

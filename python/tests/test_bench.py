@@ -274,3 +274,18 @@ def test_two_robots_give_rows_naming_their_robot(tmp_path):
     assert len({r["robot"] for r in rows}) == 2
     assert all((r["approx"], r["rule"]) == ("py-bins", "py-balance") for r in rows)
     assert json.loads((tmp_path / "leaderboard.json").read_text())["robots"]
+
+
+def test_an_approximator_that_does_not_pickle_is_refused_with_the_reason(tmp_path):
+    class Local:  # a local class: pickle cannot name it
+        n_out = 1
+
+        def predict(self, x):
+            return [0.0]
+
+        def update(self, x, y):
+            pass
+
+    reg = steplearn.Registry.builtin().approximator("local", lambda b: Local())
+    with pytest.raises((ValueError, RuntimeError), match="cannot be pickled"):
+        bench(reg, tmp_path, approx=["local"], rules=["pendulum-cart"]).run()
