@@ -11,5 +11,5 @@ trap 'rm -rf "$(dirname "$venv")"' EXIT
 python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet --upgrade pip
 "$venv/bin/pip" install --quiet ./python
-"$venv/bin/pip" install --quiet pytest numpy river
+"$venv/bin/pip" install --quiet pytest numpy river gymnasium
 "$venv/bin/python" -m pytest -q python/tests
