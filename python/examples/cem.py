@@ -2,7 +2,7 @@
 
 Run from the repository root after `pip install ./python` (and `pip install gymnasium`):
 
-    python python/examples/cem.py --quick        # about a minute on two cores
+    python python/examples/cem.py --quick        # about 4 minutes on two cores
     python python/examples/cem.py                # larger population, more seeds and footsteps
 
 A linear policy on the sagittal observation, dF = w . (theta_E, theta_E_dot, F_R, F_E) + b
@@ -18,8 +18,11 @@ on held-out seeds, the same pushes for each, with
   per footstep and trained at each touch-down towards its prediction plus eta G (G = the
   pendulum-cart error of the step, `info["g"]`). This is NOT the Rust learner of the
   experiments (which queries every control tick and has a gain guard, prior, trust region and
-  anti-windup): the environment holds one action per footstep and cannot host that learner
-  (docs/python.md says what is missing).
+  anti-windup): the environment holds one action per footstep and cannot host that learner.
+
+That learner itself is compared on the same pushes through the Rust bench: experiment C on the
+held-out seeds (LWPR + pendulum-cart), counting the pushes each walker absorbs of the first K
+before its first fall (`--compare-pushes K`, 0 to skip).
 
 Episodes run in threads, one environment each: `step` releases the GIL.
 """
@@ -116,7 +119,7 @@ class FootstepLwpr:
 
 def main(argv: Optional[List[str]] = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--quick", action="store_true", help="small run, about a minute")
+    p.add_argument("--quick", action="store_true", help="small run, about 4 minutes")
     p.add_argument("--generations", type=int, default=8)
     p.add_argument("--population", type=int, default=16)
     p.add_argument("--elite", type=float, default=0.25, help="elite share")
