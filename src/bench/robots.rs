@@ -10,7 +10,7 @@
 use super::BenchError;
 use super::leaderboard::{Comparison, Leaderboard, describe_seeds};
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::robot_setup::{robot_summary, use_robot};
+use crate::experiments::robot_setup::{RobotRun, use_robot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Serialize};
@@ -43,19 +43,29 @@ pub struct RobotLeaderboard {
 }
 
 /// The configuration of a run on the robot at `path`: `config` (resolved: every protocol table
-/// in full) with the robot named in its settings and its protocols rewritten for it.
-pub(crate) fn robot_config(path: &Path, config: &ConfigFile) -> Result<ConfigFile, BenchError> {
+/// in full) with the robot named in its settings and its protocols rewritten for it; beside it,
+/// the robot as loaded.
+pub(crate) fn robot_config(
+    path: &Path,
+    config: &ConfigFile,
+) -> Result<(ConfigFile, RobotRun), BenchError> {
     let mut config = config.clone();
     let refused = |source| BenchError::Robot {
         path: path.to_path_buf(),
         source,
     };
-    use_robot(path, None, &mut config.settings, &mut config.protocols).map_err(refused)?;
-    Ok(config)
+    let run =
+        use_robot(path, None, &mut config.settings, &mut config.protocols).map_err(refused)?;
+    Ok((config, run))
 }
 
-/// The column of the robot at `path`, whose runs use `config` ([`robot_config`]).
-pub(crate) fn robot_column(path: &Path, config: &ConfigFile) -> Result<RobotColumn, BenchError> {
+/// The column of the robot at `path`, as [`robot_config`] loaded it (`run`) and named it in
+/// `config`'s settings.
+pub(crate) fn robot_column(
+    path: &Path,
+    run: &RobotRun,
+    config: &ConfigFile,
+) -> Result<RobotColumn, BenchError> {
     let id = path
         .file_name()
         .and_then(|n| n.to_str())
@@ -67,16 +77,24 @@ pub(crate) fn robot_column(path: &Path, config: &ConfigFile) -> Result<RobotColu
                 path.display()
             ))
         })?;
-    let summary = robot_summary(&config.settings).map_err(|source| BenchError::Robot {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let sha256 = config
+        .settings
+        .sim
+        .robot
+        .as_ref()
+        .map(|file| file.sha256.clone())
+        .ok_or_else(|| {
+            BenchError::Selection(format!(
+                "robot {}: not named in the run's settings",
+                path.display()
+            ))
+        })?;
     Ok(RobotColumn {
         id,
         file: path.to_path_buf(),
-        name: summary.name,
-        mass_kg: summary.mass_kg,
-        sha256: summary.sha256,
+        name: run.description.name.clone(),
+        mass_kg: run.description.mass(),
+        sha256,
     })
 }
 

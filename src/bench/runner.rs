@@ -369,7 +369,7 @@ impl<'r> Bench<'r> {
         match self.robots.as_slice() {
             [] => self.run_in(&self.config, &self.out)?.finished(),
             [one] => {
-                let config = robot_config(one, &self.registry.resolve_config(&self.config)?)?;
+                let (config, _) = robot_config(one, &self.registry.resolve_config(&self.config)?)?;
                 self.run_in(&config, &self.out)?.finished()
             }
             many => self.run_robots(many),
@@ -384,8 +384,8 @@ impl<'r> Bench<'r> {
         let mut configs = Vec::new();
         let mut columns = Vec::new();
         for path in paths {
-            let config = robot_config(path, &base)?;
-            columns.push(robot_column(path, &config)?);
+            let (config, run) = robot_config(path, &base)?;
+            columns.push(robot_column(path, &run, &config)?);
             configs.push(config);
         }
         check_distinct(&columns)?;
