@@ -5,7 +5,8 @@
 //! [`PyRule`]; both call the Python object under the GIL from the bench's worker threads. A
 //! factory that returns one of the package's own classes (`steplearn.Lwpr`, ...) gives the
 //! Rust model itself ([`BenchApprox::Native`]), so that it runs with no Python call per tick.
-//! Every exception of a Python callback becomes an error of the run (an [`ApproxError`], or a
+//! Every exception of a Python callback becomes an error of the run (an
+//! [`ApproxError::External`] naming the exception's type and message, or a
 //! NaN gradient that the learner refuses) and is recorded, so that [`PyBench::run`] raises it
 //! with the Python message: nothing is swallowed, nothing panics.
 
@@ -51,11 +52,12 @@ impl Errors {
     }
 }
 
-/// An exception of a Python approximator's `what` as an [`ApproxError`] (recorded too).
+/// An exception of a Python approximator's `what` as an [`ApproxError::External`] that names
+/// the exception's type and message (recorded too).
 fn approx_error(errors: &Errors, name: &str, what: &str, e: impl std::fmt::Display) -> ApproxError {
     let reason = format!("{name:?}: {what} raised {e}");
     errors.record(format!("approximator {reason}"));
-    ApproxError::config("Python approximator", reason)
+    ApproxError::External(reason)
 }
 
 /// The input box an approximator factory receives: the learner's inputs (theta_E,
@@ -634,8 +636,9 @@ impl PyRegistry {
             let mut r = slf.borrow_mut();
             let (errors, label): (Errors, Arc<str>) = (r.errors.clone(), name.into());
             let build = move |b: &InputBox| -> Result<BenchApprox, ApproxError> {
-                Python::attach(|py| build_approx(py, &factory, b, &label, &errors))
-                    .map_err(|e| ApproxError::config("Python approximator factory", e.to_string()))
+                Python::attach(|py| build_approx(py, &factory, b, &label, &errors)).map_err(|e| {
+                    ApproxError::External(format!("{label:?}: the factory raised {e}"))
+                })
             };
             r.inner = checked(r.inner.clone().approximator(name, build))?;
         }

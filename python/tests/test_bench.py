@@ -250,6 +250,40 @@ def test_a_raising_python_model_fails_its_runs_with_the_python_message(tmp_path,
     assert "ZeroDivisionError" in str(e.value)
 
 
+@pytest.mark.parametrize("method", ["predict", "update"])
+def test_a_python_model_error_names_the_exception_not_a_configuration(tmp_path, method):
+    reg = steplearn.Registry.builtin().approximator("raises", lambda b: Raises(method))
+    with pytest.raises(RuntimeError) as e:
+        bench(reg, tmp_path, approx=["raises"], rules=["pendulum-cart"]).run()
+    message = str(e.value)
+    assert f"ZeroDivisionError: {method} went wrong" in message
+    assert "the user's approximator failed" in message
+    assert "invalid configuration" not in message
+
+
+def test_a_raising_factory_names_the_exception_not_a_configuration(tmp_path):
+    def factory(b):
+        raise ZeroDivisionError("no model today")
+
+    reg = steplearn.Registry.builtin().approximator("broken", factory)
+    with pytest.raises(ValueError) as e:
+        bench(reg, tmp_path, approx=["broken"], rules=["pendulum-cart"]).run()
+    assert "ZeroDivisionError: no model today" in str(e.value)
+    assert "invalid configuration" not in str(e.value)
+
+
+def test_a_python_rule_error_names_the_exception_not_a_configuration(tmp_path):
+    class Bad:
+        def gradient(self, outcome):
+            raise KeyError("no gradient")
+
+    reg = steplearn.Registry.builtin().rule("bad-rule", Bad)
+    with pytest.raises(RuntimeError) as e:
+        bench(reg, tmp_path, approx=["lwpr"], rules=["bad-rule"]).run()
+    assert "KeyError: 'no gradient'" in str(e.value)
+    assert "invalid configuration" not in str(e.value)
+
+
 def test_a_raising_python_rule_fails_its_runs_with_the_python_message(tmp_path):
     class Bad:
         gain = 1.0
