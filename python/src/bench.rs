@@ -29,6 +29,7 @@ use steplearn::approx::{
 };
 use steplearn::bench::{Bench, BenchError, Registry};
 use steplearn::control::step_parameter::LearnSet;
+use steplearn::experiments::sweep::{Shard, SweepError};
 use steplearn::rules::{LearningRule, StepOutcome};
 
 /// The most Python errors a registry keeps for one run (the first ones, without repeats).
@@ -716,6 +717,7 @@ struct Choices {
     threads: Option<usize>,
     baseline: Option<(String, String)>,
     robots: Vec<PathBuf>,
+    shard: Option<Shard>,
 }
 
 impl Choices {
@@ -753,6 +755,9 @@ impl Choices {
         }
         if !self.robots.is_empty() {
             b = b.robots(&self.robots);
+        }
+        if let Some(s) = self.shard {
+            b = b.shard(s);
         }
         b
     }
@@ -836,6 +841,20 @@ impl PyBench {
     /// The combination every other is compared with.
     fn baseline<'py>(slf: Bound<'py, Self>, approx: String, rule: String) -> Bound<'py, Self> {
         choose(slf, |c| c.baseline = Some((approx, rule)))
+    }
+
+    /// Runs only shard `index` of `count` of the grid of runs (0-based; the leaderboard covers
+    /// every finished run of the selection). `ValueError` unless `count >= 1` and
+    /// `index < count`.
+    fn shard(slf: Bound<'_, Self>, index: usize, count: usize) -> PyResult<Bound<'_, Self>> {
+        let shard = Shard::new(index, count).map_err(|e| {
+            let reason = match e {
+                SweepError::InvalidShard { reason, .. } => reason,
+                other => other.to_string(),
+            };
+            PyValueError::new_err(format!("shard(index={index}, count={count}): {reason}"))
+        })?;
+        Ok(choose(slf, |c| c.shard = Some(shard)))
     }
 
     /// The robots to run on, from URDF files; with several, every row names its robot.

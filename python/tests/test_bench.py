@@ -148,6 +148,20 @@ def test_a_second_run_resumes_to_the_same_rows_without_calling_python(ran):
     assert CALLS["update"] == 0 and CALLS["predict"] == 0
 
 
+def test_two_shards_together_give_the_rows_of_an_unsharded_run(ran, tmp_path):
+    _, rows, _ = ran
+    first = bench(registry(), tmp_path).shard(0, 2).run()
+    assert first != rows  # only the first shard's runs are finished
+    both = bench(registry(), tmp_path).shard(1, 2).run()
+    assert both == rows
+
+
+@pytest.mark.parametrize("index, count", [(2, 2), (3, 2), (0, 0)])
+def test_a_bad_shard_is_a_value_error(tmp_path, index, count):
+    with pytest.raises(ValueError, match=rf"shard\(index={index}, count={count}\)"):
+        bench(registry(), tmp_path).shard(index, count)
+
+
 def test_a_changed_parameter_under_the_same_name_is_refused_as_in_rust(ran):
     # The identity of a Python approximator is its name and its fresh model's pickle, of a
     # rule its gradients on fixed outcomes: finished runs of another parameter are refused.
