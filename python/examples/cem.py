@@ -2,7 +2,7 @@
 
 Run from the repository root after `pip install ./python` (and `pip install gymnasium`):
 
-    python python/examples/cem.py --quick        # about 4 minutes on two cores
+    python python/examples/cem.py --quick        # about 6 minutes on two cores (5 min 48 s measured)
     python python/examples/cem.py                # larger population, more seeds and footsteps
 
 A linear policy on the sagittal observation, dF = w . (theta_E, theta_E_dot, F_R, F_E) + b
@@ -119,7 +119,7 @@ class FootstepLwpr:
 
 def main(argv: Optional[List[str]] = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--quick", action="store_true", help="small run, about 4 minutes")
+    p.add_argument("--quick", action="store_true", help="small run, about 6 minutes on two cores")
     p.add_argument("--generations", type=int, default=8)
     p.add_argument("--population", type=int, default=16)
     p.add_argument("--elite", type=float, default=0.25, help="elite share")

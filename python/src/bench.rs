@@ -5,7 +5,8 @@
 //! [`PyRule`]; both call the Python object under the GIL from the bench's worker threads. A
 //! factory that returns one of the package's own classes (`steplearn.Lwpr`, ...) gives the
 //! Rust model itself ([`BenchApprox::Native`]), so that it runs with no Python call per tick.
-//! Every exception of a Python callback becomes an error of the run (an [`ApproxError`], or a
+//! Every exception of a Python callback becomes an error of the run (an
+//! [`ApproxError::External`] naming the exception's type and message, or a
 //! NaN gradient that the learner refuses) and is recorded, so that [`PyBench::run`] raises it
 //! with the Python message: nothing is swallowed, nothing panics.
 
@@ -28,6 +29,7 @@ use steplearn::approx::{
 };
 use steplearn::bench::{Bench, BenchError, Registry};
 use steplearn::control::step_parameter::LearnSet;
+use steplearn::experiments::sweep::{Shard, SweepError};
 use steplearn::rules::{LearningRule, StepOutcome};
 
 /// The most Python errors a registry keeps for one run (the first ones, without repeats).
@@ -51,11 +53,12 @@ impl Errors {
     }
 }
 
-/// An exception of a Python approximator's `what` as an [`ApproxError`] (recorded too).
+/// An exception of a Python approximator's `what` as an [`ApproxError::External`] that names
+/// the exception's type and message (recorded too).
 fn approx_error(errors: &Errors, name: &str, what: &str, e: impl std::fmt::Display) -> ApproxError {
     let reason = format!("{name:?}: {what} raised {e}");
     errors.record(format!("approximator {reason}"));
-    ApproxError::config("Python approximator", reason)
+    ApproxError::External(reason)
 }
 
 /// The input box an approximator factory receives: the learner's inputs (theta_E,
@@ -634,8 +637,9 @@ impl PyRegistry {
             let mut r = slf.borrow_mut();
             let (errors, label): (Errors, Arc<str>) = (r.errors.clone(), name.into());
             let build = move |b: &InputBox| -> Result<BenchApprox, ApproxError> {
-                Python::attach(|py| build_approx(py, &factory, b, &label, &errors))
-                    .map_err(|e| ApproxError::config("Python approximator factory", e.to_string()))
+                Python::attach(|py| build_approx(py, &factory, b, &label, &errors)).map_err(|e| {
+                    ApproxError::External(format!("{label:?}: the factory raised {e}"))
+                })
             };
             r.inner = checked(r.inner.clone().approximator(name, build))?;
         }
@@ -713,6 +717,7 @@ struct Choices {
     threads: Option<usize>,
     baseline: Option<(String, String)>,
     robots: Vec<PathBuf>,
+    shard: Option<Shard>,
 }
 
 impl Choices {
@@ -750,6 +755,9 @@ impl Choices {
         }
         if !self.robots.is_empty() {
             b = b.robots(&self.robots);
+        }
+        if let Some(s) = self.shard {
+            b = b.shard(s);
         }
         b
     }
@@ -833,6 +841,20 @@ impl PyBench {
     /// The combination every other is compared with.
     fn baseline<'py>(slf: Bound<'py, Self>, approx: String, rule: String) -> Bound<'py, Self> {
         choose(slf, |c| c.baseline = Some((approx, rule)))
+    }
+
+    /// Runs only shard `index` of `count` of the grid of runs (0-based; the leaderboard covers
+    /// every finished run of the selection). `ValueError` unless `count >= 1` and
+    /// `index < count`.
+    fn shard(slf: Bound<'_, Self>, index: usize, count: usize) -> PyResult<Bound<'_, Self>> {
+        let shard = Shard::new(index, count).map_err(|e| {
+            let reason = match e {
+                SweepError::InvalidShard { reason, .. } => reason,
+                other => other.to_string(),
+            };
+            PyValueError::new_err(format!("shard(index={index}, count={count}): {reason}"))
+        })?;
+        Ok(choose(slf, |c| c.shard = Some(shard)))
     }
 
     /// The robots to run on, from URDF files; with several, every row names its robot.

@@ -148,6 +148,20 @@ def test_a_second_run_resumes_to_the_same_rows_without_calling_python(ran):
     assert CALLS["update"] == 0 and CALLS["predict"] == 0
 
 
+def test_two_shards_together_give_the_rows_of_an_unsharded_run(ran, tmp_path):
+    _, rows, _ = ran
+    first = bench(registry(), tmp_path).shard(0, 2).run()
+    assert first != rows  # only the first shard's runs are finished
+    both = bench(registry(), tmp_path).shard(1, 2).run()
+    assert both == rows
+
+
+@pytest.mark.parametrize("index, count", [(2, 2), (3, 2), (0, 0)])
+def test_a_bad_shard_is_a_value_error(tmp_path, index, count):
+    with pytest.raises(ValueError, match=rf"shard\(index={index}, count={count}\)"):
+        bench(registry(), tmp_path).shard(index, count)
+
+
 def test_a_changed_parameter_under_the_same_name_is_refused_as_in_rust(ran):
     # The identity of a Python approximator is its name and its fresh model's pickle, of a
     # rule its gradients on fixed outcomes: finished runs of another parameter are refused.
@@ -248,6 +262,40 @@ def test_a_raising_python_model_fails_its_runs_with_the_python_message(tmp_path,
     with pytest.raises(RuntimeError, match=f"{method} went wrong") as e:
         bench(reg, tmp_path, approx=["raises"], rules=["pendulum-cart"]).run()
     assert "ZeroDivisionError" in str(e.value)
+
+
+@pytest.mark.parametrize("method", ["predict", "update"])
+def test_a_python_model_error_names_the_exception_not_a_configuration(tmp_path, method):
+    reg = steplearn.Registry.builtin().approximator("raises", lambda b: Raises(method))
+    with pytest.raises(RuntimeError) as e:
+        bench(reg, tmp_path, approx=["raises"], rules=["pendulum-cart"]).run()
+    message = str(e.value)
+    assert f"ZeroDivisionError: {method} went wrong" in message
+    assert "the user's approximator failed" in message
+    assert "invalid configuration" not in message
+
+
+def test_a_raising_factory_names_the_exception_not_a_configuration(tmp_path):
+    def factory(b):
+        raise ZeroDivisionError("no model today")
+
+    reg = steplearn.Registry.builtin().approximator("broken", factory)
+    with pytest.raises(ValueError) as e:
+        bench(reg, tmp_path, approx=["broken"], rules=["pendulum-cart"]).run()
+    assert "ZeroDivisionError: no model today" in str(e.value)
+    assert "invalid configuration" not in str(e.value)
+
+
+def test_a_python_rule_error_names_the_exception_not_a_configuration(tmp_path):
+    class Bad:
+        def gradient(self, outcome):
+            raise KeyError("no gradient")
+
+    reg = steplearn.Registry.builtin().rule("bad-rule", Bad)
+    with pytest.raises(RuntimeError) as e:
+        bench(reg, tmp_path, approx=["lwpr"], rules=["bad-rule"]).run()
+    assert "KeyError: 'no gradient'" in str(e.value)
+    assert "invalid configuration" not in str(e.value)
 
 
 def test_a_raising_python_rule_fails_its_runs_with_the_python_message(tmp_path):

@@ -52,6 +52,10 @@ pub enum ApproxError {
     /// A saved model could not be read back or violates the model's invariants.
     #[error("corrupt or incompatible saved model: {0}")]
     Corrupt(String),
+    /// An approximator supplied by the user (e.g. a Python object run through the bench) failed;
+    /// the message names its original error.
+    #[error("the user's approximator failed: {0}")]
+    External(String),
     /// Reading or writing a model file failed.
     #[error("i/o error: {0}")]
     Io(#[from] std::io::Error),
