@@ -321,7 +321,7 @@ impl Registry {
         Ok(RegisteredComponents {
             approx: find("approximator", &self.approximators, approx)?.clone(),
             rule: find("rule", &self.rules, rule)?.clone(),
-            lwpr: *lwpr,
+            lwpr: lwpr.clone(),
         })
     }
 

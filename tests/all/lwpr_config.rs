@@ -108,6 +108,23 @@ fn out_of_range_values_are_refused_naming_the_key() {
         ("init_alpha = nan", "settings.lwpr.init_alpha", "NaN"),
         ("cutoff = 1.0", "settings.lwpr.cutoff", "[0, 1)"),
         ("kernel = \"box\"", "settings.lwpr.kernel", "box"),
+        // Fields that follow from the input box are not keys; init_d is one number.
+        ("n_in = 3", "settings.lwpr.n_in", "unknown field `n_in`"),
+        (
+            "norm_in = [1.0, 1.0, 1.0]",
+            "settings.lwpr.norm_in",
+            "unknown field",
+        ),
+        (
+            "init_d = \"wide\"",
+            "settings.lwpr.init_d",
+            "must be a number",
+        ),
+        (
+            "norm_out = [2.0]",
+            "settings.lwpr.norm_out",
+            "must be a number",
+        ),
         (
             "max_rf = 3",
             "settings.lwpr.max_rf",
@@ -133,7 +150,7 @@ fn without_the_table_the_settings_are_the_builtin_ones_and_stay_unwritten() {
     assert!(settings.lwpr.is_default());
     assert_eq!(settings.lwpr, LwprSettings::default());
     assert_eq!(
-        settings.lwpr.config(&bounds),
+        settings.lwpr.config(&bounds).unwrap(),
         ApproxKind::lwpr_config(&bounds)
     );
     // Bit for bit the approximator the built-in `lwpr` factory builds.

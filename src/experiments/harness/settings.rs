@@ -1,6 +1,6 @@
 //! Settings shared by every experiment: the robot, the walker, the learner, and how long to run.
 
-use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Kernel, Lwpr, LwprConfig};
+use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Lwpr, LwprConfig};
 use crate::config::{self, ConfigError};
 use crate::control::learner::{InputGrid, LearnerConfig, LearnerError};
 use crate::control::walker::{FootstepPolicy, WalkerConfig, WalkerMode};
@@ -40,110 +40,74 @@ pub struct Settings {
 }
 
 /// `[settings.lwpr]`: the settings of the built-in `lwpr` approximator, each key one
-/// [`LwprConfig`] field (same name, same meaning and range). A key left out keeps the built-in
-/// value ([`ApproxKind::lwpr_config`]). `n_in`, `n_out` and `norm_in` are not keys: they follow
-/// from the learner's input box (`norm_in` is its half-widths); `init_d` is the spherical
-/// initial metric `init_d * I` and `norm_out` one factor for every output.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct LwprSettings {
-    /// See [`LwprConfig::init_d`] (spherical; built-in 10).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub init_d: Option<f64>,
-    /// See [`LwprConfig::init_alpha`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub init_alpha: Option<f64>,
-    /// See [`LwprConfig::w_gen`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub w_gen: Option<f64>,
-    /// See [`LwprConfig::w_prune`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub w_prune: Option<f64>,
-    /// See [`LwprConfig::meta`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub meta: Option<bool>,
-    /// See [`LwprConfig::meta_rate`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub meta_rate: Option<f64>,
-    /// See [`LwprConfig::penalty`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub penalty: Option<f64>,
-    /// See [`LwprConfig::diag_only`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub diag_only: Option<bool>,
-    /// See [`LwprConfig::update_d`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub update_d: Option<bool>,
-    /// See [`LwprConfig::init_lambda`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub init_lambda: Option<f64>,
-    /// See [`LwprConfig::final_lambda`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub final_lambda: Option<f64>,
-    /// See [`LwprConfig::tau_lambda`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub tau_lambda: Option<f64>,
-    /// See [`LwprConfig::init_s2`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub init_s2: Option<f64>,
-    /// See [`LwprConfig::add_threshold`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub add_threshold: Option<f64>,
-    /// See [`LwprConfig::kernel`] (`"Gaussian"` or `"BiSquare"`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub kernel: Option<Kernel>,
-    /// See [`LwprConfig::norm_out`] (one factor for every output).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub norm_out: Option<f64>,
-    /// See [`LwprConfig::cutoff`].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub cutoff: Option<f64>,
-    /// See [`LwprConfig::max_rfs`]: at most this many receptive fields per output (an integer
-    /// >= 1; absent: unbounded).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_rfs: Option<usize>,
-}
+/// [`LwprConfig`] field (same name, same meaning and range), read through `LwprConfig`'s own
+/// serde over the built-in values ([`ApproxKind::lwpr_config`]); a key left out keeps the
+/// built-in value. `n_in`, `n_out` and `norm_in` are not keys: they follow from the learner's
+/// input box (`norm_in` is its half-widths); `init_d` is a number, the spherical initial metric
+/// `init_d * I`, and `norm_out` one factor for every output.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct LwprSettings(toml::Table);
+
+/// `LwprConfig` fields that follow from the input box.
+const DERIVED: [&str; 3] = ["n_in", "n_out", "norm_in"];
 
 impl LwprSettings {
     /// Whether no key is set (the built-in settings).
     pub fn is_default(&self) -> bool {
-        *self == Self::default()
+        self.0.is_empty()
     }
 
     /// The built-in LWPR's settings over `bounds` ([`ApproxKind::lwpr_config`]) with these
-    /// keys applied.
-    pub fn config(&self, bounds: &InputBox) -> LwprConfig {
-        let mut c = ApproxKind::lwpr_config(bounds);
-        if let Some(v) = self.init_d {
-            c = c.init_d(v);
+    /// keys applied; the error names the key (`max_rfs: invalid type ...`).
+    pub fn config(&self, bounds: &InputBox) -> Result<LwprConfig, ConfigError> {
+        let base = ApproxKind::lwpr_config(bounds);
+        let internal = |e: &dyn std::fmt::Display| ConfigError::new("", e.to_string());
+        let mut table = toml::Table::try_from(&base).map_err(|e| internal(&e))?;
+        let mut keys: Vec<String> = table
+            .keys()
+            .filter(|k| !DERIVED.contains(&k.as_str()))
+            .cloned()
+            .collect();
+        if !keys.iter().any(|k| k == "max_rfs") {
+            keys.push("max_rfs".into());
         }
-        let set = |field: &mut f64, v: Option<f64>| *field = v.unwrap_or(*field);
-        set(&mut c.init_alpha, self.init_alpha);
-        set(&mut c.w_gen, self.w_gen);
-        set(&mut c.w_prune, self.w_prune);
-        set(&mut c.meta_rate, self.meta_rate);
-        set(&mut c.penalty, self.penalty);
-        set(&mut c.init_lambda, self.init_lambda);
-        set(&mut c.final_lambda, self.final_lambda);
-        set(&mut c.tau_lambda, self.tau_lambda);
-        set(&mut c.init_s2, self.init_s2);
-        set(&mut c.add_threshold, self.add_threshold);
-        set(&mut c.cutoff, self.cutoff);
-        c.meta = self.meta.unwrap_or(c.meta);
-        c.diag_only = self.diag_only.unwrap_or(c.diag_only);
-        c.update_d = self.update_d.unwrap_or(c.update_d);
-        c.kernel = self.kernel.unwrap_or(c.kernel);
-        if let Some(v) = self.norm_out {
-            c.norm_out = vec![v; c.n_out];
+        for (key, value) in &self.0 {
+            if !keys.contains(key) {
+                return Err(ConfigError::new(
+                    key.as_str(),
+                    format!("unknown field `{key}`, expected one of {}", keys.join(", ")),
+                ));
+            }
+            let number = || match value {
+                toml::Value::Float(v) => Ok(*v),
+                toml::Value::Integer(v) => Ok(*v as f64),
+                other => Err(ConfigError::new(
+                    key.as_str(),
+                    format!("must be a number, got {other}"),
+                )),
+            };
+            let value = match key.as_str() {
+                "init_d" => toml::Value::try_from(base.clone().init_d(number()?).init_d)
+                    .map_err(|e| internal(&e))?,
+                "norm_out" => {
+                    toml::Value::try_from(vec![number()?; base.n_out]).map_err(|e| internal(&e))?
+                }
+                _ => value.clone(),
+            };
+            table.insert(key.clone(), value);
         }
-        c.max_rfs = self.max_rfs.or(c.max_rfs);
-        c
+        serde_path_to_error::deserialize(toml::Value::Table(table))
+            .map_err(|e| ConfigError::new(e.path().to_string(), e.inner().to_string()))
     }
 
     /// A fresh, untrained built-in LWPR over `bounds` with these settings (what the built-in
     /// `lwpr` factory builds when the settings are given to it).
     pub fn build(&self, bounds: &InputBox) -> Result<AnyApproximator, ApproxError> {
-        Lwpr::new(self.config(bounds)).map(AnyApproximator::Lwpr)
+        let config = self
+            .config(bounds)
+            .map_err(|e| ApproxError::config("settings.lwpr", e.to_string()))?;
+        Lwpr::new(config).map(AnyApproximator::Lwpr)
     }
 
     /// Checks every key as [`Lwpr::new`] does, over the learner's input box; the error names
@@ -152,10 +116,12 @@ impl LwprSettings {
         let bounds = InputGrid::default()
             .input_box()
             .map_err(|e| ConfigError::new("", e.to_string()))?;
-        self.build(&bounds).map(drop).map_err(|e| match e {
-            ApproxError::InvalidConfig { param, reason } => ConfigError::new(param, reason),
-            other => ConfigError::new("", other.to_string()),
-        })
+        Lwpr::new(self.config(&bounds)?)
+            .map(drop)
+            .map_err(|e| match e {
+                ApproxError::InvalidConfig { param, reason } => ConfigError::new(param, reason),
+                other => ConfigError::new("", other.to_string()),
+            })
     }
 }
 
