@@ -843,7 +843,9 @@ fn config(registry: &Registry, check: Option<PathBuf>, table: bool) -> Result<()
     match check {
         None => print!(
             "{}",
-            ConfigFile::default_toml_for(registry.experiments()).map_err(|e| e.to_string())?
+            crate::experiments::config_keys::with_absent_keys(
+                &ConfigFile::default_toml_for(registry.experiments()).map_err(|e| e.to_string())?
+            )
         ),
         Some(path) => {
             ConfigFile::load_for(&path, registry.experiments()).map_err(|e| e.to_string())?;

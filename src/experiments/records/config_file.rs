@@ -58,19 +58,6 @@ pub struct ConfigFile {
     pub protocols: ProtocolTables,
 }
 
-/// Keys that are unset by default and so absent from [`ConfigFile::default_toml`]'s tables;
-/// listed there as comments: (table header, line).
-const OPTIONAL_KEYS: &[(&str, &str)] = &[
-    (
-        "[settings.learner]",
-        "# max_offset = 0.1  # optional: clamp of the learned offset (m); unset by default (no clamp)",
-    ),
-    (
-        "[settings.learner]",
-        "# offset_range = [-0.1, 0.0]  # optional: range of the learned offset, lo <= 0 <= hi; unset by default",
-    ),
-];
-
 impl ConfigFile {
     /// Parses TOML text (not yet validated: see [`ConfigFile::parse_toml`]). A parse error's
     /// `field` is the path of the table or key where it happened (empty at the top).
@@ -180,7 +167,8 @@ impl ConfigFile {
     }
 
     /// The complete default configuration of the built-in experiments as TOML: every section
-    /// and key with its default value, optional keys that are unset by default as comments.
+    /// and key with its default value (`steplearn config` adds the keys unset by default as
+    /// comments, [`with_absent_keys`](crate::experiments::config_keys::with_absent_keys)).
     /// Parsing it gives the defaults.
     pub fn default_toml() -> String {
         Self::default_toml_for(&suite::builtin()).expect("the built-in defaults are valid")
@@ -195,16 +183,7 @@ impl ConfigFile {
              # Use with `--config FILE`; any key or section may be left out (it keeps its\n\
              # default), unknown keys are errors. Check a file with `steplearn config --check FILE`.\n\n",
         );
-        for line in body.lines() {
-            out.push_str(line);
-            out.push('\n');
-            for (header, extra) in OPTIONAL_KEYS {
-                if line == *header {
-                    out.push_str(extra);
-                    out.push('\n');
-                }
-            }
-        }
+        out.push_str(&body);
         Ok(out)
     }
 }

@@ -700,6 +700,28 @@ pub const ABSENT: &[KeyDoc] = &[
     ),
 ];
 
+/// `toml`, a config as [`ConfigFile::default_toml_for`] writes it, with each [`ABSENT`] key
+/// listed as a comment under its table: what `steplearn config` prints.
+pub fn with_absent_keys(toml: &str) -> String {
+    let mut out = String::new();
+    for line in toml.lines() {
+        out.push_str(line);
+        out.push('\n');
+        for doc in ABSENT.iter().filter(|d| !d.key.contains('<')) {
+            let Some((table, name)) = doc.key.rsplit_once('.') else {
+                continue;
+            };
+            if line == format!("[{table}]") {
+                out.push_str(&format!(
+                    "# {name}: optional, unset by default ({}): {}\n",
+                    doc.range, doc.meaning
+                ));
+            }
+        }
+    }
+    out
+}
+
 /// Every key a TOML document holds, as [`KeyDoc::key`] writes them.
 pub fn keys_of(value: &toml::Value) -> Vec<(String, toml::Value)> {
     fn walk(v: &toml::Value, path: &str, out: &mut Vec<(String, toml::Value)>) {
@@ -764,6 +786,32 @@ pub fn key_table() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_absent_key_of_a_printed_table_is_listed_once_under_it() {
+        let printed = with_absent_keys(&ConfigFile::default_toml());
+        // Still the defaults when parsed: the added lines are comments.
+        assert_eq!(
+            ConfigFile::parse_toml(&printed).unwrap(),
+            ConfigFile::parse_toml(&ConfigFile::default_toml()).unwrap()
+        );
+        for doc in ABSENT.iter().filter(|d| !d.key.contains('<')) {
+            let (table, name) = doc.key.rsplit_once('.').unwrap();
+            let header = format!("[{table}]");
+            if !printed.lines().any(|l| l == header) {
+                continue;
+            }
+            let comment = format!("# {name}: optional");
+            let lines: Vec<&str> = printed.lines().collect();
+            let at: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with(&comment))
+                .collect();
+            assert_eq!(at.len(), 1, "{}", doc.key);
+            let above = lines[..at[0]].iter().rev().find(|l| l.starts_with('['));
+            assert_eq!(above, Some(&header.as_str()), "{}", doc.key);
+            assert!(lines[at[0]].contains(doc.meaning), "{}", doc.key);
+        }
+    }
 
     /// The table names exactly the keys the default config holds, and after them only keys
     /// absent from it.
