@@ -1,22 +1,24 @@
-//! The experiments, generic over approximator and learning rule, in three parts: the
-//! [`harness`] every experiment shares, the [`records`] and reports of runs, and the
-//! experiments themselves, one file each in [`suite`], which also holds the paper's
-//! reproduction (its claims and its ablation table, [`suite::reproduction`]); [`experiment`] is
-//! the contract between them (the [`Experiment`] trait and the [`RunContext`] that builds a
-//! run's learners).
+//! The experiments, generic over approximator and learning rule. Each module here is one
+//! concept at one path: the harness every experiment shares ([`settings`], [`trial`],
+//! [`schedule`], [`protocol`], ...), the records and reports of runs ([`summary`],
+//! [`config_file`], [`sweep`], [`paired`], ...), the experiments themselves, one file each
+//! ([`tracking`], [`disturbance`], [`stability`], [`robustness`], [`omnidirectional`]), collected
+//! by [`paper`], [`beyond`] and [`builtin`], and the paper's reproduction ([`reproduce`],
+//! [`claims_table`], [`ablation`]). [`experiment`] is the contract between them (the
+//! [`Experiment`] trait and the [`RunContext`] that builds a run's learners).
 
 pub mod experiment;
-pub mod harness;
-pub mod records;
-pub mod suite;
+pub(crate) mod harness;
+pub(crate) mod records;
+pub(crate) mod suite;
 
-// Every module at its path of old, so that `steplearn::experiments::trial` and the like stay.
 pub use harness::{
     aligned, catch_step, compare, fall_causes, footstep_env, protocol, replay_plan, robot_setup,
     schedule, settings, trial,
 };
 pub use records::{claim, config_file, config_keys, index_page, paired, summary, sweep};
-pub use suite::reproduction::{ablation, reproduce};
+pub use suite::reproduction::{ablation, claims_table, reproduce};
+pub use suite::{beyond, builtin, paper};
 pub use suite::{disturbance, omnidirectional, robustness, stability, tracking};
 
 pub(crate) use harness::push_options;

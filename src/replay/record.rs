@@ -3,7 +3,7 @@
 //!
 //! [`Recorder`] is an [`Observer`] of [`run_trial`](crate::experiments::trial::run_trial): the
 //! replay re-runs the experiment's own trial with it attached, so what it records is what the
-//! trial produced. Every number is rounded to [`DECIMALS`] decimals when it is recorded, so the
+//! trial produced. Every number is rounded to [`DECIMALS`](crate::experiments::replay_plan::DECIMALS) decimals when it is recorded, so the
 //! JSON a page embeds parses back to exactly the recorded values.
 
 use crate::control::step_parameter::StepParameter;
@@ -14,7 +14,7 @@ use crate::robot::description::{Description, Geometry};
 use crate::sim::GroundTruth;
 use serde::{Deserialize, Serialize};
 
-pub use crate::experiments::harness::replay_plan::{DECIMALS, round};
+pub(crate) use crate::experiments::replay_plan::round;
 
 fn round3(p: [f64; 3]) -> [f64; 3] {
     p.map(round)

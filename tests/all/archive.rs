@@ -6,10 +6,10 @@
 
 use std::path::{Path, PathBuf};
 use steplearn::bench::Registry;
+use steplearn::experiments::claims_table::{claims_table, robots_table};
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::config_keys::key_table;
 use steplearn::experiments::reproduce::Claims;
-use steplearn::experiments::suite::reproduction::claims_table::{claims_table, robots_table};
 use steplearn::experiments::summary::Summary;
 use steplearn::experiments::sweep::RunSpec;
 

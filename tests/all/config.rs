@@ -281,7 +281,7 @@ fn printed_defaults_round_trip_through_check_and_parse_to_the_defaults() {
         p.get::<RobustnessProtocol>("robustness"),
         Ok(RobustnessProtocol::default())
     );
-    let defaults = ConfigFile::default().resolved_for(&steplearn::experiments::suite::builtin());
+    let defaults = ConfigFile::default().resolved_for(&steplearn::experiments::builtin());
     assert_eq!(Ok(parsed), defaults);
     let (ok, out, err) = check(&text);
     assert!(ok, "{err}");
