@@ -3,7 +3,8 @@
 //!
 //! [`Recorder`] is an [`Observer`] of [`run_trial`](crate::experiments::trial::run_trial): the
 //! replay re-runs the experiment's own trial with it attached, so what it records is what the
-//! trial produced. Every number is rounded to [`DECIMALS`](crate::experiments::replay_plan::DECIMALS) decimals when it is recorded, so the
+//! trial produced. Every number is rounded to
+//! [`DECIMALS`](crate::experiments::replay_plan::DECIMALS) decimals when it is recorded, so the
 //! JSON a page embeds parses back to exactly the recorded values.
 
 use crate::control::step_parameter::StepParameter;
