@@ -39,9 +39,20 @@ fn read(path: &Path) -> Result<Vec<u8>, RobotError> {
     })
 }
 
+/// `path` relative to the current directory where it lies inside it, otherwise as given.
+fn relative_to_current_dir(path: &Path) -> PathBuf {
+    std::env::current_dir()
+        .ok()
+        .and_then(|dir| path.strip_prefix(dir).ok())
+        .filter(|rel| !rel.as_os_str().is_empty())
+        .map_or_else(|| path.to_path_buf(), Path::to_path_buf)
+}
+
 impl RobotFile {
     /// Names `path` with the hash of what it holds now, after checking that it loads (its
-    /// legs ending at `feet` where given) and stands in `stance`.
+    /// legs ending at `feet` where given) and stands in `stance`. A path inside the current
+    /// directory is kept relative to it, so that a run configured from a checkout's root names
+    /// the same file in every clone.
     pub fn open(
         path: &Path,
         feet: Option<&Feet>,
@@ -50,7 +61,7 @@ impl RobotFile {
     ) -> Result<(Self, Description), RobotError> {
         let bytes = read(path)?;
         let file = RobotFile {
-            path: path.to_path_buf(),
+            path: relative_to_current_dir(path),
             sha256: sha256_hex(&bytes),
             feet: feet.cloned(),
         };

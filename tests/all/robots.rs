@@ -272,6 +272,53 @@ fn a_changed_robot_file_is_never_answered_with_old_results() {
 }
 
 #[test]
+fn a_robot_inside_the_working_directory_is_named_relative_to_it() {
+    // The same file named by its absolute path and by its path relative to the working
+    // directory is the same run: the second command reuses the first's.
+    let dir = temp("relative");
+    std::fs::copy(
+        root().join("tests/robots/minimal.urdf"),
+        dir.join("robot.urdf"),
+    )
+    .unwrap();
+    let run = |robot: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_steplearn"))
+            .current_dir(&dir)
+            .args([
+                "experiment",
+                "stability",
+                "--pushes",
+                "1",
+                "--out",
+                "run",
+                "--robot",
+            ])
+            .arg(robot)
+            .output()
+            .unwrap()
+    };
+    let first = run(&dir.join("robot.urdf"));
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let config = std::fs::read_to_string(dir.join("run/run-config.toml")).unwrap();
+    assert!(
+        config.contains("path = \"robot.urdf\""),
+        "the absolute path was stored: {config}"
+    );
+    let second = run(Path::new("robot.urdf"));
+    let stderr = String::from_utf8_lossy(&second.stderr);
+    assert!(second.status.success(), "{stderr}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("run/run-config.toml")).unwrap(),
+        config
+    );
+    assert!(stderr.contains("finished earlier: reused"), "{stderr}");
+}
+
+#[test]
 fn the_shipped_paper_robot_file_is_the_builtin_export() {
     let shipped = std::fs::read_to_string(root().join("robots/steplearn_humanoid.urdf")).unwrap();
     assert_eq!(shipped, BodyConfig::default().description().to_urdf());
