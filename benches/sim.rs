@@ -11,7 +11,10 @@ fn control_tick(c: &mut Criterion) {
     let config = SimConfig::default();
     let tick = config.tick();
     let mut sim = Humanoid::new(config).unwrap();
-    let mut generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let mut generator = MotionGenerator::new(
+        MotionConfig::default().check().unwrap(),
+        &sim.body().leg_geometry(),
+    );
     // Warm up into steady stepping.
     while sim.time() < 2.0 {
         let cmd = generator.open_loop(0.0);
@@ -27,8 +30,10 @@ fn control_tick(c: &mut Criterion) {
             sim.step(&targets).unwrap();
             if sim.fall().is_some() {
                 sim.reset();
-                generator =
-                    MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+                generator = MotionGenerator::new(
+                    MotionConfig::default().check().unwrap(),
+                    &sim.body().leg_geometry(),
+                );
             }
         })
     });
@@ -39,7 +44,10 @@ fn physics_tick(c: &mut Criterion) {
     let config = SimConfig::default();
     let tick = config.tick();
     let mut sim = Humanoid::new(config).unwrap();
-    let generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let generator = MotionGenerator::new(
+        MotionConfig::default().check().unwrap(),
+        &sim.body().leg_geometry(),
+    );
     let targets = generator.halt_targets();
     let name = format!("standing robot physics only ({:.0} ms)", tick * 1e3);
     c.bench_function(&name, |b| b.iter(|| sim.step(black_box(&targets)).unwrap()));

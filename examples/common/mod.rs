@@ -30,7 +30,12 @@ pub fn run(mode: Mode, seconds: f64, pushes: &[(f64, [f64; 3])], title: &str) ->
     let config = SimConfig::default();
     let dt = config.tick();
     let mut sim = Humanoid::new(config).expect("default config is valid");
-    let mut generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let mut generator = MotionGenerator::new(
+        MotionConfig::default()
+            .check()
+            .expect("default motion settings are valid"),
+        &sim.body().leg_geometry(),
+    );
     let mut record = RunRecord::new(title);
     let mut pending: Vec<_> = pushes.to_vec();
     let start = std::time::Instant::now();

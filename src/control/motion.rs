@@ -306,8 +306,9 @@ impl Default for MotionConfig {
 }
 
 impl MotionConfig {
-    /// Checks every setting; errors name the field.
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    /// Checks every setting once and groups them into the values a generator holds; an error
+    /// names the key.
+    pub fn check(&self) -> Result<CheckedMotionConfig, ConfigError> {
         let [lo, hi] = self.step_x_range;
         config::ensure(
             lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi && lo < hi && hi - lo <= 2.0,
@@ -333,7 +334,33 @@ impl MotionConfig {
         config::positive("tilt_settle_s", self.tilt_settle_s)?;
         config::non_negative("tilt_dead_band", self.tilt_dead_band)?;
         config::in_range("early_landing_phase", self.early_landing_phase, 0.0, 1.0)?;
-        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)
+        config::in_range("tilt_lift", self.tilt_lift, 0.0, 1.0)?;
+        Ok(CheckedMotionConfig {
+            gait: self.gait,
+            steps: StepLimits {
+                x_range: self.step_x_range,
+                y_range: self.step_y_range,
+                max_turn: self.max_turn,
+            },
+            timing: Timing {
+                period: self.period,
+                fade_in: self.fade_in,
+            },
+            swing: SwingSettings {
+                mode: self.swing,
+                step_scale: self.swing_step_scale,
+            },
+            tilt: TiltSettings {
+                gain: self.tilt_gain,
+                gain_band: self.tilt_gain_band,
+                settle_s: self.tilt_settle_s,
+                dead_band: self.tilt_dead_band,
+                lift: self.tilt_lift,
+            },
+            landing: LandingSettings {
+                early_phase: self.early_landing_phase,
+            },
+        })
     }
 
     /// A gait tuned for walking without balance control (found by a hill-climbing search over
@@ -363,11 +390,160 @@ impl MotionConfig {
     }
 }
 
+/// The limits commanded steps are clamped to.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StepLimits {
+    /// Sagittal step range `[lo, hi]` (m, `step_x_range`): finite, `lo <= 0 <= hi`, `lo < hi`,
+    /// at most 2 m wide.
+    pub x_range: [f64; 2],
+    /// Lateral foot distance range `[lo, hi]` (m, magnitude, `step_y_range`): `0 < lo < hi <=
+    /// 1`.
+    pub y_range: [f64; 2],
+    /// Largest turn per step (rad, `max_turn`), in [0, 1.5].
+    pub max_turn: f64,
+}
+
+/// The generator's clock: the open-loop period and the fade-in after a start.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Timing {
+    /// Nominal step period of [`MotionGenerator::open_loop`] (s, `period`), in [0.05, 10].
+    pub period: f64,
+    /// Time over which the step primitives fade in after a start (s, `fade_in`), in [0, 60].
+    pub fade_in: f64,
+}
+
+/// How the swing leg reaches its placement.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SwingSettings {
+    /// The swing (`swing`): the paper's open-loop one or the tracking one.
+    pub mode: Swing,
+    /// Share of the commanded sagittal placement the leg realises (`swing_step_scale`), in
+    /// (0, 2].
+    pub step_scale: f64,
+}
+
+/// What the [`Swing::Tracking`] swing makes of the trunk's tilt.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TiltSettings {
+    /// Share of the tilt deviation beyond the band the swing compensates (`tilt_gain`), in
+    /// [0, 2].
+    pub gain: f64,
+    /// Tilt deviations within this band are compensated once, before the gain (rad,
+    /// `tilt_gain_band`), in [0, 1].
+    pub gain_band: f64,
+    /// Time constant of the trunk's settled tilt (s, `tilt_settle_s`), > 0.
+    pub settle_s: f64,
+    /// Tilt deviations within this band are not compensated (rad, `tilt_dead_band`), >= 0.
+    pub dead_band: f64,
+    /// Extra lift of the swing foot per radian of tilt deviation (leg lengths, `tilt_lift`),
+    /// in [0, 1].
+    pub lift: f64,
+}
+
+/// When a swing foot's landing ends its step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LandingSettings {
+    /// The earliest phase of a step at which its swing foot's landing ends it
+    /// (`early_landing_phase`), in [0, 1]; 1: every step ends on time.
+    pub early_phase: f64,
+}
+
+/// A [`MotionConfig`] that [`MotionConfig::check`] accepted, grouped by what each setting
+/// does. Only `check` makes one, so a generator that holds one holds valid settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CheckedMotionConfig {
+    pub(crate) gait: GaitShape,
+    pub(crate) steps: StepLimits,
+    pub(crate) timing: Timing,
+    pub(crate) swing: SwingSettings,
+    pub(crate) tilt: TiltSettings,
+    pub(crate) landing: LandingSettings,
+}
+
+impl CheckedMotionConfig {
+    /// The gait's motion primitives.
+    pub fn gait(&self) -> GaitShape {
+        self.gait
+    }
+
+    /// The step limits.
+    pub fn steps(&self) -> StepLimits {
+        self.steps
+    }
+
+    /// The period and the fade-in.
+    pub fn timing(&self) -> Timing {
+        self.timing
+    }
+
+    /// The swing.
+    pub fn swing(&self) -> SwingSettings {
+        self.swing
+    }
+
+    /// The tracking swing's use of the trunk's tilt.
+    pub fn tilt(&self) -> TiltSettings {
+        self.tilt
+    }
+
+    /// The early end of a step at landing.
+    pub fn landing(&self) -> LandingSettings {
+        self.landing
+    }
+}
+
+impl From<CheckedMotionConfig> for MotionConfig {
+    /// The flat settings the checked ones were made from.
+    fn from(c: CheckedMotionConfig) -> Self {
+        MotionConfig {
+            gait: c.gait,
+            step_x_range: c.steps.x_range,
+            step_y_range: c.steps.y_range,
+            max_turn: c.steps.max_turn,
+            period: c.timing.period,
+            fade_in: c.timing.fade_in,
+            swing_step_scale: c.swing.step_scale,
+            swing: c.swing.mode,
+            tilt_gain: c.tilt.gain,
+            tilt_gain_band: c.tilt.gain_band,
+            tilt_settle_s: c.tilt.settle_s,
+            tilt_dead_band: c.tilt.dead_band,
+            early_landing_phase: c.landing.early_phase,
+            tilt_lift: c.tilt.lift,
+        }
+    }
+}
+
+/// A generator's settings in its serialized form: flat, as a [`MotionConfig`] (the gait not
+/// included), and checked again when read.
+mod flat_config {
+    use super::{CheckedMotionConfig, MotionConfig};
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(
+        c: &CheckedMotionConfig,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        MotionConfig::from(*c).serialize(s)
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<CheckedMotionConfig, D::Error> {
+        MotionConfig::deserialize(d)?
+            .check()
+            .map_err(serde::de::Error::custom)
+    }
+}
+
 /// The open-loop step motion generator. It knows the leg geometry and nothing of any
 /// simulator.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MotionGenerator {
-    config: MotionConfig,
+    /// The settings, checked (serialized flat, as a [`MotionConfig`], and checked again when
+    /// read).
+    #[serde(with = "flat_config")]
+    config: CheckedMotionConfig,
     space: LegSpace,
     hip_width: f64,
     phase: f64,
@@ -413,8 +589,9 @@ fn window(p: f64, w: [f64; 2]) -> f64 {
 }
 
 impl MotionGenerator {
-    /// A generator for legs of `geometry`, halted, with the left leg supporting the first step.
-    pub fn new(config: MotionConfig, geometry: &LegGeometry) -> Self {
+    /// A generator of `config` ([`MotionConfig::check`]) for legs of `geometry`, halted, with
+    /// the left leg supporting the first step.
+    pub fn new(config: CheckedMotionConfig, geometry: &LegGeometry) -> Self {
         let mut g = MotionGenerator {
             config,
             space: LegSpace::new(geometry),
@@ -438,7 +615,7 @@ impl MotionGenerator {
     }
 
     /// The settings.
-    pub fn config(&self) -> &MotionConfig {
+    pub fn config(&self) -> &CheckedMotionConfig {
         &self.config
     }
 
@@ -461,8 +638,9 @@ impl MotionGenerator {
     /// The same fade (cosine over [`MotionConfig::fade_in`]) begun `delay` seconds after the
     /// start: 0 until then, 1 from `delay + fade_in` on (1 throughout without a fade-in).
     pub fn fade_after(&self, delay: f64) -> f64 {
-        if self.config.fade_in > 0.0 {
-            smooth((self.time - delay) / self.config.fade_in)
+        let fade_in = self.config.timing.fade_in;
+        if fade_in > 0.0 {
+            smooth((self.time - delay) / fade_in)
         } else {
             1.0
         }
@@ -505,10 +683,11 @@ impl MotionGenerator {
 
     /// The halt pose of one leg.
     pub fn halt_pose(&self) -> LegPose {
+        let gait = &self.config.gait;
         LegPose {
-            extension: self.config.gait.halt_extension,
-            angle: [0.0, -self.config.gait.halt_lean, 0.0],
-            foot: [0.0, -self.config.gait.halt_lean],
+            extension: gait.halt_extension,
+            angle: [0.0, -gait.halt_lean, 0.0],
+            foot: [0.0, -gait.halt_lean],
         }
     }
 
@@ -524,7 +703,7 @@ impl MotionGenerator {
             step_x,
             step_y: self.swing().sign() * self.hip_width,
             turn: 0.0,
-            step_time: (1.0 - self.phase) * self.config.period,
+            step_time: (1.0 - self.phase) * self.config.timing.period,
             gait_x: step_x,
             tilt: None,
             swing_landed: None,
@@ -536,7 +715,14 @@ impl MotionGenerator {
     /// Advances by `dt` (s) under `command` and returns the joint targets. Non-finite command
     /// fields are ignored (the previous filtered value is kept).
     pub fn update(&mut self, command: &StepCommand, dt: f64) -> JointTargets {
-        let c = &self.config;
+        let CheckedMotionConfig {
+            gait,
+            steps,
+            timing,
+            swing: swing_settings,
+            tilt: tilt_settings,
+            landing,
+        } = self.config;
         let dt = if dt.is_finite() && dt > 0.0 { dt } else { 0.0 };
         self.time += dt;
         let swing = self.swing();
@@ -544,21 +730,21 @@ impl MotionGenerator {
         // side's direction), turn.
         let mut want = self.filtered;
         if command.step_x.is_finite() {
-            want[0] =
-                c.swing_step_scale * command.step_x.clamp(c.step_x_range[0], c.step_x_range[1]);
+            want[0] = swing_settings.step_scale
+                * command.step_x.clamp(steps.x_range[0], steps.x_range[1]);
         }
         if command.step_y.is_finite() {
-            let w = (command.step_y * swing.sign()).clamp(c.step_y_range[0], c.step_y_range[1]);
+            let w = (command.step_y * swing.sign()).clamp(steps.y_range[0], steps.y_range[1]);
             want[1] = w - self.hip_width;
         }
         if command.turn.is_finite() {
-            want[2] = command.turn.clamp(-c.max_turn, c.max_turn);
+            want[2] = command.turn.clamp(-steps.max_turn, steps.max_turn);
         }
         if command.gait_x.is_finite() {
-            want[3] = command.gait_x.clamp(c.step_x_range[0], c.step_x_range[1]);
+            want[3] = command.gait_x.clamp(steps.x_range[0], steps.x_range[1]);
         }
-        let alpha = if c.gait.filter_time > 0.0 {
-            1.0 - (-dt / c.gait.filter_time).exp()
+        let alpha = if gait.filter_time > 0.0 {
+            1.0 - (-dt / gait.filter_time).exp()
         } else {
             1.0
         };
@@ -569,21 +755,21 @@ impl MotionGenerator {
         let left = if command.step_time.is_finite() {
             command.step_time.max(dt)
         } else {
-            (1.0 - self.phase) * c.period
+            (1.0 - self.phase) * timing.period
         };
         if dt > 0.0 {
             self.phase += dt * (1.0 - self.phase) / left.max(dt);
         }
-        self.tilt = match (c.swing, command.tilt) {
+        self.tilt = match (swing_settings.mode, command.tilt) {
             (Swing::Tracking, Some([tilt, rate]))
                 if tilt.iter().chain(&rate).all(|v| v.is_finite()) =>
             {
-                let beta = 1.0 - (-dt / c.tilt_settle_s).exp();
+                let beta = 1.0 - (-dt / tilt_settings.settle_s).exp();
                 let settled = self.tilt_settled.get_or_insert(tilt);
                 for (m, t) in settled.iter_mut().zip(tilt) {
                     *m += beta * (t - *m);
                 }
-                let band = c.tilt_dead_band;
+                let band = tilt_settings.dead_band;
                 Some([0, 1].map(|k| {
                     let dev = tilt[k] - settled[k];
                     dev.signum() * (dev.abs() - band).max(0.0)
@@ -598,9 +784,9 @@ impl MotionGenerator {
             self.ankle_roll = command.ankle_roll;
         }
         self.step_elapsed += dt;
-        let landed_early = c.early_landing_phase < 1.0
+        let landed_early = landing.early_phase < 1.0
             && command.swing_landed == Some(true)
-            && self.phase >= c.early_landing_phase;
+            && self.phase >= landing.early_phase;
         if landed_early {
             self.phase = 1.0;
         }
@@ -623,19 +809,19 @@ impl MotionGenerator {
 
     /// Leg roll that shifts the hips by the sway at phase `p` (towards the support foot).
     fn sway_roll(&self, p: f64) -> f64 {
-        let d = self.space.leg_length() * (1.0 - self.config.gait.halt_extension);
-        let y =
-            self.config.gait.sway * (std::f64::consts::PI * (p + self.config.gait.sway_lead)).sin();
+        let gait = &self.config.gait;
+        let d = self.space.leg_length() * (1.0 - gait.halt_extension);
+        let y = gait.sway * (std::f64::consts::PI * (p + gait.sway_lead)).sin();
         // Hips move towards the support side: feet move away from it relative to the hips.
         -self.support.sign() * (y / d).clamp(-0.5, 0.5).asin()
     }
 
     /// The placement angles and the full leg poses at the current phase.
     fn poses(&self) -> ([[f64; 3]; 2], [LegPose; 2]) {
-        let c = &self.config;
+        let (gait, tilt) = (&self.config.gait, &self.config.tilt);
         let fade = self.fade();
         let p = self.phase;
-        let d = self.space.leg_length() * (1.0 - c.gait.halt_extension);
+        let d = self.space.leg_length() * (1.0 - gait.halt_extension);
         let half = |x: f64| (x / 2.0 / d).clamp(-0.9, 0.9).asin();
         // Placement fades in with the lift so a barely lifted foot is not dragged.
         let [sx, sy, turn, gx] = self.filtered.map(|v| v * fade);
@@ -650,19 +836,19 @@ impl MotionGenerator {
             turn / 2.0,
         ];
         let end_support = [-end_swing[0], end_support_pitch, -turn / 2.0];
-        let s_swing = smooth(window(p, c.gait.swing_window));
-        let lift = (std::f64::consts::PI * window(p, c.gait.lift_window)).sin();
-        let lean = c.gait.halt_lean + c.gait.lean_per_step * gx;
+        let s_swing = smooth(window(p, gait.swing_window));
+        let lift = (std::f64::consts::PI * window(p, gait.lift_window)).sin();
+        let lean = gait.halt_lean + gait.lean_per_step * gx;
         // The tracking swing: the swing leg's end pose that puts its sole `sx` ahead of the
         // support sole on the ground, for the trunk's predicted tilt.
         let tracking = self.tilt.map(|[roll, pitch]| {
             // Within the band once, beyond it by the gain. Without a band all of it by the
             // gain, computed as before the band existed, so such runs stay bit for bit.
             let gained = |x: f64| {
-                if c.tilt_gain_band == 0.0 {
-                    c.tilt_gain * x
+                if tilt.gain_band == 0.0 {
+                    tilt.gain * x
                 } else {
-                    x + (c.tilt_gain - 1.0) * x.signum() * (x.abs() - c.tilt_gain_band).max(0.0)
+                    x + (tilt.gain - 1.0) * x.signum() * (x.abs() - tilt.gain_band).max(0.0)
                 }
             };
             let roll = gained(roll);
@@ -688,10 +874,10 @@ impl MotionGenerator {
             let (end, s, ext) = if side == swing {
                 // A tilted body brings the ground up to the swing foot: lift it the more.
                 let tilted = self.tilt.map_or(0.0, |[roll, pitch]| roll.hypot(pitch));
-                let height = c.gait.lift_extension + c.tilt_lift * tilted;
+                let height = gait.lift_extension + tilt.lift * tilted;
                 (end_swing, s_swing, height * lift * fade)
             } else {
-                (end_support, p, -c.gait.push_extension * lift * fade)
+                (end_support, p, -gait.push_extension * lift * fade)
             };
             let mut foot = [0.0, -lean];
             if side == swing
@@ -715,11 +901,130 @@ impl MotionGenerator {
             angle[0] += sway;
             angle[1] -= lean;
             out[i] = LegPose {
-                extension: c.gait.halt_extension + ext,
+                extension: gait.halt_extension + ext,
                 angle,
                 foot,
             };
         }
         (placement, out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Valid settings, every key its own value (none a default, no two alike), and a gait
+    /// other than the default.
+    fn distinct() -> MotionConfig {
+        MotionConfig {
+            gait: MotionConfig::open_loop_gait().gait,
+            step_x_range: [-0.21, 0.37],
+            step_y_range: [0.17, 0.39],
+            max_turn: 0.43,
+            period: 0.47,
+            fade_in: 1.9,
+            swing_step_scale: 0.83,
+            swing: Swing::Tracking,
+            tilt_gain: 1.1,
+            tilt_gain_band: 0.07,
+            tilt_settle_s: 2.3,
+            tilt_dead_band: 0.019,
+            early_landing_phase: 0.61,
+            tilt_lift: 0.29,
+        }
+    }
+
+    #[test]
+    fn check_groups_each_key_into_its_group() {
+        let flat = distinct();
+        let c = flat.check().unwrap();
+        assert_eq!(c.gait(), flat.gait);
+        assert_ne!(c.gait(), GaitShape::default());
+        let steps = c.steps();
+        assert_eq!(steps.x_range, [-0.21, 0.37]);
+        assert_eq!(steps.y_range, [0.17, 0.39]);
+        assert_eq!(steps.max_turn, 0.43);
+        let timing = c.timing();
+        assert_eq!(timing.period, 0.47);
+        assert_eq!(timing.fade_in, 1.9);
+        let swing = c.swing();
+        assert_eq!(swing.mode, Swing::Tracking);
+        assert_eq!(swing.step_scale, 0.83);
+        let tilt = c.tilt();
+        assert_eq!(tilt.gain, 1.1);
+        assert_eq!(tilt.gain_band, 0.07);
+        assert_eq!(tilt.settle_s, 2.3);
+        assert_eq!(tilt.dead_band, 0.019);
+        assert_eq!(tilt.lift, 0.29);
+        assert_eq!(c.landing().early_phase, 0.61);
+        // And back: the flat settings the checked ones came from, every key in its place.
+        assert_eq!(MotionConfig::from(c), flat);
+        assert_eq!(
+            MotionConfig::default().check().unwrap().gait(),
+            GaitShape::default()
+        );
+    }
+
+    #[test]
+    fn check_refuses_a_bad_value_naming_its_key() {
+        type Spoil = fn(&mut MotionConfig);
+        let cases: [(&str, Spoil); 13] = [
+            ("step_x_range", |c| c.step_x_range = [0.1, 0.4]),
+            ("step_y_range", |c| c.step_y_range = [0.0, 0.4]),
+            ("max_turn", |c| c.max_turn = 1.6),
+            ("period", |c| c.period = 0.01),
+            ("fade_in", |c| c.fade_in = f64::NAN),
+            ("swing_step_scale", |c| c.swing_step_scale = 0.0),
+            ("tilt_gain", |c| c.tilt_gain = -0.1),
+            ("tilt_gain_band", |c| c.tilt_gain_band = 1.5),
+            ("tilt_settle_s", |c| c.tilt_settle_s = 0.0),
+            ("tilt_dead_band", |c| c.tilt_dead_band = -0.01),
+            ("early_landing_phase", |c| c.early_landing_phase = 1.1),
+            ("tilt_lift", |c| c.tilt_lift = f64::INFINITY),
+            ("step_x_range", |c| c.step_x_range = [-1.5, 1.0]),
+        ];
+        for (key, spoil) in cases {
+            let mut c = distinct();
+            spoil(&mut c);
+            let e = c.check().unwrap_err();
+            assert_eq!(e.field, key, "{e}");
+        }
+        assert_eq!(
+            MotionConfig {
+                max_turn: 2.0,
+                ..MotionConfig::default()
+            }
+            .check()
+            .unwrap_err()
+            .to_string(),
+            "max_turn: must be finite and in [0, 1.5], got 2"
+        );
+    }
+
+    #[test]
+    fn a_generator_is_saved_flat_and_read_back_checked() {
+        let geometry = LegGeometry::default();
+        let flat = MotionConfig {
+            gait: GaitShape::default(),
+            ..distinct()
+        };
+        let mut g = MotionGenerator::new(flat.check().unwrap(), &geometry);
+        let command = g.open_loop(0.1);
+        g.update(&command, 0.01);
+        let json = serde_json::to_value(&g).unwrap();
+        // The settings are saved as the config file writes them.
+        assert_eq!(
+            json["config"],
+            serde_json::to_value(MotionConfig::from(*g.config())).unwrap()
+        );
+        assert_eq!(json["config"]["tilt_dead_band"], 0.019);
+        let back: MotionGenerator = serde_json::from_value(json.clone()).unwrap();
+        assert_eq!(back, g);
+        // A saved generator whose settings fail the check is refused, naming the key.
+        let mut bad = json;
+        bad["config"]["tilt_settle_s"] = serde_json::json!(-1.0);
+        let e = serde_json::from_value::<MotionGenerator>(bad).unwrap_err();
+        assert!(e.to_string().contains("tilt_settle_s"), "{e}");
     }
 }

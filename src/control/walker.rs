@@ -131,7 +131,7 @@ impl WalkerConfig {
     /// field relative to the walker's section.
     pub fn validate(&self) -> Result<(), ConfigError> {
         config::non_negative("start_ramp_s", self.start_ramp_s)?;
-        self.motion.validate().map_err(|e| e.within("motion"))?;
+        self.motion.check().map_err(|e| e.within("motion"))?;
         self.capture_step
             .validate()
             .map_err(|e| ConfigError::new("capture_step", e.to_string()))?;
@@ -245,6 +245,7 @@ impl Walker {
     /// A walker for a robot with legs `geometry`.
     pub fn new(config: WalkerConfig, geometry: LegGeometry) -> Result<Self, WalkerError> {
         config.validate()?;
+        let motion = config.motion.check().map_err(|e| e.within("motion"))?;
         let mut capture_step = config.capture_step;
         capture_step.analytic_footstep = config.mode != WalkerMode::LearnerOnly;
         Ok(Walker {
@@ -252,7 +253,7 @@ impl Walker {
             geometry,
             estimator: StateEstimator::new(geometry, config.estimator)?,
             controller: CaptureStep::new(capture_step)?,
-            generator: MotionGenerator::new(config.motion, &geometry),
+            generator: MotionGenerator::new(motion, &geometry),
             last_time: None,
             gait: GaitReference::default(),
         })
@@ -277,7 +278,7 @@ impl Walker {
     pub fn reset(&mut self) {
         self.estimator.reset();
         self.controller.reset();
-        self.generator = MotionGenerator::new(self.config.motion, &self.geometry);
+        self.generator = MotionGenerator::new(*self.generator.config(), &self.geometry);
         self.last_time = None;
         self.gait = GaitReference::default();
     }
@@ -320,9 +321,9 @@ impl Walker {
         self.gait = gait;
         // The desired trunk pitch theta_R: the lean the generator gives the trunk for the
         // reference gait (its halt lean plus the lean with the nominal step, which follows F_R).
-        let m = &self.config.motion;
-        let theta_r = m.gait.halt_lean
-            + m.gait.lean_per_step * f_r.clamp(m.step_x_range[0], m.step_x_range[1]);
+        let m = self.generator.config();
+        let (shape, x_range) = (m.gait(), m.steps().x_range);
+        let theta_r = shape.halt_lean + shape.lean_per_step * f_r.clamp(x_range[0], x_range[1]);
         let estimate = self.estimator.update(sensors, theta_r)?;
         let dt = self.last_time.map_or(0.0, |t| (sensors.time - t).max(0.0));
         self.last_time = Some(sensors.time);
@@ -408,7 +409,8 @@ impl Walker {
         if self.learner_always_engaged() {
             1.0
         } else {
-            self.generator.fade_after(self.config.motion.fade_in)
+            self.generator
+                .fade_after(self.generator.config().timing().fade_in)
         }
     }
 
@@ -510,11 +512,11 @@ impl Walker {
         base_width: f64,
         time_reach: [f64; 2],
     ) -> PerParameter<[f64; 2]> {
-        let m = &self.config.motion;
+        let steps = self.generator.config().steps();
         let cap = self.config.capture_step.max_step_x;
-        let lo = m.step_x_range[0].max(-cap);
-        let hi = m.step_x_range[1].min(cap);
-        let [w_lo, w_hi] = m.step_y_range;
+        let lo = steps.x_range[0].max(-cap);
+        let hi = steps.x_range[1].min(cap);
+        let [w_lo, w_hi] = steps.y_range;
         PerParameter([
             [lo - base_step, hi - base_step],
             [w_lo - base_width, w_hi - base_width],

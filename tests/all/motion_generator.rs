@@ -39,10 +39,7 @@ fn straight_leg_is_zero() {
 }
 
 fn generator() -> MotionGenerator {
-    MotionGenerator::new(
-        MotionConfig::default(),
-        &BodyConfig::default().leg_geometry(),
-    )
+    generator_with(MotionConfig::default())
 }
 
 #[test]
@@ -97,8 +94,8 @@ fn swing_foot_lands_where_commanded() {
                 break;
             }
         }
-        let d = space().leg_length() * (1.0 - g.config().gait.halt_extension);
-        let lean = g.config().gait.lean_per_step * gait_x;
+        let d = space().leg_length() * (1.0 - g.config().gait().halt_extension);
+        let lean = g.config().gait().lean_per_step * gait_x;
         let swing = g.legs()[g.swing().index()].angle[1] + lean;
         let support = g.legs()[g.support().index()].angle[1] + lean;
         // Foot x relative to the hip is -d sin(pitch).
@@ -163,7 +160,10 @@ fn tracking() -> MotionConfig {
 }
 
 fn generator_with(config: MotionConfig) -> MotionGenerator {
-    MotionGenerator::new(config, &BodyConfig::default().leg_geometry())
+    MotionGenerator::new(
+        config.check().unwrap(),
+        &BodyConfig::default().leg_geometry(),
+    )
 }
 
 /// Runs `g` with steps of `step_time` left at every tick, the swing foot reported landed from
@@ -244,7 +244,7 @@ fn landing_settings_out_of_range_are_refused_naming_the_key() {
             "tilt_lift",
         ),
     ] {
-        let err = config.validate().unwrap_err().to_string();
+        let err = config.check().unwrap_err().to_string();
         assert!(err.starts_with(key), "{key}: {err}");
     }
 }

@@ -6,7 +6,10 @@ use steplearn::control::{JointTargets, Sensors};
 use steplearn::sim::{FallTrigger, Humanoid, SimConfig, SimError};
 
 fn stand(sim: &mut Humanoid, seconds: f64) -> Option<steplearn::sim::Fall> {
-    let generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let generator = MotionGenerator::new(
+        MotionConfig::default().check().unwrap(),
+        &sim.body().leg_geometry(),
+    );
     let targets = generator.halt_targets();
     while sim.time() < seconds {
         sim.step(&targets).unwrap();
@@ -109,7 +112,10 @@ fn a_hard_push_is_a_fall_and_reset_stands_again() {
 
 fn stepping_run(seconds: f64) -> Vec<Sensors> {
     let mut sim = Humanoid::new(SimConfig::default()).unwrap();
-    let mut generator = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let mut generator = MotionGenerator::new(
+        MotionConfig::default().check().unwrap(),
+        &sim.body().leg_geometry(),
+    );
     let dt = sim.config().tick();
     let mut out = Vec::new();
     while sim.time() < seconds {
@@ -153,7 +159,7 @@ fn non_finite_targets_are_rejected_and_change_nothing() {
 /// `seconds`; returns the fall time, if any, and the CoM's sagittal travel.
 fn walk_open_loop(motion: MotionConfig, step_x: f64, seconds: f64) -> (Option<f64>, f64) {
     let mut sim = Humanoid::new(SimConfig::default()).unwrap();
-    let mut generator = MotionGenerator::new(motion, &sim.body().leg_geometry());
+    let mut generator = MotionGenerator::new(motion.check().unwrap(), &sim.body().leg_geometry());
     let dt = sim.config().tick();
     let start = sim.ground_truth().com[0];
     while sim.time() < seconds {
@@ -201,8 +207,11 @@ fn a_non_finite_push_is_rejected_and_changes_nothing() {
 #[test]
 fn an_exploding_simulation_is_an_error_not_a_nan_state() {
     let mut sim = Humanoid::new(SimConfig::default()).unwrap();
-    let targets =
-        MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry()).halt_targets();
+    let targets = MotionGenerator::new(
+        MotionConfig::default().check().unwrap(),
+        &sim.body().leg_geometry(),
+    )
+    .halt_targets();
     // 1e7 N s on 13.5 kg: far beyond any velocity the check accepts.
     sim.push([1e7, 0.0, 0.0]).unwrap();
     let mut error = None;

@@ -7,7 +7,10 @@ use steplearn::sim::{Humanoid, SimConfig};
 #[test]
 fn picture_shows_figures_paths_pushes_falls_and_annotations() {
     let mut sim = Humanoid::new(SimConfig::default()).unwrap();
-    let g = MotionGenerator::new(MotionConfig::default(), &sim.body().leg_geometry());
+    let g = MotionGenerator::new(
+        MotionConfig::default().check().unwrap(),
+        &sim.body().leg_geometry(),
+    );
     let mut rec = RunRecord::new("test run");
     rec.record(&sim.ground_truth());
     while sim.time() < 0.5 {

@@ -87,7 +87,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Gait::OpenLoop => MotionConfig::open_loop_gait(),
         },
     };
-    let mut motion_gen = MotionGenerator::new(motion, &sim.body().leg_geometry());
+    let mut motion_gen = MotionGenerator::new(motion.check()?, &sim.body().leg_geometry());
     let dt = sim_config.tick();
     let start = sim.ground_truth();
     let wall = std::time::Instant::now();

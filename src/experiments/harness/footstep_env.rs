@@ -586,7 +586,7 @@ impl FootstepEnv {
         self.pushes_delivered = 0;
         self.footsteps = 0;
         let mut policy = self.held(&vec![0.0; self.action_len()]);
-        let fade_in = self.walker_config.motion.fade_in;
+        let fade_in = self.walker.generator().config().timing().fade_in;
         loop {
             let sensors = self.robot.sensors();
             if sensors.time > self.max_warmup_s {
