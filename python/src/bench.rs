@@ -29,6 +29,7 @@ use steplearn::approx::{
 };
 use steplearn::bench::{Bench, BenchError, Registry};
 use steplearn::control::step_parameter::LearnSet;
+use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::sweep::{Shard, SweepError};
 use steplearn::rules::{LearningRule, StepOutcome};
 
@@ -718,6 +719,7 @@ struct Choices {
     baseline: Option<(String, String)>,
     robots: Vec<PathBuf>,
     shard: Option<Shard>,
+    config: Option<ConfigFile>,
 }
 
 impl Choices {
@@ -758,6 +760,9 @@ impl Choices {
         }
         if let Some(s) = self.shard {
             b = b.shard(s);
+        }
+        if let Some(c) = &self.config {
+            b = b.config(c.clone());
         }
         b
     }
@@ -855,6 +860,19 @@ impl PyBench {
             PyValueError::new_err(format!("shard(index={index}, count={count}): {reason}"))
         })?;
         Ok(choose(slf, |c| c.shard = Some(shard)))
+    }
+
+    /// The settings and protocols of a config file, as `--config` reads it (`[settings]` and
+    /// the experiments' tables, checked against the registry's experiments). `ValueError` for
+    /// a file that does not load or holds a bad key or value; the bench keeps its choices.
+    fn config(slf: Bound<'_, Self>, path: PathBuf) -> PyResult<Bound<'_, Self>> {
+        let file = {
+            let bench = slf.borrow();
+            let registry = bench.registry.borrow(slf.py());
+            ConfigFile::load_for(&path, registry.inner.experiments())
+        }
+        .map_err(|e| PyValueError::new_err(format!("config({}): {e}", path.display())))?;
+        Ok(choose(slf, |c| c.config = Some(file)))
     }
 
     /// The robots to run on, from URDF files; with several, every row names its robot.

@@ -290,6 +290,32 @@ def test_a_raising_python_rule_fails_its_runs_naming_the_exception(tmp_path):
     assert "invalid configuration" not in str(e.value)
 
 
+def test_a_config_file_sets_the_settings_of_every_run(tmp_path):
+    def one(out):
+        return bench(registry(), out, approx=["lwpr"], rules=["pendulum-cart"]).seeds(1)
+
+    default = one(tmp_path / "default").run()
+    improved = one(tmp_path / "improved").config(str(ROOT / "configs" / "improved.toml")).run()
+    tracking = 'swing = "tracking"'
+    configs = list((tmp_path / "improved").rglob("run-config.toml"))
+    assert configs and all(tracking in p.read_text() for p in configs)
+    assert not any(tracking in p.read_text() for p in (tmp_path / "default").rglob("run-config.toml"))
+    assert improved != default
+
+
+def test_a_bad_config_file_is_a_value_error_and_the_bench_keeps_its_choices(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[settings.walker.motion]\nno_such_key = 1\n")
+    b = bench(registry(), tmp_path / "out", approx=["lwpr"], rules=["pendulum-cart"]).seeds(1)
+    with pytest.raises(ValueError, match="no_such_key"):
+        b.config(str(bad))
+    with pytest.raises(ValueError, match="missing.toml"):
+        b.config(str(tmp_path / "missing.toml"))
+    rows = b.run()
+    assert len(rows) == 1
+    assert not any("no_such_key" in p.read_text() for p in (tmp_path / "out").rglob("run-config.toml"))
+
+
 def test_two_robots_give_rows_naming_their_robot(tmp_path):
     robots = [ROOT / "robots" / "igus_like.urdf", ROOT / "tests" / "robots" / "minimal.urdf"]
     rows = (

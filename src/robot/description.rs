@@ -230,6 +230,10 @@ pub struct Description {
     pub held_joints: Vec<String>,
     /// The trunk's stick figure.
     pub figure: Figure,
+    /// What the loader accepted with a remark (a held link whose own inertia is not
+    /// physical), one line each.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub remarks: Vec<String>,
 }
 
 pub(crate) fn quat(q: [f64; 4]) -> UnitQuaternion<f64> {

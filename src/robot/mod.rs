@@ -6,6 +6,7 @@ pub mod description;
 pub mod file;
 mod io;
 pub mod kinematics;
+mod mesh;
 pub mod scale;
 pub mod urdf;
 

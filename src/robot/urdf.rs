@@ -7,9 +7,10 @@
 //! (or continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
 //! pitch, knee, ankle pitch, roll), each with either sign. Links hanging from a leg link
 //! through fixed joints (a sole frame, a sensor) join that link; every other joint is held.
-//! The foot's sole is the bottom face of its lowest collision box, or of the bounds of its STL
-//! collision mesh. Collision shapes other than boxes, spheres, cylinders and capsules
-//! (`<capsule radius length>`, an extension) are left out: falls are told by the trunk's tilt.
+//! The foot's sole is the bottom face of its lowest collision box, or of the bounds of its
+//! collision mesh (STL, COLLADA or OBJ). Collision shapes other than boxes, spheres, cylinders
+//! and capsules (`<capsule radius length>`, an extension) are left out: falls are told by the
+//! trunk's tilt.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -72,6 +73,9 @@ enum UGeometry {
 struct ULink {
     name: String,
     inertial: Option<(Origin, f64, Matrix3<f64>)>,
+    /// Why its own inertia is not physical, if it is not: refused on the trunk and the legs,
+    /// remarked on a held link (whose inertia counts only in the trunk's sum).
+    inertia_problem: Option<String>,
     collisions: Vec<(Origin, UGeometry)>,
 }
 
@@ -166,6 +170,14 @@ fn resolve_mesh(el: &str, filename: &str, urdf_dir: &Path) -> Result<PathBuf, Ro
         let mut roots: Vec<PathBuf> = std::env::var("ROS_PACKAGE_PATH")
             .map(|p| std::env::split_paths(&p).collect())
             .unwrap_or_default();
+        // Every directory above the URDF, up to the file system's root, whether the URDF was
+        // named by an absolute or a relative path.
+        let here = if urdf_dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            urdf_dir
+        };
+        let urdf_dir = std::path::absolute(here).unwrap_or_else(|_| here.to_path_buf());
         roots.extend(urdf_dir.ancestors().map(Path::to_path_buf));
         roots.into_iter().find_map(|root| {
             let candidates = [
@@ -272,6 +284,7 @@ fn parse_link(node: roxmltree::Node, urdf_dir: &Path) -> Result<ULink, RobotErro
         .ok_or_else(|| RobotError::invalid("a <link>", "has no name"))?
         .to_string();
     let el = link_el(&name);
+    let mut inertia_problem = None;
     let inertial = match child(node, "inertial") {
         None => None,
         Some(i) => {
@@ -300,21 +313,18 @@ fn parse_link(node: roxmltree::Node, urdf_dir: &Path) -> Result<ULink, RobotErro
             let m3 = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
             let inertia = Inertia::from_matrix(&m3);
             let [a, b, c] = inertia.principal;
-            let tol = 1e-9 * (a.abs() + b.abs() + c.abs());
+            // Relative to the moments, with a floor far below any real link's (kg m^2), so
+            // that rounding in a file's digits passes.
+            let tol = 1e-9 * (a.abs() + b.abs() + c.abs()) + 1e-12;
             // A frame without mass (mass 0) or a point mass (inertia 0) is allowed; the body
             // it joins must have both.
             if a < -tol || b < -tol || c < -tol {
-                return Err(RobotError::invalid(
-                    &el,
-                    format!("inertia is not positive definite (principal moments {a}, {b}, {c})"),
+                inertia_problem = Some(format!(
+                    "inertia is not positive definite (principal moments {a}, {b}, {c})"
                 ));
-            }
-            if a + b < c - tol || a + c < b - tol || b + c < a - tol {
-                return Err(RobotError::invalid(
-                    &el,
-                    format!(
-                        "inertia breaks the triangle inequality (principal moments {a}, {b}, {c})"
-                    ),
+            } else if a + b < c - tol || a + c < b - tol || b + c < a - tol {
+                inertia_problem = Some(format!(
+                    "inertia breaks the triangle inequality (principal moments {a}, {b}, {c})"
                 ));
             }
             (mass > 0.0).then_some((origin, mass, m3))
@@ -335,6 +345,7 @@ fn parse_link(node: roxmltree::Node, urdf_dir: &Path) -> Result<ULink, RobotErro
     Ok(ULink {
         name,
         inertial,
+        inertia_problem,
         collisions,
     })
 }
@@ -634,7 +645,7 @@ fn leg_chain(tree: &Tree, foot: usize, side: Side) -> Result<[usize; JOINTS_PER_
 }
 
 /// An axis-aligned box: lower and upper corner.
-type Bounds = (Vector3<f64>, Vector3<f64>);
+use super::mesh::{self, Bounds};
 
 /// A rigid body made of link `base` and every link hanging from it through non-leg joints;
 /// its frame is aligned with the root frame, its origin at `base`'s.
@@ -704,7 +715,7 @@ fn merged_body(
                     });
                 }
                 UGeometry::Mesh { path, scale } if shapes_from_meshes => {
-                    let (lo, hi) = stl_bounds(&link_el(&link.name), path)?;
+                    let (lo, hi) = mesh::bounds(&link_el(&link.name), path)?;
                     let corners = (0..8).map(|c| {
                         let v = Vector3::new(
                             if c & 1 == 0 { lo.x } else { hi.x },
@@ -766,51 +777,6 @@ fn axis_permutation(rot: &Rotation3<f64>) -> Option<Matrix3<f64>> {
     ((rot.matrix() - m).abs().max() < 1e-6).then_some(m)
 }
 
-/// Bounds of the vertices of an STL file (binary or ASCII).
-fn stl_bounds(el: &str, path: &Path) -> Result<Bounds, RobotError> {
-    let bytes = std::fs::read(path).map_err(|e| {
-        RobotError::invalid(el, format!("cannot read mesh {}: {e}", path.display()))
-    })?;
-    let bad = || RobotError::invalid(el, format!("mesh {} is not a readable STL", path.display()));
-    let mut lo = Vector3::repeat(f64::INFINITY);
-    let mut hi = -lo;
-    let mut add = |v: Vector3<f64>| {
-        lo = lo.inf(&v);
-        hi = hi.sup(&v);
-    };
-    let binary_len = bytes
-        .get(80..84)
-        .map(|b| 84 + 50 * u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
-    if binary_len == Some(bytes.len()) {
-        for tri in bytes[84..].chunks_exact(50) {
-            for v in 0..3 {
-                let f = |k: usize| {
-                    let o = 12 + 12 * v + 4 * k;
-                    f32::from_le_bytes([tri[o], tri[o + 1], tri[o + 2], tri[o + 3]]) as f64
-                };
-                add(Vector3::new(f(0), f(1), f(2)));
-            }
-        }
-    } else {
-        let text = std::str::from_utf8(&bytes).map_err(|_| bad())?;
-        for line in text.lines() {
-            let mut w = line.split_whitespace();
-            if w.next() == Some("vertex") {
-                let v: Vec<f64> = w.filter_map(|t| t.parse().ok()).collect();
-                if v.len() != 3 {
-                    return Err(bad());
-                }
-                add(Vector3::new(v[0], v[1], v[2]));
-            }
-        }
-    }
-    if lo.iter().chain(hi.iter()).all(|v| v.is_finite()) {
-        Ok((lo, hi))
-    } else {
-        Err(bad())
-    }
-}
-
 /// The sole of a foot: its lowest level box, else a box from its mesh bounds (added to its
 /// shapes).
 fn sole_of(foot: &mut Link, meshes: &[Bounds]) -> Result<Sole, RobotError> {
@@ -843,7 +809,7 @@ fn sole_of(foot: &mut Link, meshes: &[Bounds]) -> Result<Sole, RobotError> {
     let Some((lo, hi)) = meshes.iter().min_by(|a, b| a.0.z.total_cmp(&b.0.z)) else {
         return Err(RobotError::invalid(
             el,
-            "the foot has no collision box or STL mesh to take its sole from",
+            "the foot has no collision box or mesh to take its sole from",
         ));
     };
     let h = (hi - lo) / 2.0;
@@ -1024,6 +990,21 @@ fn build(
             .filter(|l| body_of[*l] == body)
             .collect()
     };
+    // A link's own inertia that is not physical is refused where the link is simulated as
+    // its own body or is the trunk's base, and remarked where it is held in the trunk.
+    let mut remarks = Vec::new();
+    for &l in &tree.order {
+        let link = &tree.links[l];
+        if let Some(problem) = &link.inertia_problem {
+            if l == tree.root || body_of[l].is_some() {
+                return Err(RobotError::invalid(link_el(&link.name), problem.clone()));
+            }
+            remarks.push(format!(
+                "{}: {problem}; held, it counts only in the trunk's inertia, which is checked",
+                link_el(&link.name)
+            ));
+        }
+    }
     let held_joints: Vec<String> = tree
         .joints
         .iter()
@@ -1121,6 +1102,7 @@ fn build(
         legs,
         held_joints,
         figure,
+        remarks,
     };
     // Servos: torque limits by dynamic similarity (m g l); stiffness and damping keep the
     // servo's bandwidth on the leg's own inertia about the hip, I g / l and I sqrt(g / l).

@@ -109,6 +109,7 @@ impl BodyConfig {
             trunk,
             legs: Side::BOTH.map(|side| self.leg(side)),
             held_joints: Vec::new(),
+            remarks: Vec::new(),
             figure: Figure {
                 neck: [0.0, 0.0, t.length],
                 head: [0.0, 0.0, head_z],

@@ -103,6 +103,93 @@ fn a_strangers_robot_walks_in_place_for_60_s() {
     );
 }
 
+/// Romeo's full URDF from the same wheel: COLLADA collision meshes (its soles among them),
+/// `package://` paths, mimic joints in its hands.
+fn romeo() -> PathBuf {
+    let robots = talos()
+        .ancestors()
+        .nth(3)
+        .expect("the wheel's robots")
+        .to_path_buf();
+    robots.join("romeo_description/urdf/romeo.urdf")
+}
+
+#[test]
+fn romeo_as_shipped_walks_in_place_for_60_s() {
+    let r = robot_report(&romeo(), None).unwrap();
+    assert_eq!(r.legs.left.joints[3], "LKneePitch");
+    assert_eq!(r.legs.right.foot, "r_ankle");
+    // The sole from the bounds of the foot's COLLADA mesh.
+    let g = &r.leg_geometry;
+    assert!(
+        g.foot_length > 0.2 && g.foot_length < 0.3,
+        "{}",
+        g.foot_length
+    );
+    assert!(
+        g.foot_width > 0.1 && g.foot_width < 0.15,
+        "{}",
+        g.foot_width
+    );
+    assert_eq!(falls_in_place(&romeo()), 0);
+}
+
+#[test]
+fn package_paths_resolve_from_a_relative_urdf_path() {
+    // Named from its own directory, the URDF's meshes still resolve through the
+    // directories above it.
+    let urdf = romeo();
+    let out = Command::new(env!("CARGO_BIN_EXE_steplearn"))
+        .current_dir(urdf.parent().unwrap())
+        .args(["robot", "show", "romeo.urdf"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn a_held_links_unphysical_inertia_is_remarked_and_a_leg_links_refused() {
+    let dir = temp("held-inertia");
+    let text = std::fs::read_to_string(root().join("tests/robots/stranger.urdf")).unwrap();
+    let forearm =
+        r#"<inertia ixx="0.0026" ixy="0.0" ixz="0.0" iyy="0.0026" iyz="0.0" izz="0.00036"/>"#;
+    assert_eq!(text.matches(forearm).count(), 2, "both forearms");
+    let broken =
+        r#"<inertia ixx="0.0026" ixy="0.0" ixz="0.0" iyy="0.0002" iyz="0.0" izz="0.00036"/>"#;
+    // The left forearm (held in the trunk): loaded, with a remark naming it.
+    let held = dir.join("held.urdf");
+    std::fs::write(&held, text.replacen(forearm, broken, 1)).unwrap();
+    let r = robot_report(&held, None).unwrap();
+    assert_eq!(r.remarks.len(), 1, "{:?}", r.remarks);
+    assert!(r.remarks[0].contains("link 'LForearm'") && r.remarks[0].contains("triangle"));
+    let show = cli(&["robot", "show", held.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&show.stdout).contains("remark: link 'LForearm'"));
+    assert!(
+        robot_report(&root().join("tests/robots/stranger.urdf"), None)
+            .unwrap()
+            .remarks
+            .is_empty()
+    );
+    // The same inertia on a leg link, which is simulated as its own body: refused.
+    let shank_start = text.find(r#"<link name="LShank">"#).unwrap();
+    let shank_end = shank_start + text[shank_start..].find("</link>").unwrap();
+    let shank = &text[shank_start..shank_end];
+    let inertia_start = shank.find("<inertia ").unwrap();
+    let inertia_end = inertia_start + shank[inertia_start..].find("/>").unwrap() + 2;
+    let bad_shank = shank.replace(
+        &shank[inertia_start..inertia_end],
+        r#"<inertia ixx="0.05" ixy="0.0" ixz="0.0" iyy="0.001" iyz="0.0" izz="0.001"/>"#,
+    );
+    let leg = dir.join("leg.urdf");
+    std::fs::write(&leg, text.replacen(shank, &bad_shank, 1)).unwrap();
+    let e = robot_report(&leg, None).unwrap_err().to_string();
+    assert!(e.contains("link 'LShank'") && e.contains("triangle"), "{e}");
+}
+
 #[test]
 fn robot_show_describes_talos_with_its_legs_and_held_joints() {
     let r = robot_report(&talos(), None).unwrap();

@@ -163,6 +163,8 @@ pub struct RobotReport {
     pub scale: Scale,
     /// The gait derived.
     pub gait: GaitReport,
+    /// What the loader accepted with a remark, one line each.
+    pub remarks: Vec<String>,
 }
 
 /// Both legs.
@@ -224,12 +226,18 @@ pub fn robot_report(path: &Path, feet: Option<&Feet>) -> Result<RobotReport, Rob
             impulse_factor: s.impulse(1.0),
             stability_impulse_ns: [stability.impulse.0, stability.impulse.1],
         },
+        remarks: d.remarks.clone(),
     })
 }
 
 impl RobotReport {
     /// The report as lines of text.
     pub fn to_text(&self) -> String {
+        let remarks: String = self
+            .remarks
+            .iter()
+            .map(|r| format!("  remark: {r}\n"))
+            .collect();
         let g = &self.leg_geometry;
         let joints = |l: &LegReport| {
             l.joints
@@ -246,7 +254,7 @@ impl RobotReport {
              leg: thigh {:.3} m, shank {:.3} m, ankle {:.3} m above a {:.3} x {:.3} m sole, \
              hips {:.3} m apart\n  scale against the paper's robot: length {:.3}, mass {:.3}, \
              width {:.3}\n  gait: step time {:.3} s, step width {:.3} m, steps in [{:.3}, {:.3}] m, \
-             impulses x {:.3} (C: {:.2}-{:.2} Ns)\n",
+             impulses x {:.3} (C: {:.2}-{:.2} Ns)\n{}",
             self.name,
             self.mass_kg,
             self.com_height_m,
@@ -277,6 +285,7 @@ impl RobotReport {
             self.gait.impulse_factor,
             self.gait.stability_impulse_ns[0],
             self.gait.stability_impulse_ns[1],
+            remarks,
         )
     }
 }
