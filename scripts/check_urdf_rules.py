@@ -316,6 +316,12 @@ class Robot:
             if abs(a[want]) < 0.99:
                 raise Refused(j, '%s joint of the %s leg has world axis %s, not along %s'
                               % (NAMES[k], side, fmt(a), EXPECTED[k]))
+            if k == 3 and el.get('type') == 'revolute':
+                # The stance bends the knee back: a positive angle about the world's +y.
+                bend = BEND if a[want] > 0 else -BEND
+                if not lo <= bend <= hi:
+                    raise Refused(j, 'limits [%g, %g] exclude the stance bend %g rad (a knee that bends forward)'
+                                  % (lo, hi, bend))
         pos = {j: self.zero[self.joints[j].find('child').get('link')][0] for j in moving}
         for k1, k2, what in ((1, 2, 'hip roll and pitch'), (4, 5, 'ankle pitch and roll')):
             j1, j2 = moving[k1], moving[k2]

@@ -313,6 +313,25 @@ impl Description {
     /// knee-bent stance `stance` lies over the support polygon of its soles.
     pub fn validate_standing(&self, stance: &[f64; NUM_JOINTS]) -> Result<(), RobotError> {
         self.validate()?;
+        // The stance lies within every leg joint's limits (steplearn's sense: a knee bends the
+        // shank back with a positive angle).
+        for side in Side::BOTH {
+            for (joint, j) in self.legs[side.index()].joints.iter().zip(LegJoint::ALL) {
+                let q = stance[j.index(side)];
+                let [lo, hi] = joint.limits;
+                if q < lo - 1e-9 || q > hi + 1e-9 {
+                    return Err(RobotError::invalid(
+                        format!("joint '{}'", joint.name),
+                        format!(
+                            "its limits [{lo:.3}, {hi:.3}] rad (in steplearn's sense, where a knee \
+                             bends back with a positive angle) exclude the stance's {q:.3} rad: \
+                             the robot cannot stand (a knee that bends forward, or a robot whose \
+                             front is not its +x?)"
+                        ),
+                    ));
+                }
+            }
+        }
         let com = self.com_in_trunk(stance);
         let soles: Vec<Vector3<f64>> = Side::BOTH
             .iter()

@@ -261,6 +261,7 @@ const HOSTILE: &[(&str, &str)] = &[
     ("negative_mass", "l_shank"),
     ("zero_mass", "r_thigh"),
     ("triangle_inertia", "trunk"),
+    ("knee_bends_forward", "l_knee"),
     ("nan", "l_hip_pitch"),
     ("inf", "r_foot"),
     ("mimic_leg", "r_knee"),
