@@ -13,6 +13,7 @@ use crate::experiments::config_file::ConfigFile;
 use crate::experiments::robot_setup::{RobotRun, use_robot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, write_file};
+use crate::robot::urdf::Feet;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -42,11 +43,12 @@ pub struct RobotLeaderboard {
     pub leaderboard: Leaderboard,
 }
 
-/// The configuration of a run on the robot at `path`: `config` (resolved: every protocol table
-/// in full) with the robot named in its settings and its protocols rewritten for it; beside it,
-/// the robot as loaded.
+/// The configuration of a run on the robot at `path` (its legs ending at `feet` where named):
+/// `config` (resolved: every protocol table in full) with the robot named in its settings and its
+/// protocols rewritten for it; beside it, the robot as loaded.
 pub(crate) fn robot_config(
     path: &Path,
+    feet: Option<&Feet>,
     config: &ConfigFile,
 ) -> Result<(ConfigFile, RobotRun), BenchError> {
     let mut config = config.clone();
@@ -55,7 +57,7 @@ pub(crate) fn robot_config(
         source,
     };
     let run =
-        use_robot(path, None, &mut config.settings, &mut config.protocols).map_err(refused)?;
+        use_robot(path, feet, &mut config.settings, &mut config.protocols).map_err(refused)?;
     Ok((config, run))
 }
 

@@ -11,6 +11,7 @@ use crate::experiments::sweep::{
     RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, check_distinct_sets, run_sweep,
 };
 use crate::report::write_file;
+use crate::robot::urdf::Feet;
 use std::path::{Path, PathBuf};
 
 /// The file in a bench's output directory that records the configuration its runs used.
@@ -43,7 +44,8 @@ pub struct Bench<'r> {
     command: String,
     on_run: Option<Box<OnRun<'r>>>,
     replays: Option<Box<Replays<'r>>>,
-    robots: Vec<PathBuf>,
+    /// Each robot's file and, where named, the links that end its legs.
+    robots: Vec<(PathBuf, Option<Feet>)>,
 }
 
 /// A callback called as each run ends.
@@ -125,8 +127,16 @@ impl<'r> Bench<'r> {
     pub fn robots<I: IntoIterator<Item = P>, P: AsRef<Path>>(mut self, paths: I) -> Self {
         self.robots = paths
             .into_iter()
-            .map(|p| p.as_ref().to_path_buf())
+            .map(|p| (p.as_ref().to_path_buf(), None))
             .collect();
+        self
+    }
+
+    /// Adds the robot at `path` to the robots ([`Bench::robots`]), its legs ending at the
+    /// links `feet` names where given (as `--feet LEFT,RIGHT`: for a robot whose lowest link
+    /// on a side is not its foot).
+    pub fn robot(mut self, path: impl AsRef<Path>, feet: Option<Feet>) -> Self {
+        self.robots.push((path.as_ref().to_path_buf(), feet));
         self
     }
 
@@ -368,8 +378,9 @@ impl<'r> Bench<'r> {
     pub fn run(&self) -> Result<Report, BenchError> {
         match self.robots.as_slice() {
             [] => self.run_in(&self.config, &self.out)?.finished(),
-            [one] => {
-                let (config, _) = robot_config(one, &self.registry.resolve_config(&self.config)?)?;
+            [(one, feet)] => {
+                let base = self.registry.resolve_config(&self.config)?;
+                let (config, _) = robot_config(one, feet.as_ref(), &base)?;
                 self.run_in(&config, &self.out)?.finished()
             }
             many => self.run_robots(many),
@@ -378,13 +389,13 @@ impl<'r> Bench<'r> {
 
     /// Every robot's bench in its own directory, then the leaderboard over them. Every robot
     /// is loaded and checked before any run.
-    fn run_robots(&self, paths: &[PathBuf]) -> Result<Report, BenchError> {
+    fn run_robots(&self, robots: &[(PathBuf, Option<Feet>)]) -> Result<Report, BenchError> {
         // Every protocol table in full before the robot rewrites them for its size.
         let base = self.registry.resolve_config(&self.config)?;
         let mut configs = Vec::new();
         let mut columns = Vec::new();
-        for path in paths {
-            let (config, run) = robot_config(path, &base)?;
+        for (path, feet) in robots {
+            let (config, run) = robot_config(path, feet.as_ref(), &base)?;
             columns.push(robot_column(path, &run, &config)?);
             configs.push(config);
         }

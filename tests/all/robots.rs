@@ -662,4 +662,39 @@ fn feet_named_where_a_lower_leaf_is_not_the_foot() {
     assert!(config.contains("left = \"l_foot\""), "{config}");
     let lonely = cli(&["experiment", "stability", "--feet", "l_foot,r_foot"]);
     assert!(!lonely.status.success());
+    // A bench over it and another robot: its feet named with it, one column each.
+    use steplearn::bench::{Bench, Registry};
+    use steplearn::robot::urdf::Feet;
+    let registry = Registry::builtin();
+    let bench = || {
+        Bench::new(&registry)
+            .approximators(["lwpr"])
+            .rules(["pendulum-cart"])
+            .experiments(["stability"])
+            .seeds(1)
+            .scale(0.03)
+            .robots([root().join("tests/robots/minimal.urdf")])
+            .out(dir.join("bench"))
+    };
+    let guessed = bench().robot(&urdf, None).run().unwrap_err().to_string();
+    assert!(guessed.contains("l_toe"), "{guessed}");
+    let feet = Feet {
+        left: "l_foot".into(),
+        right: "r_foot".into(),
+    };
+    let report = bench().robot(&urdf, Some(feet)).run().unwrap();
+    let ids: Vec<&str> = report
+        .robots
+        .as_ref()
+        .expect("a bench over robots")
+        .robots
+        .iter()
+        .map(|r| r.id.as_str())
+        .collect();
+    assert_eq!(ids, ["minimal", "toe"]);
+    let config = std::fs::read_to_string(
+        dir.join("bench/toe/stability__lwpr__pendulum-cart__s0/run-config.toml"),
+    )
+    .unwrap();
+    assert!(config.contains("left = \"l_foot\""), "{config}");
 }
