@@ -16,7 +16,7 @@ use numpy::PyArray1;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
+use pyo3::types::{PyBytes, PyDict};
 use serde::de::Error as _;
 use serde::ser::{Error as _, SerializeStruct};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -30,7 +30,7 @@ use steplearn::approx::{
 use steplearn::bench::{Bench, BenchError, Registry};
 use steplearn::control::step_parameter::LearnSet;
 use steplearn::experiments::config_file::ConfigFile;
-use steplearn::experiments::sweep::{Shard, SweepError};
+use steplearn::experiments::sweep::{RunOutcome, RunStatus, Shard, SweepError};
 use steplearn::rules::{LearningRule, StepOutcome};
 
 /// The most Python errors a registry keeps for one run (the first ones, without repeats).
@@ -720,10 +720,39 @@ struct Choices {
     robots: Vec<PathBuf>,
     shard: Option<Shard>,
     config: Option<ConfigFile>,
+    on_run: Option<Arc<Py<PyAny>>>,
+    replays: bool,
+}
+
+/// A run's outcome as the dict `Bench.on_run`'s callback receives.
+fn outcome_dict<'py>(py: Python<'py>, o: &RunOutcome) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("experiment", &o.spec.experiment)?;
+    d.set_item("approx", &o.spec.approx)?;
+    d.set_item("rule", &o.spec.rule)?;
+    d.set_item("seed", o.spec.seed)?;
+    let learn: Option<Vec<String>> = o
+        .spec
+        .learn
+        .map(|set| set.iter().map(|p| p.to_string()).collect());
+    d.set_item("learn", learn)?;
+    match &o.status {
+        RunStatus::Done { wall_time_s } => {
+            d.set_item("status", "done")?;
+            d.set_item("wall_time_s", *wall_time_s)?;
+        }
+        RunStatus::Skipped => d.set_item("status", "skipped")?,
+        RunStatus::Failed(why) => {
+            d.set_item("status", "failed")?;
+            d.set_item("error", why)?;
+        }
+    }
+    Ok(d)
 }
 
 impl Choices {
-    fn bench<'r>(&self, registry: &'r Registry) -> Bench<'r> {
+    /// The Rust bench of these choices; a Python callback's exception is recorded in `errors`.
+    fn bench<'r>(&self, registry: &'r Registry, errors: &Errors) -> Bench<'r> {
         let mut b = Bench::new(registry).command("steplearn.Bench(...).run() (Python)");
         if let Some(v) = &self.approximators {
             b = b.approximators(v);
@@ -763,6 +792,22 @@ impl Choices {
         }
         if let Some(c) = &self.config {
             b = b.config(c.clone());
+        }
+        if let Some(callback) = &self.on_run {
+            let (callback, errors) = (callback.clone(), errors.clone());
+            b = b.on_run(move |o: &RunOutcome| {
+                Python::attach(|py| {
+                    let called = outcome_dict(py, o).and_then(|d| callback.bind(py).call1((d,)));
+                    if let Err(e) = called {
+                        errors.record(format!("on_run callback raised {e}"));
+                    }
+                })
+            });
+        }
+        if self.replays {
+            b = b.replays(move |leaderboard, dir| {
+                steplearn::replay::moments::write_bench_replays(registry, dir, leaderboard)
+            });
         }
         b
     }
@@ -875,6 +920,31 @@ impl PyBench {
         Ok(choose(slf, |c| c.config = Some(file)))
     }
 
+    /// Calls `callback(run)` as each run ends (a progress report): `run` is a dict with
+    /// `experiment`, `approx`, `rule`, `seed`, `learn` (names), `status` (`"done"`,
+    /// `"skipped"` or `"failed"`) and `wall_time_s` (done) or `error` (failed). Called with
+    /// the GIL from the bench's workers, one at a time; an exception in it makes `run()` raise
+    /// `RuntimeError` after the bench finished. `TypeError` unless callable.
+    fn on_run<'py>(
+        slf: Bound<'py, Self>,
+        callback: Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, Self>> {
+        if !callback.is_callable() {
+            return Err(PyTypeError::new_err(format!(
+                "on_run: the callback must be callable, got {}",
+                callback.get_type().name()?
+            )));
+        }
+        let callback = callback.unbind();
+        Ok(choose(slf, |c| c.on_run = Some(Arc::new(callback))))
+    }
+
+    /// Whether `run()` writes the replay pages of the best and the worst row beside
+    /// `index.html`, as `steplearn bench` does (default: no).
+    fn replays(slf: Bound<'_, Self>, write: bool) -> Bound<'_, Self> {
+        choose(slf, |c| c.replays = write)
+    }
+
     /// The robots to run on, from URDF files; with several, every row names its robot.
     fn robots(slf: Bound<'_, Self>, paths: Vec<PathBuf>) -> Bound<'_, Self> {
         choose(slf, |c| c.robots = paths)
@@ -893,7 +963,7 @@ impl PyBench {
         errors.take();
         let ran = py.detach(|| {
             catch_unwind(AssertUnwindSafe(|| {
-                let report = choices.bench(&registry).run()?;
+                let report = choices.bench(&registry, &errors).run()?;
                 serde_json::to_string(&report.leaderboard.rows)
                     .map_err(|e| BenchError::Selection(e.to_string()))
             }))

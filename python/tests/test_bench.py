@@ -316,6 +316,47 @@ def test_a_bad_config_file_is_a_value_error_and_the_bench_keeps_its_choices(tmp_
     assert not any("no_such_key" in p.read_text() for p in (tmp_path / "out").rglob("run-config.toml"))
 
 
+def test_on_run_reports_each_run_as_it_ends(tmp_path):
+    seen = []
+    b = bench(registry(), tmp_path, approx=["lwpr"], rules=["pendulum-cart"]).on_run(seen.append)
+    rows = b.run()
+    assert len(seen) == CHEAP["seeds"] and len(rows) == 1
+    assert sorted(r["seed"] for r in seen) == list(range(CHEAP["seeds"]))
+    for r in seen:
+        assert (r["experiment"], r["approx"], r["rule"]) == ("stability", "lwpr", "pendulum-cart")
+        assert r["learn"] == ["step-x"]
+        assert r["status"] == "done" and r["wall_time_s"] > 0
+    # A second run finds every run finished.
+    again = []
+    b.on_run(again.append).run()
+    assert [r["status"] for r in again] == ["skipped"] * CHEAP["seeds"]
+
+
+def test_an_on_run_callback_that_raises_fails_the_run_call_after_the_bench(tmp_path):
+    def boom(run):
+        raise KeyError("progress bar")
+
+    b = bench(registry(), tmp_path, approx=["lwpr"], rules=["pendulum-cart"]).on_run(boom)
+    with pytest.raises(RuntimeError, match="on_run callback raised KeyError"):
+        b.run()
+    # The bench itself finished: its leaderboard is written.
+    assert (tmp_path / "leaderboard.json").exists()
+    with pytest.raises(TypeError, match="on_run: the callback must be callable"):
+        b.on_run(3)
+
+
+def test_replays_are_written_only_when_asked(tmp_path):
+    def one(out):
+        return bench(registry(), out, approx=["lwpr"], rules=["pendulum-cart"]).seeds(1)
+
+    one(tmp_path / "plain").run()
+    assert not list((tmp_path / "plain").glob("replay-*.html"))
+    one(tmp_path / "replays").replays(True).run()
+    pages = sorted(p.name for p in (tmp_path / "replays").glob("replay-*.html"))
+    assert pages == ["replay-best.html", "replay-worst.html"]
+    assert "replay-best.html" in (tmp_path / "replays" / "index.html").read_text()
+
+
 def test_two_robots_give_rows_naming_their_robot(tmp_path):
     robots = [ROOT / "robots" / "igus_like.urdf", ROOT / "tests" / "robots" / "minimal.urdf"]
     rows = (
