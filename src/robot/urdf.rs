@@ -6,7 +6,8 @@
 //! not the foot), and its path from the trunk has exactly six revolute
 //! (or continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
 //! pitch, knee, ankle pitch, roll), each with either sign. Links hanging from a leg link
-//! through fixed joints (a sole frame, a sensor) join that link; every other joint is held.
+//! through fixed joints (a sole frame, a sensor) join that link; every other joint is held,
+//! those above the link both legs hang from (a waist below a chest that is the root) among them.
 //! The foot's sole is the bottom face of its lowest collision box, or of the bounds of its
 //! collision mesh (STL, COLLADA or OBJ). Collision shapes other than boxes, spheres, cylinders
 //! and capsules (`<capsule radius length>`, an extension) are left out: falls are told by the
@@ -545,12 +546,19 @@ impl Tree {
 }
 
 /// The chain of six leg joints ending at leaf `foot`, checked.
-fn leg_chain(tree: &Tree, foot: usize, side: Side) -> Result<[usize; JOINTS_PER_LEG], RobotError> {
+fn leg_chain(
+    tree: &Tree,
+    foot: usize,
+    side: Side,
+    shared: usize,
+) -> Result<[usize; JOINTS_PER_LEG], RobotError> {
     let path = tree.path(foot);
+    // The moving joints below the first `shared` of the path (held: both legs hang from them).
     let moving: Vec<usize> = path
         .iter()
         .copied()
         .filter(|k| is_moving(&tree.joints[*k].kind))
+        .skip(shared)
         .collect();
     let names = |ks: &[usize]| {
         ks.iter()
@@ -594,7 +602,7 @@ fn leg_chain(tree: &Tree, foot: usize, side: Side) -> Result<[usize; JOINTS_PER_
             joint_el(&tree.joints[extra[0]].name),
             format!(
                 "is an extra joint: the path from the trunk to the {side:?} foot '{}' has {} \
-                 moving joints ({}); a leg needs six, attached to the root link",
+                 moving joints ({}); a leg needs six, from the link both legs hang from",
                 tree.links[foot].name,
                 moving.len(),
                 names(&moving)
@@ -945,7 +953,7 @@ fn build(
                     .then(tree.path(*b).len().cmp(&tree.path(*a).len()))
             })
     };
-    let mut chains = Vec::new();
+    let mut found = Vec::new();
     for (i, side) in Side::BOTH.into_iter().enumerate() {
         let foot = match feet {
             Some(named) => {
@@ -965,7 +973,21 @@ fn build(
                 )
             })?,
         };
-        chains.push(leg_chain(tree, foot, side)?);
+        found.push((foot, side));
+    }
+    // Moving joints on both feet's paths lie above the link the legs branch from (a waist
+    // below the root link): they are held, and each leg is what follows them.
+    let moving = |foot: usize| -> Vec<usize> {
+        tree.path(foot)
+            .into_iter()
+            .filter(|k| is_moving(&tree.joints[*k].kind))
+            .collect()
+    };
+    let (left, right) = (moving(found[0].0), moving(found[1].0));
+    let shared = left.iter().zip(&right).take_while(|(a, b)| a == b).count();
+    let mut chains = Vec::new();
+    for (foot, side) in found {
+        chains.push(leg_chain(tree, foot, side, shared)?);
     }
     if tree.joints[chains[0][0]].parent != tree.joints[chains[1][0]].parent {
         return Err(RobotError::invalid(

@@ -191,6 +191,38 @@ fn a_held_links_unphysical_inertia_is_remarked_and_a_leg_links_refused() {
 }
 
 #[test]
+fn a_robot_rooted_above_its_waist_holds_the_waist_and_walks() {
+    // The stranger with its chest as the root link: the waist joint turned around, so both
+    // legs hang from the pelvis below it.
+    let text = std::fs::read_to_string(root().join("tests/robots/stranger.urdf")).unwrap();
+    let waist = r#"<origin rpy="0 0 0" xyz="0 0 0.08"/>
+    <axis xyz="0 0 1"/>
+    <parent link="Pelvis"/>
+    <child link="Chest"/>"#;
+    assert!(text.contains(waist));
+    let turned = r#"<origin rpy="0 0 0" xyz="0 0 -0.08"/>
+    <axis xyz="0 0 1"/>
+    <parent link="Chest"/>
+    <child link="Pelvis"/>"#;
+    let dir = temp("waist");
+    let urdf = dir.join("chest_root.urdf");
+    std::fs::write(&urdf, text.replace(waist, turned)).unwrap();
+    let r = robot_report(&urdf, None).unwrap();
+    let original = robot_report(&root().join("tests/robots/stranger.urdf"), None).unwrap();
+    assert_eq!(r.legs.left.joints, original.legs.left.joints);
+    assert_eq!(r.legs.right.joints, original.legs.right.joints);
+    assert!(
+        r.held_joints.iter().any(|j| j == "WaistYaw"),
+        "{:?}",
+        r.held_joints
+    );
+    assert_eq!(r.held_joints.len(), original.held_joints.len());
+    assert!((r.mass_kg - original.mass_kg).abs() < 1e-9);
+    assert!((r.com_height_m - original.com_height_m).abs() < 1e-9);
+    assert_eq!(falls_in_place(&urdf), 0);
+}
+
+#[test]
 fn robot_show_describes_talos_with_its_legs_and_held_joints() {
     let r = robot_report(&talos(), None).unwrap();
     assert_eq!(r.name, "talos");
