@@ -23,7 +23,9 @@ use super::capture_step::{
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
 use super::learner::{LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
-use super::motion::{ANKLE_LIMIT, MotionConfig, MotionGenerator, StepCommand, smooth};
+use super::motion::{
+    ANKLE_LIMIT, CheckedMotionConfig, MotionConfig, MotionGenerator, StepCommand, smooth,
+};
 use super::step_parameter::{PerParameter, StepParameter};
 use crate::config::{self, ConfigError};
 use crate::robot::kinematics::LegGeometry;
@@ -130,14 +132,20 @@ impl WalkerConfig {
     /// Checks the walker's own values and its controller's and estimator's; errors name the
     /// field relative to the walker's section.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        self.check().map(|_| ())
+    }
+
+    /// [`WalkerConfig::validate`], returning the checked motion settings a generator holds.
+    fn check(&self) -> Result<CheckedMotionConfig, ConfigError> {
         config::non_negative("start_ramp_s", self.start_ramp_s)?;
-        self.motion.check().map_err(|e| e.within("motion"))?;
+        let motion = self.motion.check().map_err(|e| e.within("motion"))?;
         self.capture_step
             .validate()
             .map_err(|e| ConfigError::new("capture_step", e.to_string()))?;
         self.estimator
             .validate()
-            .map_err(|e| ConfigError::new("estimator", e.to_string()))
+            .map_err(|e| ConfigError::new("estimator", e.to_string()))?;
+        Ok(motion)
     }
 }
 
@@ -244,8 +252,7 @@ pub struct Walker {
 impl Walker {
     /// A walker for a robot with legs `geometry`.
     pub fn new(config: WalkerConfig, geometry: LegGeometry) -> Result<Self, WalkerError> {
-        config.validate()?;
-        let motion = config.motion.check().map_err(|e| e.within("motion"))?;
+        let motion = config.check()?;
         let mut capture_step = config.capture_step;
         capture_step.analytic_footstep = config.mode != WalkerMode::LearnerOnly;
         Ok(Walker {
