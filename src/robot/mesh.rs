@@ -2,6 +2,7 @@
 //! (binary or ASCII), COLLADA (`.dae`: every geometry placed by its scene's nodes, in metres
 //! with z up) and Wavefront OBJ.
 
+use std::collections::HashMap;
 use std::path::Path;
 
 use nalgebra::{Matrix4, Rotation3, Unit, Vector3};
@@ -56,7 +57,11 @@ fn text(bytes: &[u8]) -> Result<&str, String> {
 }
 
 fn floats(t: &str, what: &str) -> Result<Vec<f64>, String> {
-    t.split_whitespace()
+    words(t.split_whitespace(), what)
+}
+
+fn words<'a>(words: impl Iterator<Item = &'a str>, what: &str) -> Result<Vec<f64>, String> {
+    words
         .map(|w| {
             w.parse::<f64>()
                 .map_err(|_| format!("{what}: '{w}' is not a number"))
@@ -84,7 +89,7 @@ fn stl(bytes: &[u8]) -> Result<Vec<Vector3<f64>>, String> {
         for line in text(bytes)?.lines() {
             let mut w = line.split_whitespace();
             if w.next() == Some("vertex") {
-                let v = floats(&w.collect::<Vec<_>>().join(" "), "vertex")?;
+                let v = words(w, "vertex")?;
                 if v.len() != 3 {
                     return Err(format!("a vertex has {} coordinates", v.len()));
                 }
@@ -101,7 +106,7 @@ fn obj(t: &str) -> Result<Vec<Vector3<f64>>, String> {
     for line in t.lines() {
         let mut w = line.split_whitespace();
         if w.next() == Some("v") {
-            let v = floats(&w.collect::<Vec<_>>().join(" "), "vertex")?;
+            let v = words(w, "vertex")?;
             // x y z, optionally w or a colour.
             if v.len() < 3 {
                 return Err(format!("a vertex has {} coordinates", v.len()));
@@ -120,18 +125,29 @@ fn first<'a, 'i>(n: roxmltree::Node<'a, 'i>, tag: &str) -> Option<roxmltree::Nod
     n.children().find(|c| is(c, tag))
 }
 
-/// The element of `doc` with id `url` (`#id`).
-fn by_id<'a, 'i>(doc: &'a roxmltree::Document<'i>, url: &str) -> Option<roxmltree::Node<'a, 'i>> {
-    let id = url.strip_prefix('#').unwrap_or(url);
-    doc.descendants()
-        .find(|n| n.is_element() && n.attribute("id") == Some(id))
+/// A COLLADA document's elements by their `id`.
+struct Ids<'a, 'i>(HashMap<&'a str, roxmltree::Node<'a, 'i>>);
+
+impl<'a, 'i> Ids<'a, 'i> {
+    fn of(doc: &'a roxmltree::Document<'i>) -> Self {
+        let mut ids = HashMap::new();
+        for n in doc.descendants().filter(|n| n.is_element()) {
+            if let Some(id) = n.attribute("id") {
+                // The first of repeated ids, as a search from the top finds.
+                ids.entry(id).or_insert(n);
+            }
+        }
+        Ids(ids)
+    }
+
+    /// The element with id `url` (`#id`).
+    fn get(&self, url: &str) -> Option<roxmltree::Node<'a, 'i>> {
+        self.0.get(url.strip_prefix('#').unwrap_or(url)).copied()
+    }
 }
 
 /// The positions of one `<geometry>`: the sources its meshes' `<vertices>` name as POSITION.
-fn geometry_points(
-    doc: &roxmltree::Document,
-    geometry: roxmltree::Node,
-) -> Result<Vec<Vector3<f64>>, String> {
+fn geometry_points(ids: &Ids, geometry: roxmltree::Node) -> Result<Vec<Vector3<f64>>, String> {
     let mut points = Vec::new();
     for vertices in geometry.descendants().filter(|n| is(n, "vertices")) {
         for input in vertices.children().filter(|n| is(n, "input")) {
@@ -139,7 +155,7 @@ fn geometry_points(
                 continue;
             }
             let url = input.attribute("source").unwrap_or_default();
-            let source = by_id(doc, url).ok_or_else(|| format!("no source '{url}'"))?;
+            let source = ids.get(url).ok_or_else(|| format!("no source '{url}'"))?;
             let array = first(source, "float_array")
                 .ok_or_else(|| format!("source '{url}' has no float_array"))?;
             let values = floats(array.text().unwrap_or_default(), "float_array")?;
@@ -204,7 +220,7 @@ fn node_transform(node: roxmltree::Node) -> Result<Matrix4<f64>, String> {
 
 /// The geometries a scene node and its children instance, each placed by the nodes above it.
 fn scene_points(
-    doc: &roxmltree::Document,
+    ids: &Ids,
     node: roxmltree::Node,
     above: &Matrix4<f64>,
     depth: usize,
@@ -218,19 +234,19 @@ fn scene_points(
         match c.tag_name().name() {
             "instance_geometry" => {
                 let url = c.attribute("url").unwrap_or_default();
-                let g = by_id(doc, url).ok_or_else(|| format!("no geometry '{url}'"))?;
+                let g = ids.get(url).ok_or_else(|| format!("no geometry '{url}'"))?;
                 out.extend(
-                    geometry_points(doc, g)?
+                    geometry_points(ids, g)?
                         .iter()
                         .map(|p| here.transform_point(&(*p).into()).coords),
                 );
             }
             "instance_node" => {
                 let url = c.attribute("url").unwrap_or_default();
-                let n = by_id(doc, url).ok_or_else(|| format!("no node '{url}'"))?;
-                scene_points(doc, n, &here, depth + 1, out)?;
+                let n = ids.get(url).ok_or_else(|| format!("no node '{url}'"))?;
+                scene_points(ids, n, &here, depth + 1, out)?;
             }
-            "node" => scene_points(doc, c, &here, depth + 1, out)?,
+            "node" => scene_points(ids, c, &here, depth + 1, out)?,
             _ => {}
         }
     }
@@ -257,16 +273,17 @@ fn collada(t: &str) -> Result<Vec<Vector3<f64>>, String> {
         .and_then(|a| first(a, "up_axis"))
         .and_then(|u| u.text())
         .map_or("Y_UP", str::trim);
+    let ids = Ids::of(&doc);
     let scene = first(root, "scene")
         .and_then(|s| first(s, "instance_visual_scene"))
         .and_then(|i| i.attribute("url"))
-        .and_then(|url| by_id(&doc, url));
+        .and_then(|url| ids.get(url));
     let mut points = Vec::new();
     match scene {
-        Some(scene) => scene_points(&doc, scene, &Matrix4::identity(), 0, &mut points)?,
+        Some(scene) => scene_points(&ids, scene, &Matrix4::identity(), 0, &mut points)?,
         None => {
             for g in doc.descendants().filter(|n| is(n, "geometry")) {
-                points.extend(geometry_points(&doc, g)?);
+                points.extend(geometry_points(&ids, g)?);
             }
         }
     }

@@ -545,21 +545,14 @@ impl Tree {
     }
 }
 
-/// The chain of six leg joints ending at leaf `foot`, checked.
+/// The chain of six leg joints ending at leaf `foot`, checked: `moving` are the moving joints
+/// of its path below those both legs share.
 fn leg_chain(
     tree: &Tree,
     foot: usize,
     side: Side,
-    shared: usize,
+    moving: &[usize],
 ) -> Result<[usize; JOINTS_PER_LEG], RobotError> {
-    let path = tree.path(foot);
-    // The moving joints below the first `shared` of the path (held: both legs hang from them).
-    let moving: Vec<usize> = path
-        .iter()
-        .copied()
-        .filter(|k| is_moving(&tree.joints[*k].kind))
-        .skip(shared)
-        .collect();
     let names = |ks: &[usize]| {
         ks.iter()
             .map(|k| tree.joints[*k].name.as_str())
@@ -570,6 +563,7 @@ fn leg_chain(
     if moving.len() < JOINTS_PER_LEG {
         // A fixed joint between the hip and the foot is a locked leg joint.
         if let (Some(first), Some(last)) = (moving.first(), moving.last()) {
+            let path = tree.path(foot);
             let (a, b) = (
                 path.iter().position(|k| k == first).unwrap_or(0),
                 path.iter().position(|k| k == last).unwrap_or(0),
@@ -581,7 +575,7 @@ fn leg_chain(
                         "is fixed inside the {side:?} leg: the gait needs six moving leg joints \
                          (hip yaw, roll, pitch, knee, ankle pitch, roll); the leg has {}: {}",
                         moving.len(),
-                        names(&moving)
+                        names(moving)
                     ),
                 ));
             }
@@ -592,7 +586,7 @@ fn leg_chain(
                 "ends the {side:?} leg, whose path from the trunk has {} moving joints ({}); a \
                  leg needs six: hip yaw, roll, pitch, knee, ankle pitch, roll",
                 moving.len(),
-                names(&moving)
+                names(moving)
             ),
         ));
     }
@@ -605,7 +599,7 @@ fn leg_chain(
                  moving joints ({}); a leg needs six, from the link both legs hang from",
                 tree.links[foot].name,
                 moving.len(),
-                names(&moving)
+                names(moving)
             ),
         ));
     }
@@ -983,11 +977,15 @@ fn build(
             .filter(|k| is_moving(&tree.joints[*k].kind))
             .collect()
     };
-    let (left, right) = (moving(found[0].0), moving(found[1].0));
-    let shared = left.iter().zip(&right).take_while(|(a, b)| a == b).count();
+    let paths: Vec<Vec<usize>> = found.iter().map(|(foot, _)| moving(*foot)).collect();
+    let shared = paths[0]
+        .iter()
+        .zip(&paths[1])
+        .take_while(|(a, b)| a == b)
+        .count();
     let mut chains = Vec::new();
-    for (foot, side) in found {
-        chains.push(leg_chain(tree, foot, side, shared)?);
+    for ((foot, side), path) in found.into_iter().zip(&paths) {
+        chains.push(leg_chain(tree, foot, side, &path[shared..])?);
     }
     if tree.joints[chains[0][0]].parent != tree.joints[chains[1][0]].parent {
         return Err(RobotError::invalid(
