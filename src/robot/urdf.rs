@@ -626,11 +626,14 @@ fn leg_chain(
                 el,
                 format!(
                     "turns about ({:.3}, {:.3}, {:.3}) in the zero pose; as the {j:?} joint of \
-                     the {side:?} leg it must turn about {}",
+                     the {side:?} leg it must turn about {} (the leg's joints turn about {}; \
+                     the supported chain, hip yaw, roll, pitch, knee, ankle pitch, roll, turns \
+                     about z, x, y, y, y, x)",
                     a.x,
                     a.y,
                     a.z,
-                    ["x", "y", "z"][want.iamax()]
+                    ["x", "y", "z"][want.iamax()],
+                    chain_axes(tree, &chain)
                 ),
             ));
         }
@@ -1139,6 +1142,23 @@ fn build(
         }
     }
     Ok(d)
+}
+
+/// The axes a leg's joints turn about in the zero pose, as letters (`x`, `y`, `z`, or `oblique`).
+fn chain_axes(tree: &Tree, chain: &[usize]) -> String {
+    chain
+        .iter()
+        .map(|&k| {
+            let a = tree.axis_world(k);
+            let i = a.iamax();
+            if a[i].abs() >= AXIS_COS {
+                ["x", "y", "z"][i]
+            } else {
+                "oblique"
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The stick figure of a trunk: the head on its highest sphere, or above its highest point.

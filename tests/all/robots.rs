@@ -343,6 +343,22 @@ fn every_hostile_robot_is_refused_naming_its_element() {
 }
 
 #[test]
+fn a_leg_in_another_joint_order_is_refused_with_its_axes_and_the_supported_chain() {
+    // The knee of this copy of the minimal robot turns about x: the message names the axis
+    // every joint of that leg turns about, so a robot with another hip order (pitch first, as
+    // many ship) sees at once what differs from the supported chain.
+    let path = root().join("tests/robots/hostile/knee_about_x.urdf");
+    let show = cli(&["robot", "show", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&show.stderr);
+    assert!(!show.status.success());
+    assert!(
+        err.contains("the leg's joints turn about z, x, y, x, y, x;"),
+        "{err}"
+    );
+    assert!(err.contains("turns about z, x, y, y, y, x"), "{err}");
+}
+
+#[test]
 fn a_changed_robot_file_is_never_answered_with_old_results() {
     let dir = temp("changed");
     let urdf = dir.join("robot.urdf");
