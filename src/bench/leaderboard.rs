@@ -8,8 +8,8 @@
 //! figure), `forest.svg` (each combination's first comparison per experiment) and `index.html`.
 
 use super::{BenchError, Registry};
-use crate::control::step_parameter::LearnSet;
-use crate::experiments::experiment::{Experiment, Headline};
+use crate::control::LearnSet;
+use crate::experiments::{Experiment, Headline};
 use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;

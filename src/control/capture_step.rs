@@ -24,7 +24,7 @@
 //! foot, where the CoM is to its left).
 //!
 //! ```
-//! use steplearn::control::Side;
+//! use steplearn::robot::Side;
 //! use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
 //! use steplearn::control::lipm::LipmState;
 //! use steplearn::control::lipm_plant::LipmPlant;
@@ -82,7 +82,7 @@
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::Side;
+use crate::robot::Side;
 use super::lipm::{Lipm, LipmState};
 
 /// What can go wrong configuring or running the controller.

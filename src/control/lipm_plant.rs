@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::Side;
+use crate::robot::Side;
 use super::capture_step::{ComState, StepDecision};
 use super::lipm::{Lipm, LipmState};
 

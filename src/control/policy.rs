@@ -17,7 +17,7 @@
 //! plane) reads that plane's input and outcome, those of the footstep offset learned there
 //! ([`PerParameter::in_plane`]).
 
-use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
+use super::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
 use super::step_parameter::{FallDirection, Gate, LearnSet, PerParameter, Plane, StepParameter};
 use crate::approx::FunctionApproximator;
 use crate::rules::{LearningRule, StepOutcome};

@@ -21,7 +21,7 @@ use super::capture_step::{
     CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
 };
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
-use super::learner::{LearnerError, LearnerInput, TouchDownReport};
+use super::{LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
 use super::motion::{
     ANKLE_LIMIT, CheckedMotionConfig, MotionConfig, MotionGenerator, StepCommand, smooth,
@@ -185,7 +185,7 @@ pub enum WalkerError {
     Config(#[from] ConfigError),
 }
 
-pub use super::policy::{FootstepPolicy, StepReports};
+use super::policy::{FootstepPolicy, StepReports};
 
 /// What one tick decided and measured.
 #[derive(Debug, Clone, Copy, PartialEq)]

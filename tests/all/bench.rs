@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use steplearn::approx::{ApproxError, Grid, GridConfig, InputBox};
 use steplearn::bench::{Bench, BenchError, Registry};
-use steplearn::control::learner::LearnerInput;
+use steplearn::control::LearnerInput;
 use steplearn::experiments::ExperimentError;
-use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
+use steplearn::experiments::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::settings::Settings;
@@ -425,7 +425,7 @@ fn the_registrys_built_in_rules_are_the_rule_kinds_with_their_defaults() {
     for kind in RuleKind::VARIANTS {
         let learner = registry
             .learner_builder("lwpr", kind.name(), &settings)
-            .unwrap()(steplearn::control::learner::LearnerConfig::default())
+            .unwrap()(steplearn::control::LearnerConfig::default())
         .unwrap();
         let expected = RuleConfig::from(*kind).build().unwrap().gradient(&step);
         assert_eq!(learner.rule().gradient(&step), expected, "{kind}");

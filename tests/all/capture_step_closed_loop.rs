@@ -5,7 +5,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use steplearn::control::Side;
+use steplearn::robot::Side;
 use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
 use steplearn::control::lipm::{Lipm, LipmState};
 use steplearn::control::lipm_plant::{LipmPlant, PlantTouchDown};

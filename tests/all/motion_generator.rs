@@ -1,7 +1,7 @@
 //! The step motion generator: leg space round trip, timing, support exchange, smoothness.
 
 use proptest::prelude::*;
-use steplearn::control::LegJoint;
+use steplearn::robot::LegJoint;
 use steplearn::control::motion::{
     LegPose, LegSpace, MotionConfig, MotionGenerator, StepCommand, Swing,
 };

@@ -5,10 +5,10 @@
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use steplearn::config::{ConfigError, at_least, positive};
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::WalkerMode;
 use steplearn::experiments::ExperimentError;
 use steplearn::experiments::compare::run_model_and_learned;
-use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
+use steplearn::experiments::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::protocol::{Protocol, ProtocolTables, Table};
 use steplearn::experiments::schedule::PushPlan;

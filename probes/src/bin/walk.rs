@@ -7,11 +7,11 @@
 
 use clap::Parser;
 use steplearn::approx::{Lwpr, LwprConfig};
-use steplearn::control::Side;
+use steplearn::robot::Side;
 use steplearn::control::capture_step::StepDecision;
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
-use steplearn::control::walker::Tick;
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::Tick;
+use steplearn::control::WalkerMode;
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord, run_trial};

@@ -7,12 +7,12 @@ use crate::config::limits::{
     MAX_BINS, MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MIN_BIN_S,
 };
 use crate::config::{self, ConfigError};
-use crate::control::walker::WalkerMode;
+use crate::control::WalkerMode;
 use crate::experiments::aligned::AlignedStats;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
+use crate::experiments::{
     Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
 };
 use crate::experiments::paired::{Direction, Paired};

@@ -3,11 +3,11 @@
 //! pushes of random impulse at random gait phases.
 
 use crate::config::{self, ConfigError};
-use crate::control::walker::{FootstepPolicy, WalkerMode};
+use crate::control::{FootstepPolicy, WalkerMode};
 use crate::experiments::catch_step::{CatchStepReach, catch_step_reach};
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
+use crate::experiments::{
     Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
 };
 use crate::experiments::fall_causes::{
@@ -636,7 +636,7 @@ pub fn claim(runs: &[&Summary]) -> Claim {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::control::step_parameter::LearnSet;
+    use crate::control::LearnSet;
 
     fn falls(pushes: u32, falls: u32, x: f64) -> ControllerFalls {
         ControllerFalls {
