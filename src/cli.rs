@@ -16,9 +16,9 @@
 use crate::bench::{Bench, BenchError, Registry};
 use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
 use crate::control::LearnSet;
+use crate::experiments::PushOptions;
 use crate::experiments::ablation::{self, merge};
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::PushOptions;
 use crate::experiments::index_page::{
     INDEX_FILE, command_line, write_index, write_index_with_replays,
 };

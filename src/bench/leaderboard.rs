@@ -9,11 +9,11 @@
 
 use super::{BenchError, Registry};
 use crate::control::LearnSet;
-use crate::experiments::{Experiment, Headline};
 use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{RunSpec, Runner, SweepGrid, read_current};
+use crate::experiments::{Experiment, Headline};
 use crate::report::forest::{ForestPanel, ForestRow, forest_plot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, Shortest, write_file, write_rows};

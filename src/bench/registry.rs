@@ -10,14 +10,14 @@ use crate::config::ConfigError;
 use crate::control::{LearnerConfig, LearnerError};
 use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::{
-    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, step_x_learner,
-};
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::{LwprSettings, Settings};
 use crate::experiments::suite;
 use crate::experiments::summary::{Summary, check_name};
 use crate::experiments::sweep::{RunError, RunSpec, Runner};
+use crate::experiments::{
+    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, step_x_learner,
+};
 use crate::report::ReportError;
 use crate::rules::{
     BalanceOnly, LearningRule, Linear, PendulumCart, PolicyGradient, RateDamped, TrackingOnly,

@@ -82,8 +82,8 @@
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::robot::Side;
 use super::lipm::{Lipm, LipmState};
+use crate::robot::Side;
 
 /// What can go wrong configuring or running the controller.
 #[derive(Debug, Clone, PartialEq, Error)]

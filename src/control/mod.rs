@@ -1,7 +1,10 @@
 //! Control: everything between the sensors and the joint targets, independent of any simulator.
 //!
-//! Data flows one way: [`Sensors`] -> state estimation -> Capture Step balance control ->
-//! footstep learner -> step motion generator -> [`JointTargets`].
+//! Data flows one way: [`Sensors`](crate::robot::Sensors) -> state estimation -> Capture Step
+//! balance control -> footstep learner -> step motion generator ->
+//! [`JointTargets`](crate::robot::JointTargets). The learner, the policy and the walker have one
+//! path each, here (`control::Walker`, `control::StepLearner`, ...); the robot interface is
+//! [`crate::robot`]'s.
 
 pub mod capture_step;
 pub mod coupled;
@@ -36,6 +39,4 @@ pub use step_parameter::{
     FALL_DIRECTION_BAND, FallDirection, Gate, LearnSet, LearnSetError, PerParameter, Plane, Planes,
     StepParameter,
 };
-pub use walker::{
-    OffsetTarget, START_RAMP_S, Tick, Walker, WalkerConfig, WalkerError, WalkerMode,
-};
+pub use walker::{OffsetTarget, START_RAMP_S, Tick, Walker, WalkerConfig, WalkerError, WalkerMode};

@@ -19,9 +19,9 @@
 //! the offset is their sum (an additive model, dT = dT_s(sagittal state) + dT_f(frontal
 //! state)). Each part's reach is the parameter's, less the other part's offset.
 
-use super::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports, gate_weight};
 use super::step_parameter::{FallDirection, LearnSet, PerParameter, Plane, StepParameter};
+use super::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -257,8 +257,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
 mod tests {
     use super::*;
     use crate::approx::{AnyApproximator, ApproxKind};
-    use crate::control::{InputGrid, LearnerConfig};
     use crate::control::Gate;
+    use crate::control::{InputGrid, LearnerConfig};
     use crate::rules::{PendulumCart, SoleTilt, StepTime};
 
     fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {

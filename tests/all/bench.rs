@@ -8,7 +8,6 @@ use steplearn::approx::{ApproxError, Grid, GridConfig, InputBox};
 use steplearn::bench::{Bench, BenchError, Registry};
 use steplearn::control::LearnerInput;
 use steplearn::experiments::ExperimentError;
-use steplearn::experiments::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::settings::Settings;
@@ -16,6 +15,7 @@ use steplearn::experiments::summary::TypedResult;
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
 use steplearn::experiments::sweep::{RunSpec, Shard};
 use steplearn::experiments::tracking::TrackingSummary;
+use steplearn::experiments::{Experiment, Headline, RunContext};
 use steplearn::rules::{LearningRule, StepOutcome};
 
 fn temp_dir(name: &str) -> PathBuf {

@@ -4,13 +4,11 @@
 
 use steplearn::approx::{AnyApproximator, ApproxKind, Stacked};
 use steplearn::bench::{Bench, Registry};
-use steplearn::control::coupled::{CoupledLearner, coupled_bounds};
-use steplearn::control::{
-    InputGrid, LearnerConfig, LearnerError, LearnerInput, TrustFallback,
-};
-use steplearn::control::motion::Swing;
-use steplearn::control::{PerParameter, StepParameter};
 use steplearn::control::FootstepPolicy;
+use steplearn::control::coupled::{CoupledLearner, coupled_bounds};
+use steplearn::control::motion::Swing;
+use steplearn::control::{InputGrid, LearnerConfig, LearnerError, LearnerInput, TrustFallback};
+use steplearn::control::{PerParameter, StepParameter};
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::rules::{PendulumCart, StepOutcome};
 

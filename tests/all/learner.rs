@@ -1458,9 +1458,9 @@ fn lwpr_step_learner_of(
 /// while the trunk falls only forward, its whole offset while it falls only sideways.
 #[test]
 fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
+    use steplearn::control::FootstepPolicy;
     use steplearn::control::LearnerInput;
     use steplearn::control::{Gate, LearnSet, PerParameter, StepParameter};
-    use steplearn::control::FootstepPolicy;
     use steplearn::control::{Plane, Planes};
     use steplearn::experiments::config_file::ConfigFile;
     use steplearn::rules::StepOutcome;
@@ -1513,9 +1513,9 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
 /// its key.
 #[test]
 fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
+    use steplearn::control::FootstepPolicy;
     use steplearn::control::LearnerInput;
     use steplearn::control::{Gate, LearnSet, PerParameter, StepParameter};
-    use steplearn::control::FootstepPolicy;
     use steplearn::experiments::config_file::ConfigFile;
     use steplearn::rules::StepOutcome;
     let text = "[ankle-pitch]\ngate = \"with-the-fall\"\n";

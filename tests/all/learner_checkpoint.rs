@@ -4,11 +4,11 @@
 //! built-in approximator.
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
+use steplearn::control::PerParameter;
 use steplearn::control::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, SavedLearner,
     StepInProgress,
 };
-use steplearn::control::PerParameter;
 use steplearn::control::{FootstepPolicy, StepReports, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;

@@ -10,8 +10,8 @@
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::approx::ApproxKind;
-use steplearn::control::{FootstepLearner, InputGrid};
 use steplearn::control::StepLearner;
+use steplearn::control::{FootstepLearner, InputGrid};
 use steplearn::control::{LearnSet, StepParameter};
 use steplearn::control::{Tick, WalkerMode};
 use steplearn::experiments::schedule::PushPlan;

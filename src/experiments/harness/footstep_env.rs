@@ -53,8 +53,8 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::config::ConfigError;
-use crate::control::LearnerInput;
 use crate::control::LearnerError;
+use crate::control::LearnerInput;
 use crate::control::motion::ANKLE_LIMIT;
 use crate::control::{FootstepPolicy, StepReports};
 use crate::control::{LearnSet, PerParameter, Plane, StepParameter};

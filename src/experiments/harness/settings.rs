@@ -2,8 +2,8 @@
 
 use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Lwpr, LwprConfig};
 use crate::config::{self, ConfigError};
-use crate::control::{InputGrid, LearnerConfig, LearnerError};
 use crate::control::{FootstepPolicy, WalkerConfig, WalkerMode};
+use crate::control::{InputGrid, LearnerConfig, LearnerError};
 use crate::experiments::schedule::{Push, PushPlan, ReferenceSchedule};
 use crate::experiments::trial::TrialSetup;
 use crate::sim::SimConfig;

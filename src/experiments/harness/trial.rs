@@ -7,8 +7,8 @@
 //! learner, generator) -> `Humanoid::step`. After a fall the robot and the walker are reset and
 //! the learner keeps what it learned (its unfinished step is discarded).
 
-use crate::control::for_robot::ScaledPolicy;
 use crate::control::StepParameter;
+use crate::control::for_robot::ScaledPolicy;
 use crate::control::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
 use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::report::Fixed;

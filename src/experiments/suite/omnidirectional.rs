@@ -22,18 +22,16 @@
 
 use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
 use crate::config::{self, ConfigError};
-use crate::control::{LearnSet, StepParameter};
 use crate::control::{FootstepPolicy, Tick, WalkerMode};
+use crate::control::{LearnSet, StepParameter};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::{
-    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
-};
 use crate::experiments::fall_causes::{count, run_classified};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::{PushPlan, ReferenceSchedule};
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::experiments::trial::{Observer, PushRecord, TrialLog, run_trial};
+use crate::experiments::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
 use rayon::prelude::*;

@@ -14,15 +14,12 @@
 use crate::approx::FunctionApproximator;
 use crate::config::limits::{MAX_GAP_S, MAX_GRID_POINTS, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
+use crate::control::WalkerMode;
 use crate::control::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, MapSpec, OffsetMap, Prior,
 };
-use crate::control::WalkerMode;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::{
-    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
-};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::replay_plan::{Moment, PushOutcome, ReplayPlan, differing_push, outcome};
@@ -30,6 +27,9 @@ use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::experiments::settings::Settings;
 use crate::experiments::summary::{ExperimentResult, Summary, TypedResult, finite_non_negative};
 use crate::experiments::trial::{StepCells, StepRecord, TrialSetup, run_trial};
+use crate::experiments::{
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
+};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::read_rows;
