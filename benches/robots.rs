@@ -6,7 +6,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::PathBuf;
-use steplearn::control::walker::{Walker, WalkerConfig, WalkerMode};
+use steplearn::control::{Walker, WalkerConfig, WalkerMode};
 use steplearn::robot::file::RobotFile;
 use steplearn::sim::{BodyConfig, Humanoid, SimConfig};
 

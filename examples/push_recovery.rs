@@ -8,7 +8,7 @@
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::approx::ApproxKind;
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::{self, StabilityProtocol};
 use steplearn::rules::PendulumCart;

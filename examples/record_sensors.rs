@@ -9,8 +9,8 @@ use std::path::PathBuf;
 
 use steplearn::approx::{Lwpr, LwprConfig};
 use steplearn::control::for_robot::ScaledPolicy;
-use steplearn::control::walker::{Walker, WalkerConfig, WalkerMode};
 use steplearn::control::{FootstepLearner, LearnerConfig};
+use steplearn::control::{Walker, WalkerConfig, WalkerMode};
 use steplearn::robot::file::RobotFile;
 use steplearn::robot::{JointTargets, Sensors};
 use steplearn::rules::PendulumCart;

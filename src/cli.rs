@@ -15,10 +15,10 @@
 
 use crate::bench::{Bench, BenchError, Registry};
 use crate::config::limits::{MAX_PUSHES, MAX_SEEDS};
-use crate::control::step_parameter::LearnSet;
+use crate::control::LearnSet;
+use crate::experiments::PushOptions;
 use crate::experiments::ablation::{self, merge};
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::experiment::PushOptions;
 use crate::experiments::index_page::{
     INDEX_FILE, command_line, write_index, write_index_with_replays,
 };
@@ -864,8 +864,8 @@ fn replay(registry: &Registry, args: ReplayArgs) -> Result<(), String> {
         out,
     } = args;
     let moment = match (push, time) {
-        (Some(push), _) => crate::replay::Moment::Push(push),
-        (None, Some((from, to))) => crate::replay::Moment::Span(from, to),
+        (Some(push), _) => crate::experiments::replay_plan::Moment::Push(push),
+        (None, Some((from, to))) => crate::experiments::replay_plan::Moment::Span(from, to),
         (None, None) => return Err("give --push K or --time A..B".into()),
     };
     let replay = crate::replay::moment_to_file(registry, &run_dir, moment, &out)

@@ -51,7 +51,7 @@ pub mod config;
 pub mod control;
 #[cfg(feature = "experiments")]
 pub mod experiments;
-pub mod names;
+mod names;
 pub use names::Named;
 pub mod prelude;
 #[cfg(feature = "experiments")]

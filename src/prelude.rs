@@ -7,21 +7,22 @@ pub use crate::approx::{
     AnyApproximator, ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox,
     Lwpr, LwprConfig, Persist,
 };
-pub use crate::control::learner::InputGrid;
-pub use crate::control::step_parameter::PerParameter;
 pub use crate::control::{
-    FootstepLearner, FootstepPolicy, LearnSet, LearnerConfig, LearnerError, LearnerInput,
-    StepLearner, StepParameter,
+    FootstepLearner, FootstepPolicy, InputGrid, LearnSet, LearnerConfig, LearnerError,
+    LearnerInput, PerParameter, StepLearner, StepParameter,
 };
 pub use crate::rules::{LearningRule, PendulumCart, StepOutcome, StepTime};
 
 #[cfg(feature = "experiments")]
 pub use crate::bench::{Bench, BenchError, Registry};
 #[cfg(feature = "experiments")]
-pub use crate::experiments::{
-    ConfigFile, CustomResult, Experiment, ExperimentError, ExperimentResult, RunContext, Settings,
-    Summary, TypedResult,
-};
+pub use crate::experiments::config_file::ConfigFile;
+#[cfg(feature = "experiments")]
+pub use crate::experiments::settings::Settings;
+#[cfg(feature = "experiments")]
+pub use crate::experiments::summary::{CustomResult, ExperimentResult, Summary, TypedResult};
+#[cfg(feature = "experiments")]
+pub use crate::experiments::{Experiment, ExperimentError, RunContext};
 
 #[cfg(test)]
 mod tests {

@@ -3,12 +3,12 @@
 
 use std::path::{Path, PathBuf};
 use steplearn::bench::Registry;
-use steplearn::control::learner::{LearnerError, LearnerInput};
-use steplearn::control::step_parameter::{LearnSet, PerParameter};
-use steplearn::control::walker::{FootstepPolicy, StepReports};
+use steplearn::control::{FootstepPolicy, StepReports};
+use steplearn::control::{LearnSet, PerParameter};
+use steplearn::control::{LearnerError, LearnerInput};
 use steplearn::experiments::RunContext;
+use steplearn::experiments::RunStepLearner;
 use steplearn::experiments::config_file::{ConfigFile, ConfigFileError};
-use steplearn::experiments::experiment::RunStepLearner;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{Observer, TrialSetup, run_trial};
 use steplearn::rules::StepOutcome;

@@ -28,7 +28,7 @@ use steplearn::approx::{
     check_output, check_vector,
 };
 use steplearn::bench::{Bench, BenchError, Registry};
-use steplearn::control::step_parameter::LearnSet;
+use steplearn::control::LearnSet;
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::sweep::{RunOutcome, RunStatus, Shard, SweepError};
 use steplearn::rules::{LearningRule, StepOutcome};

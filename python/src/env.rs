@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
-use steplearn::control::step_parameter::LearnSet;
+use steplearn::control::LearnSet;
 use steplearn::experiments::footstep_env::{
     EnvError, FootstepEnv as RustEnv, FootstepEnvConfig, PushProtocol,
 };

@@ -6,7 +6,7 @@
 //! invariant check on load, so a corrupt file is an error, never a broken model.
 
 mod any;
-pub mod batch;
+mod batch;
 mod boxed;
 pub mod conformance;
 mod error;

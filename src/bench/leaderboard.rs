@@ -8,12 +8,12 @@
 //! figure), `forest.svg` (each combination's first comparison per experiment) and `index.html`.
 
 use super::{BenchError, Registry};
-use crate::control::step_parameter::LearnSet;
-use crate::experiments::experiment::{Experiment, Headline};
+use crate::control::LearnSet;
 use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::{Paired, Verdict};
 use crate::experiments::summary::Summary;
 use crate::experiments::sweep::{RunSpec, Runner, SweepGrid, read_current};
+use crate::experiments::{Experiment, Headline};
 use crate::report::forest::{ForestPanel, ForestRow, forest_plot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, Shortest, write_file, write_rows};

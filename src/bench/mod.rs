@@ -25,13 +25,13 @@
 //! ```
 
 mod error;
-pub mod leaderboard;
+mod leaderboard;
 mod registry;
 mod robots;
 mod runner;
 
 pub use error::BenchError;
-pub use leaderboard::{Comparison, Leaderboard, LeaderboardRow};
+pub use leaderboard::{Combination, Comparison, LEADERBOARD_FILES, Leaderboard, LeaderboardRow};
 pub use registry::{RESULTS_FORMAT, Registry, RegistryRunner};
 pub use robots::{RobotColumn, RobotLeaderboard};
 pub use runner::{Bench, Report};

@@ -7,17 +7,17 @@ use crate::approx::{
     ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox, Persist,
 };
 use crate::config::ConfigError;
-use crate::control::learner::{LearnerConfig, LearnerError};
+use crate::control::{LearnerConfig, LearnerError};
 use crate::experiments::ExperimentError;
 use crate::experiments::config_file::ConfigFile;
-use crate::experiments::experiment::{
-    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, step_x_learner,
-};
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::{LwprSettings, Settings};
 use crate::experiments::suite;
 use crate::experiments::summary::{Summary, check_name};
 use crate::experiments::sweep::{RunError, RunSpec, Runner};
+use crate::experiments::{
+    Experiment, RunComponents, RunContext, RunLearner, learner_bounds, step_x_learner,
+};
 use crate::report::ReportError;
 use crate::rules::{
     BalanceOnly, LearningRule, Linear, PendulumCart, PolicyGradient, RateDamped, TrackingOnly,
@@ -343,7 +343,7 @@ impl Registry {
     /// CSV into `dir` and returns its summary (the caller writes `summary.json`). The run's
     /// learners learn the spec's set ([`RunSpec::learn`]) where it gives one, else the
     /// settings'. Every learner of the run has its rule reseeded with the run's seed
-    /// ([`FootstepLearner::reseed`](crate::control::learner::FootstepLearner::reseed)).
+    /// ([`FootstepLearner::reseed`](crate::control::FootstepLearner::reseed)).
     pub fn run_spec(
         &self,
         spec: &RunSpec,

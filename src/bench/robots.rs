@@ -144,7 +144,7 @@ impl RobotLeaderboard {
         experiment: &str,
         approx: &str,
         rule: &str,
-        learn: crate::control::step_parameter::LearnSet,
+        learn: crate::control::LearnSet,
     ) -> Option<&Comparison> {
         self.leaderboard
             .rows

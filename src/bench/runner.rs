@@ -4,7 +4,7 @@ use super::leaderboard::Leaderboard;
 use super::robots::{RobotLeaderboard, check_distinct, robot_column, robot_config};
 use super::{BenchError, Registry};
 use crate::config::limits::MAX_SEEDS;
-use crate::control::step_parameter::LearnSet;
+use crate::control::LearnSet;
 use crate::experiments::config_file::ConfigFile;
 use crate::experiments::index_page::ReplayLink;
 use crate::experiments::sweep::{

@@ -24,7 +24,7 @@
 //! foot, where the CoM is to its left).
 //!
 //! ```
-//! use steplearn::control::Side;
+//! use steplearn::robot::Side;
 //! use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
 //! use steplearn::control::lipm::LipmState;
 //! use steplearn::control::lipm_plant::LipmPlant;
@@ -82,8 +82,8 @@
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::Side;
 use super::lipm::{Lipm, LipmState};
+use crate::robot::Side;
 
 /// What can go wrong configuring or running the controller.
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -14,9 +14,9 @@
 //! checkpoints are the one learner's ([`OffsetLearner::checkpoint`], `save`, `load_with`): the
 //! second offset's reach, last value, exploration and rule state are saved beside the first's.
 
-use super::learner::{LearnerConfig, LearnerError, LearnerInput, OffsetLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports, gate_weight};
 use super::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
+use super::{LearnerConfig, LearnerError, LearnerInput, OffsetLearner, TouchDownReport};
 use crate::approx::{FunctionApproximator, InputBox};
 use crate::rules::{LearningRule, StepOutcome};
 

@@ -3,7 +3,7 @@
 //!
 //! - **Heading frame**: the world frame turned by the trunk's yaw (x forward along the heading,
 //!   y left, z up). A vector `v` in the torso frame is `Ry(pitch) Rx(roll) v` in the heading
-//!   frame, with roll and pitch from the IMU ([`Imu::roll_pitch_yaw`](super::Imu)).
+//!   frame, with roll and pitch from the IMU ([`Imu::roll_pitch_yaw`](crate::robot::Imu)).
 //! - **CoM model**: the CoM is a fixed point `com_offset` of the torso frame (the default is
 //!   the simulated 2 m humanoid's CoM in its torso frame, averaged while stepping in place:
 //!   2.1 cm ahead of and 11.6 cm above the hip centres; the legs' motion moves the true CoM by

@@ -8,7 +8,7 @@
 //! prior's box and the approximator's input scales hold for every robot, and a user's own
 //! rule or approximator needs no change.
 
-use super::learner::LearnerInput;
+use super::LearnerInput;
 use super::learner_error::LearnerError;
 use super::motion::GaitShape;
 use super::policy::{FootstepPolicy, StepReports};

@@ -60,12 +60,11 @@
 //!
 
 use super::learner_config::check_range;
-pub use super::learner_config::{
-    CheckedLearnerConfig, FallSettings, GuardSettings, LEARNER_INPUTS, LearnerConfig, LearnerInput,
-    MAX_OFFSET_INPUTS, MAX_PRIOR_SAMPLES, MAX_SAMPLES_PER_STEP, MemorySettings, OffsetSettings,
-    ParameterSettings, PartSettings, Prior, TrustFallback, TrustSettings,
+use super::learner_config::{
+    CheckedLearnerConfig, LEARNER_INPUTS, LearnerConfig, LearnerInput, MAX_OFFSET_INPUTS,
+    OffsetSettings, TrustFallback,
 };
-pub use super::learner_error::LearnerError;
+use super::learner_error::LearnerError;
 use super::step_parameter::{FallDirection, Plane, StepParameter};
 use super::step_samples::{StepSamples, trust_share};
 use crate::approx::{ApproxError, FunctionApproximator, InputBox, Persist};

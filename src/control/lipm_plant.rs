@@ -8,9 +8,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::Side;
 use super::capture_step::{ComState, StepDecision};
 use super::lipm::{Lipm, LipmState};
+use crate::robot::Side;
 
 /// A support exchange of the plant.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -17,8 +17,8 @@
 //! plane) reads that plane's input and outcome, those of the footstep offset learned there
 //! ([`PerParameter::in_plane`]).
 
-use super::learner::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
 use super::step_parameter::{FallDirection, Gate, LearnSet, PerParameter, Plane, StepParameter};
+use super::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
 use crate::approx::FunctionApproximator;
 use crate::rules::{LearningRule, StepOutcome};
 

@@ -19,9 +19,9 @@
 //! the offset is their sum (an additive model, dT = dT_s(sagittal state) + dT_f(frontal
 //! state)). Each part's reach is the parameter's, less the other part's offset.
 
-use super::learner::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use super::policy::{FootstepPolicy, StepReports, gate_weight};
 use super::step_parameter::{FallDirection, LearnSet, PerParameter, Plane, StepParameter};
+use super::{FootstepLearner, LearnerError, LearnerInput, SavedLearner, TouchDownReport};
 use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
@@ -257,8 +257,8 @@ impl<A: FunctionApproximator + Clone, R: LearningRule> FootstepPolicy for StepLe
 mod tests {
     use super::*;
     use crate::approx::{AnyApproximator, ApproxKind};
-    use crate::control::learner::{InputGrid, LearnerConfig};
-    use crate::control::step_parameter::Gate;
+    use crate::control::Gate;
+    use crate::control::{InputGrid, LearnerConfig};
     use crate::rules::{PendulumCart, SoleTilt, StepTime};
 
     fn learner(p: StepParameter) -> FootstepLearner<AnyApproximator, Box<dyn LearningRule>> {
@@ -309,7 +309,7 @@ mod tests {
 
     /// The step time in both planes: the sagittal and the frontal learner.
     fn both_planes() -> StepLearner<AnyApproximator, Box<dyn LearningRule>> {
-        use crate::control::step_parameter::Planes;
+        use crate::control::Planes;
         let config = LearnerConfig::default();
         let time = |plane: Plane| {
             learner_with(
@@ -400,7 +400,7 @@ mod tests {
 
     #[test]
     fn a_frontal_step_time_reads_and_learns_the_frontal_plane() {
-        use crate::control::learner_config::ParameterSettings;
+        use crate::control::ParameterSettings;
         let frontal = LearnerConfig {
             step_time: ParameterSettings {
                 plane: Some(Plane::Frontal.into()),
@@ -522,7 +522,7 @@ mod tests {
 
     #[test]
     fn a_rate_share_gate_weights_each_part_by_its_planes_share_of_the_rate() {
-        use crate::control::step_parameter::Planes;
+        use crate::control::Planes;
         let config = LearnerConfig::default();
         let mut gated = config.in_planes(StepParameter::StepTime, Planes::Both);
         gated.step_time.gate = Some(Gate::RateShare);
@@ -680,7 +680,7 @@ mod tests {
         ));
         // A learner whose settings learn its slot's parameter in both planes (here a step-x
         // learner, which may be given for any slot).
-        use crate::control::step_parameter::Planes;
+        use crate::control::Planes;
         let both = LearnerConfig::default().in_planes(StepParameter::StepTime, Planes::Both);
         let other = StepLearner::new(vec![(
             StepParameter::StepTime,

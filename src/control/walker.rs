@@ -21,12 +21,12 @@ use super::capture_step::{
     CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
 };
 use super::estimator::{Estimate, EstimatorConfig, EstimatorError, StateEstimator};
-use super::learner::{LearnerError, LearnerInput, TouchDownReport};
 use super::lipm::LipmState;
 use super::motion::{
     ANKLE_LIMIT, CheckedMotionConfig, MotionConfig, MotionGenerator, StepCommand, smooth,
 };
 use super::step_parameter::{PerParameter, StepParameter};
+use super::{LearnerError, LearnerInput, TouchDownReport};
 use crate::config::{self, ConfigError};
 use crate::robot::kinematics::LegGeometry;
 use crate::robot::{JointTargets, Sensors, Side};
@@ -185,7 +185,7 @@ pub enum WalkerError {
     Config(#[from] ConfigError),
 }
 
-pub use super::policy::{FootstepPolicy, StepReports};
+use super::policy::{FootstepPolicy, StepReports};
 
 /// What one tick decided and measured.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -13,17 +13,17 @@ use super::replay_plan::{Moment, ReplayPlan};
 use super::settings::Settings;
 use crate::approx::{ApproxError, BoxedApproximator, InputBox, Stacked};
 use crate::config::ConfigError;
+use crate::control::StepLearner;
+use crate::control::WalkerConfig;
 use crate::control::coupled::{CoupledLearner, coupled_bounds};
-use crate::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
-use crate::control::step_learner::StepLearner;
-use crate::control::step_parameter::{LearnSet, Plane, StepParameter};
-use crate::control::walker::WalkerConfig;
+use crate::control::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use crate::control::{LearnSet, Plane, StepParameter};
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::report::ReportError;
 use crate::rules::{LearningRule, SoleTilt, StepTime};
 use std::path::Path;
 
-pub use super::push_options::{PushOptions, PushOptionsError};
+use super::push_options::{PushOptions, PushOptionsError};
 
 /// The learner every experiment runs: the run's approximator and rule, chosen by name.
 pub type RunLearner = FootstepLearner<BoxedApproximator, Box<dyn LearningRule>>;

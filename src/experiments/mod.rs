@@ -4,10 +4,10 @@
 //! [`config_file`], [`sweep`], [`paired`], ...), the experiments themselves, one file each
 //! ([`tracking`], [`disturbance`], [`stability`], [`robustness`], [`omnidirectional`]), collected
 //! by [`paper`], [`beyond`] and [`builtin`], and the paper's reproduction ([`reproduce`],
-//! [`claims_table`], [`ablation`]). [`experiment`] is the contract between them (the
-//! [`Experiment`] trait and the [`RunContext`] that builds a run's learners).
+//! [`claims_table`], [`ablation`]). The contract between them is here: the [`Experiment`] trait
+//! and the [`RunContext`] that builds a run's learners.
 
-pub mod experiment;
+mod experiment;
 pub(crate) mod harness;
 pub(crate) mod records;
 pub(crate) mod suite;
@@ -24,12 +24,11 @@ pub use suite::{disturbance, omnidirectional, robustness, stability, tracking};
 pub(crate) use harness::push_options;
 pub(crate) use records::error;
 
-pub use config_file::{ConfigFile, ConfigFileError};
 pub use error::ExperimentError;
-pub use experiment::{Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext};
-pub use paired::{Paired, Verdict};
-pub use protocol::{Protocol, ProtocolTables};
-pub use settings::Settings;
+pub use experiment::{
+    CoupledRunLearner, Experiment, Headline, Replayable, RunComponents, RunContext, RunLearner,
+    RunStepLearner, learner_bounds, parameter_learner, sole_tilt_rule, step_time_rule,
+    step_x_learner,
+};
+pub use push_options::{PushOptions, PushOptionsError};
 pub use suite::reproduction::ExperimentKind;
-pub use summary::{CustomResult, ExperimentResult, Summary, TypedResult};
-pub use trial::{Observer, TrialError, TrialLog, TrialSetup, run_trial};

@@ -7,7 +7,7 @@
 //! trials it walks for the run's seed, built by its own functions,
 //! [`crate::experiments::Replayable`]) and runs them with [`run_trial`], the trial code every
 //! experiment uses, with a [`Recorder`] attached. [`page()`] writes the recording as one HTML
-//! page with three.js inlined ([`page::THREE_VERSION`]).
+//! page with three.js inlined ([`THREE_VERSION`]).
 //!
 //! A plan of long trials (one per walker, the learned one learning throughout) is walked from
 //! its start to the end of the moment replayed, a push or a span; a plan of one episode per
@@ -16,14 +16,14 @@
 //! moment of a run for the results pages.
 
 pub mod moments;
-pub mod page;
-pub mod record;
+mod page;
+mod record;
 
 use crate::bench::{BenchError, Registry};
-use crate::control::learner::LearnerConfig;
-use crate::control::learner::LearnerError;
+use crate::control::LearnerConfig;
+use crate::control::LearnerError;
 use crate::experiments::ExperimentError;
-use crate::experiments::experiment::RunContext;
+use crate::experiments::RunContext;
 use crate::experiments::protocol::{ProtocolTables, Table};
 use crate::experiments::settings::Settings;
 use crate::experiments::sweep::{IDENTITY_FILE, RunSpec};
@@ -32,9 +32,9 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-pub use crate::experiments::replay_plan::{Moment, ReplayPlan, ReplayWalker};
-pub use page::{embedded_replay, page};
-pub use record::{Frame, Recorder, Touchdown, Walk};
+use crate::experiments::replay_plan::{Moment, ReplayPlan, ReplayWalker};
+pub use page::{THREE_LICENSE, THREE_VERSION, embedded_replay, page};
+pub use record::{DrawnShape, Frame, Recorder, Touchdown, Walk, drawn_bodies};
 
 /// Seconds recorded before the push.
 pub const BEFORE_PUSH_S: f64 = 1.0;

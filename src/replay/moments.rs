@@ -5,7 +5,7 @@
 
 use super::{Moment, ReplayError, RunConfig, moment_to_file, summary_line};
 use crate::bench::Registry;
-use crate::bench::leaderboard::{Leaderboard, LeaderboardRow};
+use crate::bench::{Leaderboard, LeaderboardRow};
 use crate::experiments::index_page::ReplayLink;
 use crate::experiments::paired::Verdict;
 use crate::experiments::sweep::RunSpec;

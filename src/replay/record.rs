@@ -7,8 +7,8 @@
 //! [`DECIMALS`](crate::experiments::replay_plan::DECIMALS) decimals when it is recorded, so the
 //! JSON a page embeds parses back to exactly the recorded values.
 
-use crate::control::step_parameter::StepParameter;
-use crate::control::walker::Tick;
+use crate::control::StepParameter;
+use crate::control::Tick;
 use crate::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord};
 use crate::robot::Side;
 use crate::robot::description::{Description, Geometry};

@@ -6,9 +6,8 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use steplearn::approx::{ApproxError, Grid, GridConfig, InputBox};
 use steplearn::bench::{Bench, BenchError, Registry};
-use steplearn::control::learner::LearnerInput;
+use steplearn::control::LearnerInput;
 use steplearn::experiments::ExperimentError;
-use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::settings::Settings;
@@ -16,6 +15,7 @@ use steplearn::experiments::summary::TypedResult;
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
 use steplearn::experiments::sweep::{RunSpec, Shard};
 use steplearn::experiments::tracking::TrackingSummary;
+use steplearn::experiments::{Experiment, Headline, RunContext};
 use steplearn::rules::{LearningRule, StepOutcome};
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -425,7 +425,7 @@ fn the_registrys_built_in_rules_are_the_rule_kinds_with_their_defaults() {
     for kind in RuleKind::VARIANTS {
         let learner = registry
             .learner_builder("lwpr", kind.name(), &settings)
-            .unwrap()(steplearn::control::learner::LearnerConfig::default())
+            .unwrap()(steplearn::control::LearnerConfig::default())
         .unwrap();
         let expected = RuleConfig::from(*kind).build().unwrap().gradient(&step);
         assert_eq!(learner.rule().gradient(&step), expected, "{kind}");

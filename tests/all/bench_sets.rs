@@ -7,13 +7,13 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use steplearn::approx::{ApproxError, Grid, GridConfig, InputBox};
 use steplearn::bench::{Bench, BenchError, Registry};
-use steplearn::control::learner::LearnerInput;
-use steplearn::control::step_parameter::LearnSet;
+use steplearn::control::LearnSet;
+use steplearn::control::LearnerInput;
 use steplearn::experiments::ExperimentError;
-use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
 use steplearn::experiments::sweep::{RunSpec, RunStatus};
+use steplearn::experiments::{Experiment, Headline, RunContext};
 use steplearn::rules::StepOutcome;
 
 fn temp_dir(name: &str) -> PathBuf {

@@ -5,10 +5,10 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use steplearn::control::Side;
 use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
 use steplearn::control::lipm::{Lipm, LipmState};
 use steplearn::control::lipm_plant::{LipmPlant, PlantTouchDown};
+use steplearn::robot::Side;
 
 const DT: f64 = 0.005;
 const FOOT: [f64; 2] = [0.30, 0.11];

@@ -6,10 +6,10 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use steplearn::control::capture_step::{CaptureStep, CaptureStepConfig, GaitReference};
 use steplearn::control::estimator::{EstimatorConfig, StateEstimator};
-use steplearn::control::kinematics::LegGeometry;
 use steplearn::control::lipm::{Lipm, LipmState};
 use steplearn::control::lipm_plant::LipmPlant;
-use steplearn::control::{FootContact, Imu, LegJoint, Sensors, Side};
+use steplearn::robot::kinematics::LegGeometry;
+use steplearn::robot::{FootContact, Imu, LegJoint, Sensors, Side};
 
 const DT: f64 = 0.004;
 /// The plant's (and controller's) pendulum constant (1/s).

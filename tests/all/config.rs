@@ -230,7 +230,7 @@ fn a_walker_section_without_mode_takes_the_defaults() {
         ConfigFile::parse_toml("[settings.walker]\noffset_target = \"reference\"\n").unwrap();
     assert_eq!(
         config.settings.walker.offset_target,
-        steplearn::control::walker::OffsetTarget::Reference
+        steplearn::control::OffsetTarget::Reference
     );
     let (ok, _, err) = check("[settings.walker]\noffset_target = \"elsewhere\"\n");
     assert!(!ok);
@@ -342,7 +342,7 @@ fn the_shipped_configs_pass_the_check() {
 
     // The offset in the reference: the defaults but for where dF enters; with the mismatch,
     // the mismatch robot but for the same.
-    use steplearn::control::walker::OffsetTarget;
+    use steplearn::control::OffsetTarget;
     for (file, base) in [
         ("offset_in_reference.toml", ConfigFile::default()),
         ("mismatch_offset_in_reference.toml", mismatch),

@@ -4,13 +4,11 @@
 
 use steplearn::approx::{AnyApproximator, ApproxKind, Stacked};
 use steplearn::bench::{Bench, Registry};
+use steplearn::control::FootstepPolicy;
 use steplearn::control::coupled::{CoupledLearner, coupled_bounds};
-use steplearn::control::learner::{
-    InputGrid, LearnerConfig, LearnerError, LearnerInput, TrustFallback,
-};
 use steplearn::control::motion::Swing;
-use steplearn::control::step_parameter::{PerParameter, StepParameter};
-use steplearn::control::walker::FootstepPolicy;
+use steplearn::control::{InputGrid, LearnerConfig, LearnerError, LearnerInput, TrustFallback};
+use steplearn::control::{PerParameter, StepParameter};
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::rules::{PendulumCart, StepOutcome};
 
@@ -369,7 +367,7 @@ fn each_offset_takes_its_own_parameters_dead_zone() {
     let mut learner = coupled(LearnerConfig {
         trust_region: None,
         dead_zone: 0.15,
-        step_y: steplearn::control::learner::ParameterSettings {
+        step_y: steplearn::control::ParameterSettings {
             dead_zone: Some(0.0),
             ..Default::default()
         },
@@ -477,7 +475,7 @@ fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
     one.more_offsets.clear();
     let err = CoupledLearner::from_checkpoint_with(one, [PendulumCart::default(); 2]).unwrap_err();
     assert!(err.to_string().contains("output"), "{err}");
-    type Corruption = fn(&mut steplearn::control::learner::SavedOffset);
+    type Corruption = fn(&mut steplearn::control::SavedOffset);
     let broken: [(&str, Corruption); 3] = [
         ("reach count", |o| {
             o.reach.pop();
@@ -494,7 +492,7 @@ fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
         assert!(err.to_string().contains("step-y"), "{what}: {err}");
     }
     // A one-offset learner cannot take a coupled checkpoint.
-    let err = steplearn::control::learner::FootstepLearner::<Stacked<AnyApproximator>, _>::from_checkpoint(
+    let err = steplearn::control::FootstepLearner::<Stacked<AnyApproximator>, _>::from_checkpoint(
         good,
         PendulumCart::default(),
     )
@@ -509,7 +507,7 @@ fn a_coupled_checkpoint_of_another_shape_or_with_a_broken_offset_is_refused() {
 /// weights the uncoupled ones: each by its plane's share of the trunk's squared deviation rate.
 #[test]
 fn a_gate_weights_each_coupled_offset_by_its_planes_share() {
-    use steplearn::control::step_parameter::Gate;
+    use steplearn::control::Gate;
     let mut config = LearnerConfig {
         trust_region: None,
         ..LearnerConfig::default()

@@ -3,8 +3,8 @@
 
 use nalgebra::{Isometry3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use steplearn::control::estimator::{EstimatorConfig, EstimatorError, StateEstimator};
-use steplearn::control::kinematics::LegGeometry;
-use steplearn::control::{FootContact, Imu, LegJoint, Sensors, Side};
+use steplearn::robot::kinematics::LegGeometry;
+use steplearn::robot::{FootContact, Imu, LegJoint, Sensors, Side};
 
 const DT: f64 = 0.002;
 const WEIGHT: f64 = 13.5 * 9.81;

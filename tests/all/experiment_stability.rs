@@ -1,7 +1,7 @@
 //! Experiment C, short: three controllers see the same pushes; results and files are written.
 
 use steplearn::approx::ApproxKind;
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::stability::{self, StabilityProtocol};
 use steplearn::rules::PendulumCart;

@@ -4,7 +4,7 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use steplearn::approx::{AnyApproximator, ApproxKind};
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig, LearnerError};
 use steplearn::experiments::ExperimentError;
 use steplearn::experiments::disturbance::{self, DisturbanceProtocol};
 use steplearn::experiments::fall_causes::FallCause;
@@ -189,7 +189,7 @@ fn robustness_learns_from_scratch_and_keeps_what_it_learned() {
         ..Settings::default()
     };
     let p = RobustnessProtocol {
-        map: steplearn::control::learner::MapSpec {
+        map: steplearn::control::MapSpec {
             resolution: (9, 7),
             ..Default::default()
         },

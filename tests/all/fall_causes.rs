@@ -3,8 +3,8 @@
 //! summaries carry their new fields with consistent sizes.
 
 use steplearn::bench::Registry;
-use steplearn::control::walker::Tick;
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::Tick;
+use steplearn::control::WalkerMode;
 use steplearn::experiments::ExperimentKind;
 use steplearn::experiments::fall_causes::{
     FallCause, FallCauseObserver, FallEvent, StepLimits, classify,

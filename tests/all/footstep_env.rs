@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
-use steplearn::control::step_parameter::{LearnSet, StepParameter};
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::WalkerMode;
+use steplearn::control::{LearnSet, StepParameter};
 use steplearn::experiments::footstep_env::{
     EnvError, FootstepEnv, FootstepEnvConfig, PushProtocol, StepResult,
 };

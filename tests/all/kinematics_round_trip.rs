@@ -3,8 +3,8 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use steplearn::control::Side;
-use steplearn::control::kinematics::{KinematicsError, LegAngles, LegGeometry};
+use steplearn::robot::Side;
+use steplearn::robot::kinematics::{KinematicsError, LegAngles, LegGeometry};
 
 fn angles() -> impl Strategy<Value = LegAngles> {
     (

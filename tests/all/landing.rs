@@ -3,7 +3,7 @@
 //! than with every step on time.
 
 use steplearn::control::motion::Swing;
-use steplearn::control::walker::{Tick, WalkerMode};
+use steplearn::control::{Tick, WalkerMode};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{FallRecord, Observer, run_trial};

@@ -2,13 +2,14 @@
 //! learner's offset within the step-width range, and the effect of learning on the width.
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::Plane;
+use steplearn::control::StepLearner;
+use steplearn::control::StepParameter;
 use steplearn::control::motion::Swing;
-use steplearn::control::step_learner::StepLearner;
-use steplearn::control::step_parameter::StepParameter;
-use steplearn::control::walker::{FootstepPolicy, Walker, WalkerConfig, WalkerMode};
-use steplearn::control::{Plane, Side};
-use steplearn::experiments::experiment::step_time_rule;
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::{FootstepPolicy, Walker, WalkerConfig, WalkerMode};
+use steplearn::experiments::step_time_rule;
+use steplearn::robot::Side;
 use steplearn::rules::{PendulumCart, StepOutcome};
 use steplearn::sim::{Humanoid, SimConfig};
 
@@ -296,8 +297,8 @@ fn a_frontal_step_time_learns_from_a_side_push_and_the_sagittal_one_barely() {
 /// time drifts, docs/learner.md).
 #[test]
 fn a_step_time_in_both_planes_learns_each_push_in_its_own_plane() {
+    use steplearn::control::LearnerInput;
     use steplearn::control::Planes;
-    use steplearn::control::learner::LearnerInput;
     let both = || {
         let config = LearnerConfig {
             dead_zone: 0.06,

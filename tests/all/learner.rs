@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use steplearn::approx::{ApproxError, FunctionApproximator, Persist, check_output, check_vector};
-use steplearn::control::learner::{
+use steplearn::control::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, MapSpec, TrustFallback,
 };
 use steplearn::rules::{BalanceOnly, LearningRule, PendulumCart, StepOutcome};
@@ -262,7 +262,7 @@ fn dead_zone_shrinks_the_gradient_and_leakage_pulls_back_to_zero() {
         Fixed(0.0, AtomicUsize::new(0)),
         LearnerConfig {
             leakage: 0.5,
-            prior: steplearn::control::learner::Prior::none(),
+            prior: steplearn::control::Prior::none(),
             ..LearnerConfig::literal()
         },
     )
@@ -310,7 +310,7 @@ fn max_step_error_skips_steps_the_model_missed_but_not_the_learners_own_errors()
 
 #[test]
 fn max_step_error_in_metres_gates_only_the_footstep_offsets() {
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     let cfg = LearnerConfig {
         max_step_error: Some(0.05),
         ..LearnerConfig::literal()
@@ -904,7 +904,7 @@ fn one_step(learner: &mut FootstepLearner<BinTable, Fixed>, x: LearnerInput, rea
 #[test]
 fn gain_guard_keeps_the_applied_gain_at_its_limit_for_a_jumpy_approximator() {
     let cfg = LearnerConfig {
-        prior: steplearn::control::learner::Prior::none(),
+        prior: steplearn::control::Prior::none(),
         ..LearnerConfig::default()
     };
     let limit = cfg.max_gain.unwrap();
@@ -937,7 +937,7 @@ fn gain_guard_keeps_the_applied_gain_at_its_limit_for_a_jumpy_approximator() {
 fn anti_windup_bounds_the_offset_by_the_reach_and_unwinds_it() {
     let cfg = LearnerConfig {
         max_gain: None,
-        prior: steplearn::control::learner::Prior::none(),
+        prior: steplearn::control::Prior::none(),
         ..LearnerConfig::default()
     };
     let mut learner = FootstepLearner::new(jumpy(), Fixed(0.5, AtomicUsize::new(0)), cfg).unwrap();
@@ -999,8 +999,8 @@ fn the_prior_is_held_and_lowers_lwprs_response() {
         };
         FootstepLearner::new(lwpr, PendulumCart::default(), cfg).unwrap()
     };
-    let mut with = make(steplearn::control::learner::Prior::default());
-    let mut without = make(steplearn::control::learner::Prior::none());
+    let mut with = make(steplearn::control::Prior::default());
+    let mut without = make(steplearn::control::Prior::none());
     let x = input(0.05, 0.2, 0.1);
     assert_eq!(with.predict(x).unwrap(), 0.0);
     let step = StepOutcome {
@@ -1093,7 +1093,7 @@ fn new_learner_settings_are_validated() {
             ..LearnerConfig::default()
         },
         LearnerConfig {
-            prior: steplearn::control::learner::Prior {
+            prior: steplearn::control::Prior {
                 lo: input(0.3, 0.0, 0.0),
                 hi: input(-0.3, 1.0, 1.0),
                 samples: 10,
@@ -1110,8 +1110,8 @@ fn new_learner_settings_are_validated() {
 
 #[test]
 fn a_parameter_table_sets_its_offset_apart_from_the_shared_settings() {
-    use steplearn::control::learner::ParameterSettings;
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::ParameterSettings;
+    use steplearn::control::StepParameter;
     let x = input(0.0, 0.0, 0.0);
     // Shared: dead zone 0.1, eta 1. The step-x table: no dead zone, eta 0.5.
     let cfg = LearnerConfig {
@@ -1156,8 +1156,8 @@ fn a_parameter_table_sets_its_offset_apart_from_the_shared_settings() {
 
 #[test]
 fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
-    use steplearn::control::learner::ParameterSettings;
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::ParameterSettings;
+    use steplearn::control::StepParameter;
     let cases = [
         (
             "step-time.eta",
@@ -1298,7 +1298,7 @@ fn a_bad_value_in_a_parameter_table_is_refused_by_its_key() {
 
 #[test]
 fn parameter_tables_read_from_toml_and_a_default_config_writes_none() {
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     let written = toml::to_string(&LearnerConfig::default()).unwrap();
     assert!(!written.contains("step-"), "{written}");
     let cfg: LearnerConfig =
@@ -1319,7 +1319,7 @@ fn parameter_tables_read_from_toml_and_a_default_config_writes_none() {
 #[test]
 fn the_step_time_may_be_learned_in_the_frontal_plane() {
     use steplearn::control::Planes;
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     let cfg: LearnerConfig = toml::from_str("[step-time]\nplane = \"frontal\"\n").unwrap();
     let checked = cfg.check().unwrap();
     assert_eq!(checked.planes(StepParameter::StepTime), Planes::Frontal);
@@ -1339,7 +1339,7 @@ fn the_step_time_may_be_learned_in_the_frontal_plane() {
 #[test]
 fn the_step_time_may_be_learned_in_both_planes_by_a_step_learner_only() {
     use steplearn::control::Planes;
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     let cfg: LearnerConfig = toml::from_str("[step-time]\nplane = \"both\"\n").unwrap();
     let checked = cfg.check().unwrap();
     assert_eq!(checked.planes(StepParameter::StepTime), Planes::Both);
@@ -1384,7 +1384,7 @@ fn the_step_time_may_be_learned_in_both_planes_by_a_step_learner_only() {
 /// the table is refused (naming it) without `plane = "both"` or with a bad value.
 #[test]
 fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     use steplearn::control::{Plane, Planes};
     let text = "dead_zone = 0.06\n[step-time]\nplane = \"both\"\neta = 0.5\n[step-time.frontal]\ndead_zone = 0.0\n";
     let cfg: LearnerConfig = toml::from_str(text).unwrap();
@@ -1437,7 +1437,7 @@ fn the_frontal_part_of_a_step_time_in_both_planes_has_its_own_settings() {
 /// The run's step learner (LWPR, pendulum-cart, seed 0) that `config` describes.
 fn lwpr_step_learner_of(
     config: &steplearn::experiments::config_file::ConfigFile,
-) -> steplearn::experiments::experiment::RunStepLearner {
+) -> steplearn::experiments::RunStepLearner {
     let components = steplearn::bench::Registry::builtin()
         .components("lwpr", "pendulum-cart", &config.settings.lwpr)
         .unwrap();
@@ -1458,9 +1458,9 @@ fn lwpr_step_learner_of(
 /// while the trunk falls only forward, its whole offset while it falls only sideways.
 #[test]
 fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
-    use steplearn::control::learner::LearnerInput;
-    use steplearn::control::step_parameter::{Gate, LearnSet, PerParameter, StepParameter};
-    use steplearn::control::walker::FootstepPolicy;
+    use steplearn::control::FootstepPolicy;
+    use steplearn::control::LearnerInput;
+    use steplearn::control::{Gate, LearnSet, PerParameter, StepParameter};
     use steplearn::control::{Plane, Planes};
     use steplearn::experiments::config_file::ConfigFile;
     use steplearn::rules::StepOutcome;
@@ -1513,9 +1513,9 @@ fn a_gated_offset_acts_by_its_planes_share_of_the_trunks_rate() {
 /// its key.
 #[test]
 fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
-    use steplearn::control::learner::LearnerInput;
-    use steplearn::control::step_parameter::{Gate, LearnSet, PerParameter, StepParameter};
-    use steplearn::control::walker::FootstepPolicy;
+    use steplearn::control::FootstepPolicy;
+    use steplearn::control::LearnerInput;
+    use steplearn::control::{Gate, LearnSet, PerParameter, StepParameter};
     use steplearn::experiments::config_file::ConfigFile;
     use steplearn::rules::StepOutcome;
     let text = "[ankle-pitch]\ngate = \"with-the-fall\"\n";
@@ -1576,7 +1576,7 @@ fn a_with_the_fall_gate_withholds_an_offset_that_points_against_the_fall() {
 
 #[test]
 fn checked_settings_hold_every_value_in_its_group() {
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     let cfg = LearnerConfig {
         max_gain: Some(0.3),
         anti_windup: false,

@@ -4,12 +4,12 @@
 //! built-in approximator.
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
-use steplearn::control::learner::{
+use steplearn::control::PerParameter;
+use steplearn::control::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, SavedLearner,
     StepInProgress,
 };
-use steplearn::control::step_parameter::PerParameter;
-use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
+use steplearn::control::{FootstepPolicy, StepReports, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{TrialLog, run_trial};
@@ -233,7 +233,7 @@ fn a_checkpoint_whose_step_does_not_fit_its_learner_is_refused() {
 
 #[test]
 fn a_checkpoint_keeps_the_parameter_its_learner_learns() {
-    use steplearn::control::step_parameter::StepParameter;
+    use steplearn::control::StepParameter;
     let approx = || {
         ApproxKind::Lwpr
             .build(&InputGrid::default().input_box().unwrap())

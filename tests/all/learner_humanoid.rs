@@ -4,9 +4,9 @@
 //! update exactly when learning from falls is on.
 
 use steplearn::approx::{AnyApproximator, ApproxKind};
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
+use steplearn::control::WalkerMode;
 use steplearn::control::motion::{MotionConfig, Swing};
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{TrialLog, run_trial};

@@ -4,7 +4,7 @@
 //! settings are exactly the built-in ones and a written config leaves the table out.
 
 use steplearn::approx::{AnyApproximator, ApproxKind, FunctionApproximator, Kernel, Lwpr, Persist};
-use steplearn::control::learner::InputGrid;
+use steplearn::control::InputGrid;
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::settings::{LwprSettings, Settings};
 
@@ -190,7 +190,7 @@ fn find_key<'a>(v: &'a serde_json::Value, key: &str) -> Option<&'a serde_json::V
 #[test]
 fn a_run_s_learners_take_the_table() {
     use steplearn::bench::Registry;
-    use steplearn::control::learner::LearnerConfig;
+    use steplearn::control::LearnerConfig;
     let registry = Registry::builtin();
     let cap_of = |lwpr: &LwprSettings| {
         let build = registry

@@ -41,6 +41,7 @@ mod lwpr_properties;
 mod model_files;
 mod motion_generator;
 mod omnidirectional;
+mod public_paths;
 mod rbf_properties;
 mod replay;
 mod robots;

@@ -17,7 +17,7 @@ use steplearn::approx::{
     AnyApproximator, ApproxError, ApproxKind, FunctionApproximator, InputBox, Lwpr, LwprConfig,
     MAX_INPUT, MAX_TARGET, Persist,
 };
-use steplearn::control::learner::{
+use steplearn::control::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, LearnerInput, SavedLearner,
 };
 use steplearn::rules::{PendulumCart, StepOutcome};
@@ -55,7 +55,7 @@ fn trained(kind: ApproxKind) -> AnyApproximator {
 fn learner_mid_step(kind: ApproxKind) -> SavedLearner<AnyApproximator> {
     let config = LearnerConfig {
         max_samples_per_step: 8,
-        prior: steplearn::control::learner::Prior {
+        prior: steplearn::control::Prior {
             samples: 50,
             ..Default::default()
         },

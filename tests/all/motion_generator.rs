@@ -1,10 +1,10 @@
 //! The step motion generator: leg space round trip, timing, support exchange, smoothness.
 
 use proptest::prelude::*;
-use steplearn::control::LegJoint;
 use steplearn::control::motion::{
     LegPose, LegSpace, MotionConfig, MotionGenerator, StepCommand, Swing,
 };
+use steplearn::robot::LegJoint;
 use steplearn::sim::BodyConfig;
 
 fn space() -> LegSpace {

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::WalkerMode;
 use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::robot_setup::{robot_report, use_robot};
 use steplearn::experiments::schedule::ReferenceSchedule;
@@ -462,7 +462,7 @@ fn the_shipped_paper_robot_file_is_the_builtin_export() {
 
 #[test]
 fn a_replay_draws_the_robots_own_links() {
-    use steplearn::replay::record::Recorder;
+    use steplearn::replay::Recorder;
     let mut settings = Settings::default();
     let mut protocols = ProtocolTables::new();
     use_robot(&talos(), None, &mut settings, &mut protocols).unwrap();

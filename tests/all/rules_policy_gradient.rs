@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 use steplearn::approx::{ApproxError, FunctionApproximator, Persist};
 use steplearn::bench::{Bench, Registry};
-use steplearn::control::learner::{
+use steplearn::control::{
     FootstepLearner, LearnerConfig, LearnerError, LearnerInput, Prior, TouchDownReport,
 };
 use steplearn::experiments::robustness::RobustnessSummary;

@@ -1,7 +1,7 @@
 //! The simulated body: sizes and masses, joint sign conventions, config validation.
 
 use steplearn::control::motion::{LegPose, LegSpace};
-use steplearn::control::{LegJoint, NUM_JOINTS, Side};
+use steplearn::robot::{LegJoint, NUM_JOINTS, Side};
 use steplearn::sim::{BodyConfig, Humanoid, SimConfig, SimError};
 
 fn floating(joints: [f64; NUM_JOINTS]) -> Humanoid {

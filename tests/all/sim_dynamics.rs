@@ -2,7 +2,7 @@
 //! rejected inputs.
 
 use steplearn::control::motion::{MotionConfig, MotionGenerator};
-use steplearn::control::{JointTargets, Sensors};
+use steplearn::robot::{JointTargets, Sensors};
 use steplearn::sim::{FallTrigger, Humanoid, SimConfig, SimError};
 
 fn stand(sim: &mut Humanoid, seconds: f64) -> Option<steplearn::sim::Fall> {

@@ -1,7 +1,7 @@
 //! The walker and the trial harness on the simulated humanoid.
 
-use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
-use steplearn::control::walker::{StepReports, Walker, WalkerConfig, WalkerMode};
+use steplearn::control::{LearnSet, PerParameter, StepParameter};
+use steplearn::control::{StepReports, Walker, WalkerConfig, WalkerMode};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{TrialError, run_trial};
@@ -286,7 +286,7 @@ impl FixedOffset {
     }
 }
 
-impl steplearn::control::walker::FootstepPolicy for FixedOffset {
+impl steplearn::control::FootstepPolicy for FixedOffset {
     fn learns(&self) -> LearnSet {
         let mut set = vec![StepParameter::StepX];
         set.extend(self.lateral.map(|_| StepParameter::StepY));
@@ -297,8 +297,8 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
     }
     fn offsets(
         &mut self,
-        _: &PerParameter<steplearn::control::learner::LearnerInput>,
-    ) -> Result<PerParameter<f64>, steplearn::control::learner::LearnerError> {
+        _: &PerParameter<steplearn::control::LearnerInput>,
+    ) -> Result<PerParameter<f64>, steplearn::control::LearnerError> {
         self.queries += 1;
         let mut out = PerParameter::splat(0.0);
         if self.queries > self.from_query {
@@ -313,7 +313,7 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
     fn set_reach(
         &mut self,
         reach: &PerParameter<[f64; 2]>,
-    ) -> Result<(), steplearn::control::learner::LearnerError> {
+    ) -> Result<(), steplearn::control::LearnerError> {
         self.reach.push(reach[StepParameter::StepX]);
         self.time_reach.push(reach[StepParameter::StepTime]);
         let sole = if self.roll.is_some() {
@@ -327,9 +327,9 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
     fn touch_down(
         &mut self,
         _: &PerParameter<steplearn::rules::StepOutcome>,
-    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
+    ) -> Result<StepReports, steplearn::control::LearnerError> {
         let mut out = StepReports::default();
-        out[StepParameter::StepX] = Some(steplearn::control::learner::TouchDownReport {
+        out[StepParameter::StepX] = Some(steplearn::control::TouchDownReport {
             gradient: 0.0,
             samples: 0,
             response: 0.0,
@@ -341,7 +341,7 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
     fn fall(
         &mut self,
         _: &PerParameter<steplearn::rules::StepOutcome>,
-    ) -> Result<StepReports, steplearn::control::learner::LearnerError> {
+    ) -> Result<StepReports, steplearn::control::LearnerError> {
         Ok(StepReports::default())
     }
     fn discard_step(&mut self) {}
@@ -353,7 +353,7 @@ impl steplearn::control::walker::FootstepPolicy for FixedOffset {
 /// the reach the learner is told is the same offset range as in footstep mode.
 #[test]
 fn the_learned_offset_enters_the_footstep_or_the_reference() {
-    use steplearn::control::walker::OffsetTarget;
+    use steplearn::control::OffsetTarget;
     let (f_r, d_f) = (0.2, 0.03);
     for target in [OffsetTarget::Footstep, OffsetTarget::Reference] {
         let mut config = WalkerConfig::new(WalkerMode::CaptureStep);

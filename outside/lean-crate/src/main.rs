@@ -6,7 +6,7 @@ use steplearn::approx::conformance::check_approximator;
 use steplearn::approx::{
     ApproxError, FunctionApproximator, Lwpr, LwprConfig, Persist, check_output, check_vector,
 };
-use steplearn::control::learner::{FootstepLearner, LearnerConfig, LearnerInput};
+use steplearn::control::{FootstepLearner, LearnerConfig, LearnerInput};
 use steplearn::rules::{PendulumCart, StepOutcome};
 
 /// Predicts the running mean of the targets seen on the same side of 0 in the first input:

@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 
 use steplearn::approx::{Lwpr, LwprConfig};
 use steplearn::control::for_robot::ScaledPolicy;
-use steplearn::control::walker::{Walker, WalkerConfig, WalkerMode};
 use steplearn::control::{FootstepLearner, LearnerConfig};
+use steplearn::control::{Walker, WalkerConfig, WalkerMode};
 use steplearn::robot::description::Description;
 use steplearn::robot::scale::Scale;
 use steplearn::robot::urdf::ServoReference;

@@ -5,14 +5,14 @@
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use steplearn::config::{ConfigError, at_least, positive};
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::WalkerMode;
 use steplearn::experiments::ExperimentError;
 use steplearn::experiments::compare::run_model_and_learned;
-use steplearn::experiments::experiment::{Experiment, Headline, RunContext};
 use steplearn::experiments::paired::{Direction, Paired};
 use steplearn::experiments::protocol::{Protocol, ProtocolTables, Table};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::summary::{CustomResult, ExperimentResult, Summary};
+use steplearn::experiments::{Experiment, Headline, RunContext};
 
 /// The experiment, registered as `forward-pushes`.
 #[derive(Debug, Clone, Copy, Default)]

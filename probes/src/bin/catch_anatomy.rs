@@ -21,8 +21,8 @@
 use clap::Parser;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use steplearn::control::step_parameter::LearnSet;
-use steplearn::control::walker::{Tick, WalkerMode};
+use steplearn::control::LearnSet;
+use steplearn::control::{Tick, WalkerMode};
 use steplearn::experiments::catch_step::{
     MIN_CATCH_BEYOND_REFERENCE, catch_step_reach, catch_steps,
 };
@@ -98,7 +98,7 @@ struct Recorder {
     path: Vec<(f64, f64)>,
     /// The controller's support foot at the last tick, and the last generator exchange within
     /// the current step: (time, command the tick before).
-    support: Option<steplearn::control::Side>,
+    support: Option<steplearn::robot::Side>,
     exchange: Option<(f64, f64)>,
     /// The window to trace and the traced lines.
     trace: Option<(f64, f64)>,
@@ -200,7 +200,7 @@ impl Observer for Recorder {
 
 fn run(
     setup: &TrialSetup,
-    policy: Option<&mut (dyn steplearn::control::walker::FootstepPolicy + '_)>,
+    policy: Option<&mut (dyn steplearn::control::FootstepPolicy + '_)>,
     name: &str,
     csv: &mut String,
     out: &mut String,
@@ -387,7 +387,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     learned?;
     let o = settings
         .learner
-        .offset(steplearn::control::step_parameter::StepParameter::StepTime);
+        .offset(steplearn::control::StepParameter::StepTime);
     println!(
         "learner {}: dead zone {} (step-time {}), eta {}",
         args.learn, settings.learner.dead_zone, o.dead_zone, settings.learner.eta

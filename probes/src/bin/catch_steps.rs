@@ -10,10 +10,10 @@
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::approx::ApproxKind;
-use steplearn::control::learner::{FootstepLearner, InputGrid};
-use steplearn::control::step_learner::StepLearner;
-use steplearn::control::step_parameter::{LearnSet, StepParameter};
-use steplearn::control::walker::{Tick, WalkerMode};
+use steplearn::control::StepLearner;
+use steplearn::control::{FootstepLearner, InputGrid};
+use steplearn::control::{LearnSet, StepParameter};
+use steplearn::control::{Tick, WalkerMode};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::trial::{FallRecord, Observer, PushRecord};
 use steplearn::report::fall_rate::impulse_at_50pct_fall;

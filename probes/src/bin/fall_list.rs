@@ -9,7 +9,7 @@
 use clap::Parser;
 use std::path::PathBuf;
 use steplearn::approx::ApproxKind;
-use steplearn::control::learner::{FootstepLearner, InputGrid};
+use steplearn::control::{FootstepLearner, InputGrid};
 use steplearn::experiments::config_file::ConfigFile;
 use steplearn::experiments::disturbance;
 use steplearn::experiments::fall_causes::run_classified;

@@ -10,8 +10,8 @@
 
 use clap::Parser;
 use std::path::PathBuf;
-use steplearn::control::step_parameter::LearnSet;
-use steplearn::control::walker::{Tick, WalkerMode};
+use steplearn::control::LearnSet;
+use steplearn::control::{Tick, WalkerMode};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::{Observer, StepRecord, run_trial};
 

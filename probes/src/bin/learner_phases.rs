@@ -19,11 +19,9 @@ use rand::rngs::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use std::path::PathBuf;
 use steplearn::approx::ApproxKind;
-use steplearn::control::learner::{
-    FootstepLearner, InputGrid, LearnerError, LearnerInput, TouchDownReport,
-};
-use steplearn::control::step_parameter::{LearnSet, PerParameter, StepParameter};
-use steplearn::control::walker::{FootstepPolicy, StepReports, Tick, WalkerMode};
+use steplearn::control::{FootstepLearner, InputGrid, LearnerError, LearnerInput, TouchDownReport};
+use steplearn::control::{FootstepPolicy, StepReports, Tick, WalkerMode};
+use steplearn::control::{LearnSet, PerParameter, StepParameter};
 use steplearn::experiments::schedule::PushPlan;
 use steplearn::experiments::trial::{Observer, PushRecord, StepRecord};
 use steplearn::report::fall_rate::impulse_at_50pct_fall;

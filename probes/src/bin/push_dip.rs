@@ -8,7 +8,7 @@
 use clap::Parser;
 use std::io::Write;
 use std::path::PathBuf;
-use steplearn::control::walker::Tick;
+use steplearn::control::Tick;
 use steplearn::experiments::disturbance::{self, DisturbanceProtocol};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, run_trial};

@@ -19,12 +19,12 @@
 
 use clap::Parser;
 use std::path::PathBuf;
-use steplearn::control::learner::{LearnerError, LearnerInput, TouchDownReport};
-use steplearn::control::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
-use steplearn::control::walker::{FootstepPolicy, StepReports, WalkerMode};
-use steplearn::experiments::experiment::{sole_tilt_rule, step_time_rule};
+use steplearn::control::{FootstepPolicy, StepReports, WalkerMode};
+use steplearn::control::{LearnSet, PerParameter, Plane, StepParameter};
+use steplearn::control::{LearnerError, LearnerInput, TouchDownReport};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::trial::run_trial;
+use steplearn::experiments::{sole_tilt_rule, step_time_rule};
 use steplearn::rules::{LearningRule, StepOutcome};
 use steplearn::stats::MeanStd;
 

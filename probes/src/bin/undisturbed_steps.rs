@@ -7,7 +7,7 @@
 //!
 //! `cargo run --release -p steplearn-probes --bin undisturbed_steps -- 1,1,0,0 0.5,1.3,0.3,0 0.5,1.3,0.3,0.05`
 
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::WalkerMode;
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::run_trial;

@@ -7,14 +7,14 @@
 
 use clap::Parser;
 use steplearn::approx::{Lwpr, LwprConfig};
-use steplearn::control::Side;
+use steplearn::control::Tick;
+use steplearn::control::WalkerMode;
 use steplearn::control::capture_step::StepDecision;
-use steplearn::control::learner::{FootstepLearner, InputGrid, LearnerConfig};
-use steplearn::control::walker::Tick;
-use steplearn::control::walker::WalkerMode;
+use steplearn::control::{FootstepLearner, InputGrid, LearnerConfig};
 use steplearn::experiments::schedule::{Push, ReferenceSchedule};
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord, run_trial};
+use steplearn::robot::Side;
 use steplearn::rules::PendulumCart;
 use steplearn::sim::GroundTruth;
 use steplearn::sim::picture::{RunRecord, StepAnnotation};

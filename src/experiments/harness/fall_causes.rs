@@ -26,7 +26,7 @@
 //! Slips are not told apart: the observer sees the state estimate and the controller's
 //! decisions, not the contact forces.
 
-use crate::control::walker::{FootstepPolicy, Tick, WalkerConfig};
+use crate::control::{FootstepPolicy, Tick, WalkerConfig};
 use crate::experiments::trial::{
     FallRecord, Observer, PushRecord, StepRecord, TrialError, TrialLog, TrialSetup, run_trial,
 };

@@ -22,7 +22,7 @@
 //! frontal), four entries: `theta_E` (rad), `theta_E_dot` (rad/s) and the plane's reference
 //! `F_R` (m) as the learner's input at the decision point, and the error `F_E` (m) of the step
 //! that just ended. In the frontal plane these are the lean towards the swing leg, its rate,
-//! `W_R - 2 delta` and `W - W_R` (see [`crate::control::walker::Walker`]). `F_E` is there
+//! `W_R - 2 delta` and `W - W_R` (see [`crate::control::Walker`]). `F_E` is there
 //! because the reward depends on it and the input alone does not show it.
 //!
 //! **Reward**, at a touch-down: `-min(sum over the observed planes of G^2, 1)`, with
@@ -53,12 +53,12 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::config::ConfigError;
-use crate::control::learner::LearnerInput;
-use crate::control::learner_error::LearnerError;
+use crate::control::LearnerError;
+use crate::control::LearnerInput;
 use crate::control::motion::ANKLE_LIMIT;
-use crate::control::policy::{FootstepPolicy, StepReports};
-use crate::control::step_parameter::{LearnSet, PerParameter, Plane, StepParameter};
-use crate::control::walker::{Walker, WalkerConfig, WalkerError, WalkerMode};
+use crate::control::{FootstepPolicy, StepReports};
+use crate::control::{LearnSet, PerParameter, Plane, StepParameter};
+use crate::control::{Walker, WalkerConfig, WalkerError, WalkerMode};
 use crate::experiments::protocol::{Protocol, ProtocolTables};
 use crate::experiments::robot_setup::use_robot;
 use crate::experiments::settings::Settings;

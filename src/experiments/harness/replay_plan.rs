@@ -2,10 +2,10 @@
 //! [`ReplayPlan`] of the trials the experiment itself builds) and which moment of a finished
 //! run tells the most ([`Moment`]), with the helpers that pick one from a run's pushes table.
 //!
-//! An experiment with a replay implements [`crate::experiments::experiment::Replayable`]; the
+//! An experiment with a replay implements [`crate::experiments::Replayable`]; the
 //! replay module runs the plan with the trial code every experiment uses.
 
-use crate::control::learner::LearnerConfig;
+use crate::control::LearnerConfig;
 use crate::experiments::trial::TrialSetup;
 use crate::report::ReportError;
 use crate::report::csv_read::read_rows;

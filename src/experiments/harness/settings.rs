@@ -2,8 +2,8 @@
 
 use crate::approx::{AnyApproximator, ApproxError, ApproxKind, InputBox, Lwpr, LwprConfig};
 use crate::config::{self, ConfigError};
-use crate::control::learner::{InputGrid, LearnerConfig, LearnerError};
-use crate::control::walker::{FootstepPolicy, WalkerConfig, WalkerMode};
+use crate::control::{FootstepPolicy, WalkerConfig, WalkerMode};
+use crate::control::{InputGrid, LearnerConfig, LearnerError};
 use crate::experiments::schedule::{Push, PushPlan, ReferenceSchedule};
 use crate::experiments::trial::TrialSetup;
 use crate::sim::SimConfig;
@@ -231,8 +231,8 @@ impl Settings {
 }
 
 /// Builds a fresh learner for one run (each controller of an experiment gets its own): a
-/// [`FootstepLearner`](crate::control::learner::FootstepLearner), a
-/// [`StepLearner`](crate::control::step_learner::StepLearner) or any other policy.
+/// [`FootstepLearner`](crate::control::FootstepLearner), a
+/// [`StepLearner`](crate::control::StepLearner) or any other policy.
 pub trait LearnerFactory {
     /// The policy it builds.
     type Policy: FootstepPolicy;

@@ -7,9 +7,9 @@
 //! learner, generator) -> `Humanoid::step`. After a fall the robot and the walker are reset and
 //! the learner keeps what it learned (its unfinished step is discarded).
 
+use crate::control::StepParameter;
 use crate::control::for_robot::ScaledPolicy;
-use crate::control::step_parameter::StepParameter;
-use crate::control::walker::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
+use crate::control::{FootstepPolicy, Tick, Walker, WalkerConfig, WalkerError};
 use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::report::Fixed;
 use crate::sim::{Fall, GroundTruth, Humanoid, SimConfig, SimError};
@@ -146,12 +146,12 @@ pub struct StepRecord {
     /// The learned offset dF in force at touch-down (m).
     pub learned_offset: f64,
     /// The learning gain the learner applied at this touch-down (m of dF per unit of G; see
-    /// [`crate::control::learner::TouchDownReport::gain`]); `None` without a learner.
+    /// [`crate::control::TouchDownReport::gain`]); `None` without a learner.
     #[serde(default)]
     pub learning_gain: Option<f64>,
     /// The approximator's response r at this touch-down: the share of the requested change
     /// its predictions moved under the full step, before the gain guard scaled it
-    /// ([`crate::control::learner::TouchDownReport::response`]); `None` without a learner.
+    /// ([`crate::control::TouchDownReport::response`]); `None` without a learner.
     #[serde(default)]
     pub learning_response: Option<f64>,
 }

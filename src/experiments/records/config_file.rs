@@ -9,7 +9,7 @@
 //! complete default file (what `steplearn config` prints).
 
 use crate::config::ConfigError;
-use crate::experiments::experiment::Experiment;
+use crate::experiments::Experiment;
 use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::settings::Settings;
 use crate::experiments::suite;

@@ -1,7 +1,7 @@
 //! The error type of the experiments.
 
 use crate::config::ConfigError;
-use crate::control::learner::LearnerError;
+use crate::control::LearnerError;
 use crate::experiments::trial::TrialError;
 use crate::report::ReportError;
 use thiserror::Error;

@@ -7,7 +7,7 @@
 //!                  "model": {...}, "learned": {...}}}
 //! ```
 
-use crate::control::step_parameter::LearnSet;
+use crate::control::LearnSet;
 use crate::experiments::fall_causes::FallCause;
 use crate::report::{ReportError, write_file};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

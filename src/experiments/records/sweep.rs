@@ -14,7 +14,7 @@
 //! `--array=0-(N-1)` with `--shard $SLURM_ARRAY_TASK_ID/N`) and call `steplearn merge` ([`crate::experiments::ablation::merge`]) when all are done.
 
 use crate::config::limits::MAX_SEEDS;
-use crate::control::step_parameter::LearnSet;
+use crate::control::LearnSet;
 use crate::experiments::summary::{Summary, check_name};
 use crate::report::{ReportError, write_file};
 use rayon::prelude::*;

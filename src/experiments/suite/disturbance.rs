@@ -7,14 +7,11 @@ use crate::config::limits::{
     MAX_BINS, MAX_GAP_S, MAX_IMPULSE_NS, MAX_PUSHES, MAX_STEP_M, MIN_BIN_S,
 };
 use crate::config::{self, ConfigError};
-use crate::control::walker::WalkerMode;
+use crate::control::WalkerMode;
 use crate::experiments::aligned::AlignedStats;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
-};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::replay_plan::{
@@ -26,6 +23,9 @@ use crate::experiments::summary::{
     ExperimentResult, ModelLearned, Summary, TypedResult, check_causes, finite_non_negative,
 };
 use crate::experiments::trial::{StepRecord, TrialLog, TrialSetup};
+use crate::experiments::{
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
+};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::{number, read_rows};

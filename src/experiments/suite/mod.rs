@@ -10,7 +10,7 @@ pub mod robustness;
 pub mod stability;
 pub mod tracking;
 
-use crate::experiments::experiment::Experiment;
+use crate::experiments::Experiment;
 use disturbance::Disturbance;
 use omnidirectional::Omnidirectional;
 use robustness::Robustness;

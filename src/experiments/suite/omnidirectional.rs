@@ -5,7 +5,7 @@
 //! 45 degrees apart), each sector with its own pushes of random impulse over the protocol's
 //! range at random gait phases, the same pushes for four walkers: open-loop, the Capture Step
 //! model, the model with the paper's sagittal learner, and the model with both learners
-//! (a [`StepLearner`](crate::control::step_learner::StepLearner) of `step-x` and `step-y`: the
+//! (a [`StepLearner`](crate::control::StepLearner) of `step-x` and `step-y`: the
 //! sagittal learner and a lateral one of the same approximator and rule).
 //! With a set of step parameters other than the paper's (`--learn`), a fifth walker, `learned`,
 //! learns exactly that set. Each walker learns afresh in each sector. Per sector and walker: the
@@ -16,24 +16,22 @@
 //! `(F_R, F_R,y)` jumps to a point uniform over a disc every 4-8 s, the same sequence for the
 //! model and for both learners (learning as they walk). Every step's error is the sagittal
 //! step error and the width error against the reference width
-//! ([`crate::control::walker::Walker::width_reference`]); per direction sector of the reference,
-//! the mean of its norm. Registered as `omnidirectional`; its result is a [`crate::experiments::CustomResult`] written in alphabetical order, as
+//! ([`crate::control::Walker::width_reference`]); per direction sector of the reference,
+//! the mean of its norm. Registered as `omnidirectional`; its result is a [`crate::experiments::summary::CustomResult`] written in alphabetical order, as
 //! a user's experiment would write it.
 
 use crate::config::limits::{MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S};
 use crate::config::{self, ConfigError};
-use crate::control::step_parameter::{LearnSet, StepParameter};
-use crate::control::walker::{FootstepPolicy, Tick, WalkerMode};
+use crate::control::{FootstepPolicy, Tick, WalkerMode};
+use crate::control::{LearnSet, StepParameter};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, RunContext,
-};
 use crate::experiments::fall_causes::{count, run_classified};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::schedule::{PushPlan, ReferenceSchedule};
 use crate::experiments::summary::{ExperimentResult, Summary};
 use crate::experiments::trial::{Observer, PushRecord, TrialLog, run_trial};
+use crate::experiments::{Experiment, Headline, PushOptions, PushOptionsError, RunContext};
 use crate::report::fall_rate::{PushResult, impulse_at_50pct_fall};
 use crate::report::figures::{PolarPlot, Series, polar_plot};
 use rayon::prelude::*;
@@ -86,7 +84,7 @@ pub struct OmnidirectionalProtocol {
 #[strum(serialize_all = "kebab-case")]
 pub enum BothPlanes {
     /// Two learners, one per plane, each from its own plane only (a
-    /// [`StepLearner`](crate::control::step_learner::StepLearner) of `step-x` and `step-y`).
+    /// [`StepLearner`](crate::control::StepLearner) of `step-x` and `step-y`).
     #[default]
     Uncoupled,
     /// One learner with two outputs (dF, dW) over both planes' inputs

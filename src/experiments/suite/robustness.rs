@@ -14,15 +14,12 @@
 use crate::approx::FunctionApproximator;
 use crate::config::limits::{MAX_GAP_S, MAX_GRID_POINTS, MAX_IMPULSE_NS, MAX_PUSHES};
 use crate::config::{self, ConfigError};
-use crate::control::learner::{
+use crate::control::WalkerMode;
+use crate::control::{
     FootstepLearner, InputGrid, LearnerConfig, LearnerError, MapSpec, OffsetMap, Prior,
 };
-use crate::control::walker::WalkerMode;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
-};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::replay_plan::{Moment, PushOutcome, ReplayPlan, differing_push, outcome};
@@ -30,6 +27,9 @@ use crate::experiments::schedule::{Push, ReferenceSchedule};
 use crate::experiments::settings::Settings;
 use crate::experiments::summary::{ExperimentResult, Summary, TypedResult, finite_non_negative};
 use crate::experiments::trial::{StepCells, StepRecord, TrialSetup, run_trial};
+use crate::experiments::{
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
+};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::read_rows;
@@ -67,7 +67,7 @@ pub struct RobustnessProtocol {
     /// The dF maps drawn after every push, 31 x 31 (a figure's resolution, not a config key).
     #[serde(skip)]
     pub map: MapSpec,
-    /// Whether the learner holds its dF = 0 prior ([`crate::control::learner::Prior`]) from
+    /// Whether the learner holds its dF = 0 prior ([`crate::control::Prior`]) from
     /// the start. Default false: D's learner is not initialised, so it neither has the analytic
     /// footstep nor believes dF = 0 is right; [`run`] builds it with
     /// `Prior::none()` unless this is set.

@@ -3,13 +3,10 @@
 //! pushes of random impulse at random gait phases.
 
 use crate::config::{self, ConfigError};
-use crate::control::walker::{FootstepPolicy, WalkerMode};
+use crate::control::{FootstepPolicy, WalkerMode};
 use crate::experiments::catch_step::{CatchStepReach, catch_step_reach};
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
-};
 use crate::experiments::fall_causes::{
     ClassifiedFall, FallCause, FallEvent, cause_by_push, count, push_rows, run_classified_with,
 };
@@ -24,6 +21,9 @@ use crate::experiments::summary::{
     ExperimentResult, Summary, TypedResult, check_causes, finite_non_negative,
 };
 use crate::experiments::trial::{PushRecord, TrialLog, TrialSetup};
+use crate::experiments::{
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
+};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::csv_read::{number, read_rows};
@@ -636,7 +636,7 @@ pub fn claim(runs: &[&Summary]) -> Claim {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::control::step_parameter::LearnSet;
+    use crate::control::LearnSet;
 
     fn falls(pushes: u32, falls: u32, x: f64) -> ControllerFalls {
         ControllerFalls {

@@ -5,14 +5,11 @@
 
 use crate::config::limits::{MAX_BINS, MAX_GAP_S, MAX_STEP_M, MAX_TRIAL_S, MIN_BIN_S};
 use crate::config::{self, ConfigError};
-use crate::control::walker::WalkerMode;
+use crate::control::WalkerMode;
 use crate::experiments::aligned::AlignedStats;
 use crate::experiments::claim::{Claim, by_seed};
 use crate::experiments::compare::{ModelAndLearned, run_model_and_learned};
 use crate::experiments::error::ExperimentError;
-use crate::experiments::experiment::{
-    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
-};
 use crate::experiments::paired::{Direction, Paired};
 use crate::experiments::protocol::{Protocol, ProtocolTables, Table};
 use crate::experiments::replay_plan::{Moment, ReplayPlan, ReplayWalker, round};
@@ -22,6 +19,9 @@ use crate::experiments::summary::{
     ExperimentResult, ModelLearned, Summary, TypedResult, finite_non_negative,
 };
 use crate::experiments::trial::TrialLog;
+use crate::experiments::{
+    Experiment, Headline, PushOptions, PushOptionsError, Replayable, RunContext,
+};
 use crate::report::ReportError;
 use crate::report::band::{Labels, band, band_plot};
 use crate::report::figures::{EventPlot, LinePlot, Series, event_plot, line_plot};

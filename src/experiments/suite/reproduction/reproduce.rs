@@ -25,7 +25,7 @@ pub fn grid(approx: &str, rule: &str, seeds: u64) -> SweepGrid {
     SweepGrid::new(&experiments, &[approx], &[rule], seeds)
 }
 
-pub use crate::experiments::claim::Claim;
+use crate::experiments::claim::Claim;
 
 /// The paper's four claims, checked on a set of summaries.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
