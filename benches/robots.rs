@@ -7,7 +7,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::PathBuf;
 use steplearn::control::{Walker, WalkerConfig, WalkerMode};
-use steplearn::robot::file::RobotFile;
+use steplearn::robot::RobotFile;
 use steplearn::sim::{BodyConfig, Humanoid, SimConfig};
 
 fn robots() -> Vec<(String, Option<PathBuf>)> {

@@ -11,7 +11,7 @@ use steplearn::approx::{Lwpr, LwprConfig};
 use steplearn::control::for_robot::ScaledPolicy;
 use steplearn::control::{FootstepLearner, LearnerConfig};
 use steplearn::control::{Walker, WalkerConfig, WalkerMode};
-use steplearn::robot::file::RobotFile;
+use steplearn::robot::RobotFile;
 use steplearn::robot::{JointTargets, Sensors};
 use steplearn::rules::PendulumCart;
 use steplearn::sim::{BodyConfig, Humanoid, SimConfig};

@@ -32,7 +32,7 @@ use crate::experiments::sweep::{
     check_identity, run_sweep,
 };
 use crate::report::write_file;
-use crate::robot::urdf::Feet;
+use crate::robot::Feet;
 use crate::rules::PendulumCart;
 use clap::{Args, Parser, Subcommand};
 use std::path::{Path, PathBuf};

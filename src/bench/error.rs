@@ -41,7 +41,7 @@ pub enum BenchError {
         /// The URDF file.
         path: std::path::PathBuf,
         /// Why it was refused.
-        source: crate::robot::description::RobotError,
+        source: crate::robot::RobotError,
     },
     /// The output directory holds results of another configuration.
     #[error("{0}")]

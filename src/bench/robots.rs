@@ -13,7 +13,7 @@ use crate::experiments::config_file::ConfigFile;
 use crate::experiments::robot_setup::{RobotRun, use_robot};
 use crate::report::html::HtmlPage;
 use crate::report::{ReportError, write_file};
-use crate::robot::urdf::Feet;
+use crate::robot::Feet;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

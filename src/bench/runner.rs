@@ -11,7 +11,7 @@ use crate::experiments::sweep::{
     RunOutcome, RunStatus, Shard, SweepGrid, SweepOptions, check_distinct_sets, run_sweep,
 };
 use crate::report::write_file;
-use crate::robot::urdf::Feet;
+use crate::robot::Feet;
 use std::path::{Path, PathBuf};
 
 /// The file in a bench's output directory that records the configuration its runs used.

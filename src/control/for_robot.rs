@@ -14,7 +14,7 @@ use super::motion::GaitShape;
 use super::policy::{FootstepPolicy, StepReports};
 use super::step_parameter::{LearnSet, PerParameter, StepParameter};
 use super::walker::WalkerConfig;
-use crate::robot::scale::Scale;
+use crate::robot::Scale;
 use crate::rules::StepOutcome;
 
 impl WalkerConfig {

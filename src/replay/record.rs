@@ -11,7 +11,7 @@ use crate::control::StepParameter;
 use crate::control::Tick;
 use crate::experiments::trial::{FallRecord, Observer, PushRecord, StepRecord};
 use crate::robot::Side;
-use crate::robot::description::{Description, Geometry};
+use crate::robot::{Description, Geometry};
 use crate::sim::GroundTruth;
 use serde::{Deserialize, Serialize};
 

@@ -2,13 +2,13 @@
 //! both sides compute with. Both [`crate::control`] and the simulator use this module; it uses
 //! neither.
 
-pub mod description;
-pub mod file;
+mod description;
+mod file;
 mod io;
 pub mod kinematics;
 mod mesh;
-pub mod scale;
-pub mod urdf;
+mod scale;
+mod urdf;
 
 /// Standard gravity (m/s^2): the simulator's default and the gravity of the LIPM rules.
 pub const STANDARD_GRAVITY: f64 = 9.81;
@@ -17,7 +17,13 @@ pub const STANDARD_GRAVITY: f64 = 9.81;
 /// controller's default and the default of the rules derived from the LIPM.
 pub const HUMANOID_C: f64 = 2.95;
 
+pub use description::{
+    Description, Figure, Geometry, Inertia, Joint, Leg, Link, RobotError, Servo, Shape, Sole,
+};
+pub use file::{RobotFile, sha256_hex};
 pub use io::{FootContact, Imu, JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
+pub use scale::Scale;
+pub use urdf::{Feet, ServoReference};
 
 /// Knee bend of the initial standing pose (rad): the simulator starts every robot in
 /// `standing_pose(STANCE_KNEE)`, and a robot's stance quantities (centre-of-mass height, C) are

@@ -2,10 +2,8 @@
 //! [`BodyConfig`] describes with its segments, in the order the simulator builds them.
 
 use super::body::{BodyConfig, Segment, head_neck_length};
-use crate::robot::description::{
-    Description, Figure, Geometry, Inertia, Joint, Leg, Link, Servo, Shape, Sole,
-};
-use crate::robot::urdf::ServoReference;
+use crate::robot::ServoReference;
+use crate::robot::{Description, Figure, Geometry, Inertia, Joint, Leg, Link, Servo, Shape, Sole};
 use crate::robot::{JOINTS_PER_LEG, LegJoint, Side};
 
 const IDENTITY: [f64; 4] = [1.0, 0.0, 0.0, 0.0];

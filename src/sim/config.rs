@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::body::BodyConfig;
 use super::error::{SimError, in_range, non_negative, positive};
-use crate::robot::file::RobotFile;
+use crate::robot::RobotFile;
 use crate::robot::{NUM_JOINTS, STANCE_KNEE, standing_pose};
 
 /// Everything that defines a simulation run besides the control inputs: the body, the physics

@@ -39,7 +39,7 @@ pub enum SimError {
     },
     /// The robot's description was refused.
     #[error("{0}")]
-    Robot(#[from] crate::robot::description::RobotError),
+    Robot(#[from] crate::robot::RobotError),
     /// A config file could not be parsed.
     #[error("cannot parse body config: {0}")]
     Parse(String),

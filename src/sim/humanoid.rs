@@ -19,8 +19,8 @@ use super::error::SimError;
 use super::fall::{BodyPart, Fall, FallTrigger};
 use super::sensors::{foot_contact, imu_of};
 use super::truth::{GroundTruth, Skeleton, pose_of};
-use crate::robot::description::{Description, Geometry, Link, Shape};
-use crate::robot::scale::Scale;
+use crate::robot::Scale;
+use crate::robot::{Description, Geometry, Link, Shape};
 use crate::robot::{JOINTS_PER_LEG, JointTargets, LegJoint, NUM_JOINTS, Sensors, Side};
 
 /// Index of the free angular axis of a revolute joint in rapier's spatial layout.

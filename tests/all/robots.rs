@@ -11,8 +11,8 @@ use steplearn::experiments::robot_setup::{robot_report, use_robot};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::settings::Settings;
 use steplearn::experiments::trial::run_trial;
-use steplearn::robot::description::Description;
-use steplearn::robot::urdf::ServoReference;
+use steplearn::robot::Description;
+use steplearn::robot::ServoReference;
 use steplearn::sim::BodyConfig;
 
 fn root() -> PathBuf {
@@ -712,7 +712,7 @@ fn feet_named_where_a_lower_leaf_is_not_the_foot() {
     assert!(!lonely.status.success());
     // A bench over it and another robot: its feet named with it, one column each.
     use steplearn::bench::{Bench, Registry};
-    use steplearn::robot::urdf::Feet;
+    use steplearn::robot::Feet;
     let registry = Registry::builtin();
     let bench = || {
         Bench::new(&registry)

@@ -11,9 +11,9 @@ use steplearn::approx::{Lwpr, LwprConfig};
 use steplearn::control::for_robot::ScaledPolicy;
 use steplearn::control::{FootstepLearner, LearnerConfig};
 use steplearn::control::{Walker, WalkerConfig, WalkerMode};
-use steplearn::robot::description::Description;
-use steplearn::robot::scale::Scale;
-use steplearn::robot::urdf::ServoReference;
+use steplearn::robot::Description;
+use steplearn::robot::Scale;
+use steplearn::robot::ServoReference;
 use steplearn::robot::{JointTargets, STANCE_KNEE, Sensors, standing_pose};
 use steplearn::rules::PendulumCart;
 

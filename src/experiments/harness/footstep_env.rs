@@ -63,9 +63,9 @@ use crate::experiments::protocol::{Protocol, ProtocolTables};
 use crate::experiments::robot_setup::use_robot;
 use crate::experiments::settings::Settings;
 use crate::experiments::stability::StabilityProtocol;
+use crate::robot::RobotError;
+use crate::robot::Scale;
 use crate::robot::Sensors;
-use crate::robot::description::RobotError;
-use crate::robot::scale::Scale;
 use crate::rules::{LearningRule, PendulumCart, StepOutcome};
 use crate::sim::{Fall, Humanoid, SimError};
 

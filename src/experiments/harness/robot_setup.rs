@@ -12,10 +12,10 @@ use std::path::Path;
 use crate::experiments::protocol::ProtocolTables;
 use crate::experiments::settings::Settings;
 use crate::experiments::summary::RobotSummary;
-use crate::robot::description::{Description, RobotError};
-use crate::robot::file::{RobotFile, sha256_hex};
-use crate::robot::scale::Scale;
-use crate::robot::urdf::Feet;
+use crate::robot::Feet;
+use crate::robot::Scale;
+use crate::robot::{Description, RobotError};
+use crate::robot::{RobotFile, sha256_hex};
 
 /// What `--robot PATH` found: the description and its scale against the paper's robot.
 #[derive(Debug, Clone)]
