@@ -1,11 +1,6 @@
 //! The leaderboard of a bench: one row per (approximator, rule, set, experiment) with the
 //! experiment's headline figures, its paired comparisons of the learned walker against the
 //! model over seeds, and the same comparisons against a baseline combination.
-//!
-//! Written as `leaderboard.json` (the contract: `"rows"`, each with `"approx"`, `"rule"`,
-//! `"learn"` (the learned step parameters, a list of names), `"experiment"`, `"vs_model"` and `"vs_baseline"` lists of `{"quantity", "mean", "ci95",
-//! "verdict"}`), `leaderboard.md`, `leaderboard.csv` (one line per comparison or headline
-//! figure), `forest.svg` (each combination's first comparison per experiment) and `index.html`.
 
 use super::{BenchError, Registry};
 use crate::control::LearnSet;
@@ -110,6 +105,11 @@ pub struct Combination {
 }
 
 /// The leaderboard of a bench directory.
+///
+/// Written as `leaderboard.json` (the contract: `"rows"`, each with `"approx"`, `"rule"`,
+/// `"learn"` (the learned step parameters, a list of names), `"experiment"`, `"vs_model"` and `"vs_baseline"` lists of `{"quantity", "mean", "ci95",
+/// "verdict"}`), `leaderboard.md`, `leaderboard.csv` (one line per comparison or headline
+/// figure), `forest.svg` (each combination's first comparison per experiment) and `index.html`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Leaderboard {
     /// The baseline combination.

@@ -1,63 +1,5 @@
 //! The footstep learner: a function approximator trained online with a learning rule (paper,
 //! section IV-C, eq. 6).
-//!
-//! Every control tick the controller calls [`FootstepLearner::query`] with the current
-//! (theta_E, theta_E_dot, F_R) and adds the returned offset dF to its footstep. The learner
-//! remembers (a bounded, evenly spread subset of) the inputs it was queried at during the step.
-//! At touch-down the controller calls [`FootstepLearner::touch_down`] with the measured
-//! [`StepOutcome`]; the rule turns it into a gradient G and, for every recorded input x_i, the
-//! approximator is trained toward F(x_i) + eta G.
-//!
-//! The learner knows nothing about whether the analytic footstep is on ("initialised") or off
-//! ("not initialised", experiment D): that switch belongs to the controller, which either adds
-//! dF to the Capture Step footstep or uses dF as the whole step. The learner trains dF the same
-//! way in both cases.
-//!
-//! # Stability by construction
-//!
-//! One touch-down moves the prediction at the step's inputs by `gain * G`, where the gain is
-//! eta times the approximator's response r (the share of a requested change its predictions
-//! actually move: near 1 for a fresh local model, far less for one that has seen many
-//! samples). Near the reference the walker answers a sustained offset with dG/dF = -k (k is
-//! the tanh slope p_theta p_F plus the trunk's own response d theta_E / dF), so the step error
-//! evolves as e <- (1 - gain k) e: it settles monotonically for gain < 1/k, oscillates but
-//! settles below 2/k and grows beyond (bounded only by saturation and falls). Eq. (6) at the
-//! paper's eta = 1 with an untrained approximator has gain ~ 1, beyond that limit on the
-//! humanoid (docs/learner.md has k as measured there). Three settings of
-//! [`LearnerConfig`] make it stable for any approximator and any eta:
-//!
-//! - **Gain guard** (`max_gain`, default 0.2, about 1/k on the humanoid): the update is
-//!   tried on a copy of the approximator; if its response gives a larger gain, the step is
-//!   scaled to just below the limit and applied to the original (never above it: if retries
-//!   do not get there, that touch-down changes nothing). [`TouchDownReport`] carries r, the gain
-//!   applied and the scale; the trial log records the gain of every touch-down.
-//! - **Anti-windup** (`anti_windup`, conditional integration): no target goes further past the
-//!   offsets that could still change the step at that tick (the walker tells the learner this
-//!   reach: the step range minus the analytic step). Without it eq. (6) keeps integrating
-//!   where the step range is exhausted. Targets are not pulled *into* the reach: where the
-//!   analytic step lies beyond an end of the range, clamping targets into the reach would
-//!   drive the offset the wrong way (docs/learner.md has both measured).
-//! - **Prior** (`prior`): the paper's initialised learner starts at dF = 0 everywhere; training
-//!   that belief in makes the approximator hold it with confidence, so that early steps do not
-//!   move it all the way (its response to the first step drops, `tests/all/learner.rs`).
-//!
-//! A fourth, the **trust region** (`trust_region`, default 2), applies the offset only near
-//! the inputs the learner was trained at, so that what it learned stepping or walking does
-//! not reach states it never learned from (the catch step after a push). By default the
-//! learner also learns from a step that ends in a fall (`learn_from_falls`), as the paper's
-//! robot learned from its first falls.
-//!
-//! [`LearnerConfig::literal`] is eq. (6) as written, without the four, the dead zone and learning
-//! from falls.
-//!
-//! # Exploration
-//!
-//! A rule that explores ([`LearningRule::explore`], e.g. [`crate::rules::PolicyGradient`])
-//! gives a perturbation at the first query of every step; the learner adds it to every offset
-//! of that step (after the trust region, before the `max_offset` clamp) and hands it back to
-//! [`LearningRule::learn`] at the step's end. Gradient rules perturb nothing and learn exactly
-//! as before. The rule's state travels in the learner's checkpoint.
-//!
 
 use super::learner_config::check_range;
 use super::learner_config::{
@@ -1084,6 +1026,63 @@ impl<A: FunctionApproximator + Clone, R: LearningRule, const I: usize, const O: 
 /// Learns the footstep offset dF over (theta_E, theta_E_dot, F_R) online (eq. 6): the
 /// [`OffsetLearner`] of one offset over the paper's three inputs, one per learned step
 /// parameter in a [`StepLearner`](super::step_learner::StepLearner).
+///
+/// Every control tick the controller calls [`FootstepLearner::query`] with the current
+/// (theta_E, theta_E_dot, F_R) and adds the returned offset dF to its footstep. The learner
+/// remembers (a bounded, evenly spread subset of) the inputs it was queried at during the step.
+/// At touch-down the controller calls [`FootstepLearner::touch_down`] with the measured
+/// [`StepOutcome`]; the rule turns it into a gradient G and, for every recorded input x_i, the
+/// approximator is trained toward F(x_i) + eta G.
+///
+/// The learner knows nothing about whether the analytic footstep is on ("initialised") or off
+/// ("not initialised", experiment D): that switch belongs to the controller, which either adds
+/// dF to the Capture Step footstep or uses dF as the whole step. The learner trains dF the same
+/// way in both cases.
+///
+/// # Stability by construction
+///
+/// One touch-down moves the prediction at the step's inputs by `gain * G`, where the gain is
+/// eta times the approximator's response r (the share of a requested change its predictions
+/// actually move: near 1 for a fresh local model, far less for one that has seen many
+/// samples). Near the reference the walker answers a sustained offset with dG/dF = -k (k is
+/// the tanh slope p_theta p_F plus the trunk's own response d theta_E / dF), so the step error
+/// evolves as e <- (1 - gain k) e: it settles monotonically for gain < 1/k, oscillates but
+/// settles below 2/k and grows beyond (bounded only by saturation and falls). Eq. (6) at the
+/// paper's eta = 1 with an untrained approximator has gain ~ 1, beyond that limit on the
+/// humanoid (docs/learner.md has k as measured there). Three settings of
+/// [`LearnerConfig`] make it stable for any approximator and any eta:
+///
+/// - **Gain guard** (`max_gain`, default 0.2, about 1/k on the humanoid): the update is
+///   tried on a copy of the approximator; if its response gives a larger gain, the step is
+///   scaled to just below the limit and applied to the original (never above it: if retries
+///   do not get there, that touch-down changes nothing). [`TouchDownReport`] carries r, the gain
+///   applied and the scale; the trial log records the gain of every touch-down.
+/// - **Anti-windup** (`anti_windup`, conditional integration): no target goes further past the
+///   offsets that could still change the step at that tick (the walker tells the learner this
+///   reach: the step range minus the analytic step). Without it eq. (6) keeps integrating
+///   where the step range is exhausted. Targets are not pulled *into* the reach: where the
+///   analytic step lies beyond an end of the range, clamping targets into the reach would
+///   drive the offset the wrong way (docs/learner.md has both measured).
+/// - **Prior** (`prior`): the paper's initialised learner starts at dF = 0 everywhere; training
+///   that belief in makes the approximator hold it with confidence, so that early steps do not
+///   move it all the way (its response to the first step drops, `tests/all/learner.rs`).
+///
+/// A fourth, the **trust region** (`trust_region`, default 2), applies the offset only near
+/// the inputs the learner was trained at, so that what it learned stepping or walking does
+/// not reach states it never learned from (the catch step after a push). By default the
+/// learner also learns from a step that ends in a fall (`learn_from_falls`), as the paper's
+/// robot learned from its first falls.
+///
+/// [`LearnerConfig::literal`] is eq. (6) as written, without the four, the dead zone and learning
+/// from falls.
+///
+/// # Exploration
+///
+/// A rule that explores ([`LearningRule::explore`], e.g. [`crate::rules::PolicyGradient`])
+/// gives a perturbation at the first query of every step; the learner adds it to every offset
+/// of that step (after the trust region, before the `max_offset` clamp) and hands it back to
+/// [`LearningRule::learn`] at the step's end. Gradient rules perturb nothing and learn exactly
+/// as before. The rule's state travels in the learner's checkpoint.
 pub type FootstepLearner<A, R> = OffsetLearner<A, R, LEARNER_INPUTS, 1>;
 
 impl<A: FunctionApproximator, R: LearningRule> OffsetLearner<A, R, LEARNER_INPUTS, 1> {

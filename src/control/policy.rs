@@ -1,21 +1,5 @@
 //! What the walker asks of a learner: [`FootstepPolicy`], one shape for any set of step
 //! parameters.
-//!
-//! Every tick the walker hands the policy each parameter's input and asks for its offsets,
-//! then tells it each parameter's reach (the offsets that could still change the step); at
-//! every touch-down it hands over each parameter's outcome; at a fall, the outcome of the step
-//! in progress. A policy answers for the parameters it [`learns`](FootstepPolicy::learns) and
-//! ignores the others. The inputs and outcomes of the step parameters:
-//!
-//! - `step-x`, `step-time` and `ankle-pitch`: the sagittal plane, input
-//!   `(theta_E, theta_E_dot, F_R)`, outcome `(theta_E, theta_E_dot, F_E, F_R)` (eq. 1-2);
-//! - `step-y` and `ankle-roll`: the frontal plane mirrored to the swing leg's side, input
-//!   `(lean, lean rate, W_R - 2 delta)`, outcome the lean, its rate and the width error
-//!   `W - W_R` (see [`Walker`](super::walker::Walker)).
-//!
-//! A learner whose settings name another plane for its parameter (`step-time` in the frontal
-//! plane) reads that plane's input and outcome, those of the footstep offset learned there
-//! ([`PerParameter::in_plane`]).
 
 use super::step_parameter::{FallDirection, Gate, LearnSet, PerParameter, Plane, StepParameter};
 use super::{FootstepLearner, LearnerError, LearnerInput, TouchDownReport};
@@ -48,6 +32,22 @@ pub(crate) fn gate_weight(
 ///
 /// [`StepLearner`](super::step_learner::StepLearner) is the implementation for any set of
 /// parameters; a lone [`FootstepLearner`] is the paper's policy, `step-x` only.
+///
+/// Every tick the walker hands the policy each parameter's input and asks for its offsets,
+/// then tells it each parameter's reach (the offsets that could still change the step); at
+/// every touch-down it hands over each parameter's outcome; at a fall, the outcome of the step
+/// in progress. A policy answers for the parameters it [`learns`](FootstepPolicy::learns) and
+/// ignores the others. The inputs and outcomes of the step parameters:
+///
+/// - `step-x`, `step-time` and `ankle-pitch`: the sagittal plane, input
+///   `(theta_E, theta_E_dot, F_R)`, outcome `(theta_E, theta_E_dot, F_E, F_R)` (eq. 1-2);
+/// - `step-y` and `ankle-roll`: the frontal plane mirrored to the swing leg's side, input
+///   `(lean, lean rate, W_R - 2 delta)`, outcome the lean, its rate and the width error
+///   `W - W_R` (see [`Walker`](super::walker::Walker)).
+///
+/// A learner whose settings name another plane for its parameter (`step-time` in the frontal
+/// plane) reads that plane's input and outcome, those of the footstep offset learned there
+/// ([`PerParameter::in_plane`]).
 pub trait FootstepPolicy {
     /// The step parameters it learns. Default: `step-x` alone, the paper's.
     fn learns(&self) -> LearnSet {

@@ -1,23 +1,4 @@
 //! One learner for any set of step parameters.
-//!
-//! A [`StepLearner`] learns each parameter of its [`LearnSet`] with a [`FootstepLearner`] of
-//! its own (the uncoupled setting): its own approximator over that parameter's inputs, and its
-//! own rule, which turns that parameter's outcome into the gradient G. Every safeguard of the
-//! footstep learner (prior, gain guard, anti-windup against the parameter's reach, trust
-//! region, learning from falls, dead zone, leakage, `max_step_error`, the nominal fallback)
-//! and its checkpoints therefore work for every parameter, and a user's rule for any parameter
-//! plugs in as the learner's rule does. The built-in rules per parameter: the run's rule for
-//! `step-x` and `step-y` (the lateral learner sees the mirrored frontal plane, see
-//! [`super::policy`]), [`StepTime`](crate::rules::StepTime) for `step-time`.
-//!
-//! Each parameter's learner reads the plane its settings name
-//! ([`CheckedLearnerConfig::planes`](super::learner_config::CheckedLearnerConfig::planes)):
-//! `step-x` the sagittal, `step-y` the frontal, `step-time` the sagittal unless
-//! `[settings.learner.step-time] plane = "frontal"`, which learns the step time from the lean
-//! sideways and its outcome, or `"both"`: then the step time has two learners, one per plane,
-//! each reading its plane's state and taught by its plane's outcome with its plane's rule, and
-//! the offset is their sum (an additive model, dT = dT_s(sagittal state) + dT_f(frontal
-//! state)). Each part's reach is the parameter's, less the other part's offset.
 
 use super::policy::{FootstepPolicy, StepReports, gate_weight};
 use super::step_parameter::{FallDirection, LearnSet, PerParameter, Plane, StepParameter};
@@ -27,6 +8,25 @@ use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 
 /// One [`FootstepLearner`] per learned step parameter and plane (see the module docs).
+///
+/// A [`StepLearner`] learns each parameter of its [`LearnSet`] with a [`FootstepLearner`] of
+/// its own (the uncoupled setting): its own approximator over that parameter's inputs, and its
+/// own rule, which turns that parameter's outcome into the gradient G. Every safeguard of the
+/// footstep learner (prior, gain guard, anti-windup against the parameter's reach, trust
+/// region, learning from falls, dead zone, leakage, `max_step_error`, the nominal fallback)
+/// and its checkpoints therefore work for every parameter, and a user's rule for any parameter
+/// plugs in as the learner's rule does. The built-in rules per parameter: the run's rule for
+/// `step-x` and `step-y` (the lateral learner sees the mirrored frontal plane, see
+/// [`FootstepPolicy`](super::FootstepPolicy)), [`StepTime`](crate::rules::StepTime) for `step-time`.
+///
+/// Each parameter's learner reads the plane its settings name
+/// ([`CheckedLearnerConfig::planes`](super::learner_config::CheckedLearnerConfig::planes)):
+/// `step-x` the sagittal, `step-y` the frontal, `step-time` the sagittal unless
+/// `[settings.learner.step-time] plane = "frontal"`, which learns the step time from the lean
+/// sideways and its outcome, or `"both"`: then the step time has two learners, one per plane,
+/// each reading its plane's state and taught by its plane's outcome with its plane's rule, and
+/// the offset is their sum (an additive model, dT = dT_s(sagittal state) + dT_f(frontal
+/// state)). Each part's reach is the parameter's, less the other part's offset.
 pub struct StepLearner<A: FunctionApproximator, R: LearningRule> {
     /// In the order of [`StepParameter::ALL`], the sagittal plane first; each parameter and
     /// plane once.

@@ -1,15 +1,4 @@
 //! The step parameters a learner can learn, and sets of them.
-//!
-//! The Capture Step controller decides three things about the next step: where it lands
-//! sagittally (`F`), laterally (`W`), and when (`T`). A learner adds an offset to any set of
-//! them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
-//! [`StepParameter::StepTime`] a step-time offset dT. Beside the step, the body itself:
-//! [`StepParameter::AnklePitch`] and [`StepParameter::AnkleRoll`] turn the support sole (an
-//! ankle strategy, learned, in each plane).
-//! [`PerParameter`] holds one value per
-//! parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns;
-//! [`Plane`] is the plane whose state and outcome a parameter's learner reads, [`Planes`] the
-//! planes a parameter is learned in (the step time may be learned in both at once).
 
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -17,6 +6,17 @@ use std::str::FromStr;
 use thiserror::Error;
 
 /// One learnable step parameter.
+///
+/// The Capture Step controller decides three things about the next step: where it lands
+/// sagittally (`F`), laterally (`W`), and when (`T`). A learner adds an offset to any set of
+/// them: [`StepParameter::StepX`] is the paper's dF, [`StepParameter::StepY`] the lateral dW,
+/// [`StepParameter::StepTime`] a step-time offset dT. Beside the step, the body itself:
+/// [`StepParameter::AnklePitch`] and [`StepParameter::AnkleRoll`] turn the support sole (an
+/// ankle strategy, learned, in each plane).
+/// [`PerParameter`] holds one value per
+/// parameter (inputs, outcomes, reaches, offsets); [`LearnSet`] says which ones a learner learns;
+/// [`Plane`] is the plane whose state and outcome a parameter's learner reads, [`Planes`] the
+/// planes a parameter is learned in (the step time may be learned in both at once).
 #[derive(
     Debug,
     Clone,

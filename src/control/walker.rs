@@ -1,21 +1,5 @@
 //! The control tick that joins state estimation, Capture Step balance control, an optional
 //! footstep learner and the step motion generator.
-//!
-//! ```text
-//! Sensors -> StateEstimator -> CaptureStep (+ dF from the policy) -> MotionGenerator -> JointTargets
-//! ```
-//!
-//! The open-loop walker (fixed period, no reaction to pushes), the *model* (Capture Step), the
-//! *learned* walker (Capture Step + learner) and the learner without initialisation (analytic
-//! footstep off) are all configurations of this one type.
-//!
-//! In the Capture Step modes the controller's step places only the swing foot; the support
-//! leg's sweep follows the reference step `F_R` plus the learned offset
-//! ([`StepCommand::gait_x`], [`WalkerConfig::offset_in_gait`]) and the trunk lean follows
-//! `F_R`. Driving the sweep with the controller's step fed back
-//! positively on the stiff robot: a backward catch step swept the hips backward over the
-//! support foot, the controller saw more backward velocity and stepped further back (the
-//! robot walked backward with -0.116 m steps whatever `F_R` was).
 
 use super::capture_step::{
     CaptureStep, CaptureStepConfig, CaptureStepError, ComState, GaitReference, StepDecision,
@@ -237,6 +221,22 @@ pub struct Tick {
 }
 
 /// The walker: estimator, balance controller and motion generator, ticked together.
+///
+/// ```text
+/// Sensors -> StateEstimator -> CaptureStep (+ dF from the policy) -> MotionGenerator -> JointTargets
+/// ```
+///
+/// The open-loop walker (fixed period, no reaction to pushes), the *model* (Capture Step), the
+/// *learned* walker (Capture Step + learner) and the learner without initialisation (analytic
+/// footstep off) are all configurations of this one type.
+///
+/// In the Capture Step modes the controller's step places only the swing foot; the support
+/// leg's sweep follows the reference step `F_R` plus the learned offset
+/// ([`StepCommand::gait_x`], [`WalkerConfig::offset_in_gait`]) and the trunk lean follows
+/// `F_R`. Driving the sweep with the controller's step fed back
+/// positively on the stiff robot: a backward catch step swept the hips backward over the
+/// support foot, the controller saw more backward velocity and stepped further back (the
+/// robot walked backward with -0.116 m steps whatever `F_R` was).
 #[derive(Debug, Clone)]
 pub struct Walker {
     config: WalkerConfig,

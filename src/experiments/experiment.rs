@@ -1,10 +1,4 @@
 //! The one abstraction every experiment implements, the paper's and a user's.
-//!
-//! An experiment is a type in its own file implementing [`Experiment`]: it adjusts its
-//! protocol to the command line's push options, runs with the learners a [`RunContext`] builds
-//! (one approximator and rule per run, whatever their types), writes its CSV and figures,
-//! returns its part of `summary.json`, and compares the learned walker with the model over
-//! seeds for the leaderboard. `steplearn::bench::Registry` holds them by name.
 
 use super::error::ExperimentError;
 use super::paired::Paired;
@@ -249,6 +243,12 @@ impl Headline {
 /// ([`crate::experiments::settings::Settings::trial`], [`crate::experiments::trial`]), its
 /// learners with [`RunContext::make_learner`], and reports a
 /// [`crate::experiments::summary::CustomResult`].
+///
+/// An experiment is a type in its own file implementing [`Experiment`]: it adjusts its
+/// protocol to the command line's push options, runs with the learners a [`RunContext`] builds
+/// (one approximator and rule per run, whatever their types), writes its CSV and figures,
+/// returns its part of `summary.json`, and compares the learned walker with the model over
+/// seeds for the leaderboard. `steplearn::bench::Registry` holds them by name.
 pub trait Experiment: Send + Sync {
     /// Its name on the command line, in run ids and in `summary.json` (lowercase letters,
     /// digits and `-`).

@@ -1,10 +1,5 @@
 //! The replay page: one HTML file with three.js, the viewer and the recording inlined; it
 //! fetches nothing.
-//!
-//! three.js's single-file module build is turned into a plain object `THREE` (its final
-//! `export{local as Name,...}` becomes `const THREE={Name:local,...}`) and the viewer's code
-//! follows it in the same `<script type="module">`. The recording is JSON in a
-//! `<script type="application/json" id="replay-data">`, read back by [`embedded_replay`].
 
 use super::{Replay, ReplayError};
 
@@ -43,6 +38,11 @@ fn three_script() -> Result<String, ReplayError> {
 }
 
 /// The page of `replay`.
+///
+/// three.js's single-file module build is turned into a plain object `THREE` (its final
+/// `export{local as Name,...}` becomes `const THREE={Name:local,...}`) and the viewer's code
+/// follows it in the same `<script type="module">`. The recording is JSON in a
+/// `<script type="application/json" id="replay-data">`, read back by [`embedded_replay`].
 pub fn page(replay: &Replay) -> Result<String, ReplayError> {
     let data = serde_json::to_string(replay)
         .map_err(|e| ReplayError::Page(e.to_string()))?

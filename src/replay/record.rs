@@ -1,11 +1,5 @@
 //! What a replay records of one walker on one push: frames of the simulator's ground truth and
 //! of the walker's own quantities, subsampled in time, plus every touch-down and the fall.
-//!
-//! [`Recorder`] is an [`Observer`] of [`run_trial`](crate::experiments::trial::run_trial): the
-//! replay re-runs the experiment's own trial with it attached, so what it records is what the
-//! trial produced. Every number is rounded to
-//! [`DECIMALS`](crate::experiments::replay_plan::DECIMALS) decimals when it is recorded, so the
-//! JSON a page embeds parses back to exactly the recorded values.
 
 use crate::control::StepParameter;
 use crate::control::Tick;
@@ -161,6 +155,12 @@ pub struct Walk {
 ///
 /// [`Recorder::around_push`] records instead around the K-th push of a trial with many pushes,
 /// whose delivery time is known only once it happened (falls delay pushes).
+///
+/// [`Recorder`] is an [`Observer`] of [`run_trial`](crate::experiments::trial::run_trial): the
+/// replay re-runs the experiment's own trial with it attached, so what it records is what the
+/// trial produced. Every number is rounded to
+/// [`DECIMALS`](crate::experiments::replay_plan::DECIMALS) decimals when it is recorded, so the
+/// JSON a page embeds parses back to exactly the recorded values.
 #[derive(Debug)]
 pub struct Recorder {
     from: f64,

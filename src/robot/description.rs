@@ -2,12 +2,6 @@
 //! collision shapes. The simulator builds its multibody from a [`Description`], and control
 //! takes the leg geometry, the stance and the scale from it; neither knows where it came from
 //! (the built-in humanoid, or a URDF file through [`Description::from_urdf`]).
-//!
-//! Frames: every link frame is aligned with the trunk frame in the zero pose (all joints at
-//! zero), with its origin on its parent joint; a joint's `axis` is the same in both frames.
-//! Joint angles are steplearn's ([`crate::robot::LegJoint`]): about +z, +x, +y, +y, +y, +x for
-//! hip yaw, roll, pitch, knee, ankle pitch and roll. A robot whose own axis points the other
-//! way has `sign = -1`: its angle is `sign` times steplearn's.
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
@@ -218,6 +212,12 @@ pub struct Figure {
 /// A biped: the trunk (the floating base, with every joint outside the legs held) and two
 /// legs. Build one with [`Description::from_urdf`] or take the built-in humanoid's; a
 /// description is checked on construction ([`Description::validate`]).
+///
+/// Frames: every link frame is aligned with the trunk frame in the zero pose (all joints at
+/// zero), with its origin on its parent joint; a joint's `axis` is the same in both frames.
+/// Joint angles are steplearn's ([`crate::robot::LegJoint`]): about +z, +x, +y, +y, +y, +x for
+/// hip yaw, roll, pitch, knee, ankle pitch and roll. A robot whose own axis points the other
+/// way has `sign = -1`: its angle is `sign` times steplearn's.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Description {
     /// The robot's name.

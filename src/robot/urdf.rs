@@ -1,17 +1,5 @@
 //! URDF in and out: [`Description::from_urdf`] reads a biped, finds its legs, holds every other
 //! joint and merges it into the trunk; [`Description::to_urdf`] writes a description back.
-//!
-//! The supported robot: the root link is the trunk. On each side (left: positive y in the zero
-//! pose) the lowest leaf link ends a leg (or the link [`Feet`] names, where the lowest leaf is
-//! not the foot), and its path from the trunk has exactly six revolute
-//! (or continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
-//! pitch, knee, ankle pitch, roll), each with either sign. Links hanging from a leg link
-//! through fixed joints (a sole frame, a sensor) join that link; every other joint is held,
-//! those above the link both legs hang from (a waist below a chest that is the root) among them.
-//! The foot's sole is the bottom face of its lowest collision box, or of the bounds of its
-//! collision mesh (STL, COLLADA or OBJ). Collision shapes other than boxes, spheres, cylinders
-//! and capsules (`<capsule radius length>`, an extension) are left out: falls are told by the
-//! trunk's tilt.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -853,6 +841,18 @@ pub struct ServoReference {
 impl Description {
     /// Reads a biped from a URDF file (see the module docs for what is supported). Servo gains
     /// are scaled from `reference` by the robot's mass and leg length.
+    ///
+    /// The supported robot: the root link is the trunk. On each side (left: positive y in the zero
+    /// pose) the lowest leaf link ends a leg (or the link [`Feet`] names, where the lowest leaf is
+    /// not the foot), and its path from the trunk has exactly six revolute
+    /// (or continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
+    /// pitch, knee, ankle pitch, roll), each with either sign. Links hanging from a leg link
+    /// through fixed joints (a sole frame, a sensor) join that link; every other joint is held,
+    /// those above the link both legs hang from (a waist below a chest that is the root) among them.
+    /// The foot's sole is the bottom face of its lowest collision box, or of the bounds of its
+    /// collision mesh (STL, COLLADA or OBJ). Collision shapes other than boxes, spheres, cylinders
+    /// and capsules (`<capsule radius length>`, an extension) are left out: falls are told by the
+    /// trunk's tilt.
     pub fn from_urdf(path: &Path, reference: &ServoReference) -> Result<Self, RobotError> {
         let text = std::fs::read_to_string(path).map_err(|e| RobotError::Io {
             path: path.display().to_string(),
