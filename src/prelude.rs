@@ -1,7 +1,8 @@
 //! The names most programs need, in one import: `use steplearn::prelude::*;`.
 //!
-//! The learning layer (approximators, rules, the learner) always; with the feature
-//! `experiments`, the harness, the experiment trait and the bench.
+//! The learning layer (approximators, rules, the learner), the walker and the robot interface
+//! (a robot's description, the sensors it gives, the joint targets it takes) always; with the
+//! feature `experiments`, the harness, the experiment trait and the bench.
 
 pub use crate::approx::{
     AnyApproximator, ApproxError, ApproxKind, BoxedApproximator, FunctionApproximator, InputBox,
@@ -9,8 +10,9 @@ pub use crate::approx::{
 };
 pub use crate::control::{
     FootstepLearner, FootstepPolicy, InputGrid, LearnSet, LearnerConfig, LearnerError,
-    LearnerInput, PerParameter, StepLearner, StepParameter,
+    LearnerInput, PerParameter, StepLearner, StepParameter, Walker, WalkerConfig, WalkerMode,
 };
+pub use crate::robot::{Description, JointTargets, Sensors};
 pub use crate::rules::{LearningRule, PendulumCart, StepOutcome, StepTime};
 
 #[cfg(feature = "experiments")]
@@ -61,5 +63,20 @@ mod tests {
             assert!(reports[p].is_some_and(|r| r.samples > 0), "{p} learned");
         }
         assert!(reports[StepParameter::StepY].is_none());
+    }
+
+    /// A walker for a robot in URDF takes its sensors and gives its joint targets with the
+    /// prelude's names (and the servo reference the loader scales from).
+    #[test]
+    fn a_walker_for_a_urdf_robot_ticks_from_the_prelude() {
+        let text = include_str!("../tests/robots/minimal.urdf");
+        let reference = crate::robot::ServoReference::default();
+        let robot =
+            Description::from_urdf_str(text, std::path::Path::new("."), &reference).unwrap();
+        let config = WalkerConfig::new(WalkerMode::CaptureStep);
+        let mut walker = Walker::new(config, robot.leg_geometry()).unwrap();
+        let tick = walker.tick(&Sensors::default(), 0.1, None).unwrap();
+        let targets: JointTargets = tick.targets;
+        assert!(targets.pos.iter().all(|q| q.is_finite()));
     }
 }
