@@ -59,10 +59,8 @@ impl WalkerConfig {
 impl GaitShape {
     /// This gait's primitives for a robot of `scale`.
     pub fn for_robot(&self, s: &Scale) -> GaitShape {
+        // The extensions are fractions of the leg's length: the same for every robot.
         GaitShape {
-            halt_extension: s.length(self.halt_extension),
-            lift_extension: s.length(self.lift_extension),
-            push_extension: s.length(self.push_extension),
             sway: s.width(self.sway),
             lean_per_step: self.lean_per_step / s.length,
             filter_time: s.time(self.filter_time),
@@ -150,5 +148,38 @@ impl FootstepPolicy for ScaledPolicy<'_, '_> {
     }
     fn discard_step(&mut self) {
         self.inner.discard_step()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A robot of half the paper robot's leg length and 0.8 of its hip width.
+    fn small() -> Scale {
+        Scale {
+            length: 0.5,
+            width: 0.8,
+            ..Scale::ONE
+        }
+    }
+
+    /// The legs' extensions are fractions of each robot's own leg: scaling them by the length
+    /// factor as well would lift a small robot's swing foot by a smaller share of its leg.
+    #[test]
+    fn a_gait_keeps_its_extensions_and_scales_its_lengths_and_times() {
+        let paper = GaitShape {
+            push_extension: 0.01,
+            ..GaitShape::default()
+        };
+        let s = small();
+        let robot = paper.for_robot(&s);
+        assert_eq!(robot.halt_extension, paper.halt_extension);
+        assert_eq!(robot.lift_extension, paper.lift_extension);
+        assert_eq!(robot.push_extension, paper.push_extension);
+        assert_eq!(robot.sway, paper.sway * 0.8);
+        assert_eq!(robot.lean_per_step, paper.lean_per_step / 0.5);
+        assert_eq!(robot.filter_time, paper.filter_time * 0.5f64.sqrt());
+        assert_eq!(paper.for_robot(&Scale::ONE), paper);
     }
 }
