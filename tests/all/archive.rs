@@ -115,9 +115,9 @@ fn the_readme_robot_table_is_the_stored_robot_jobs() {
     let igus = robot_job("results-archive/robots/igus_like");
     let talos = robot_job("results-archive/robots/talos");
     let table = robots_table(&[
-        ("the paper's humanoid (built in)", &paper, "35 x"),
-        ("igus-like (6.5 kg)", &igus, "42 x"),
-        ("Talos (90 kg, as shipped)", &talos, "42 x"),
+        ("the paper's humanoid (built in)", &paper, "89 x"),
+        ("igus-like (6.5 kg)", &igus, "84 x"),
+        ("Talos (90 kg, as shipped)", &talos, "86 x"),
     ]);
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     assert!(
