@@ -413,7 +413,7 @@ pub(crate) enum GuardError {
     Measure(LearnerError),
 }
 
-/// The gain guard (see the module docs), for any learner: `apply(approx, scale)` trains the
+/// The gain guard (see [`FootstepLearner`]), for any learner: `apply(approx, scale)` trains the
 /// step scaled by `scale`, `measure` gives the response and `gain` the largest |gain| it
 /// means. With `limit` set, while that gain exceeds it the step is scaled to just below the
 /// limit and applied again to the approximator as it was (a copy), at most [`GUARD_RETRIES`]

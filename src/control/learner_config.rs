@@ -62,8 +62,8 @@ pub struct LearnerConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub offset_range: Option<[f64; 2]>,
     /// Stability guard: the largest learning gain one touch-down may apply, in metres of dF per
-    /// unit of G (see [`TouchDownReport::gain`](super::learner::TouchDownReport::gain) and the
-    /// module docs for the limit). If the approximator's response to the full step eta G would
+    /// unit of G (see [`TouchDownReport::gain`](super::learner::TouchDownReport::gain) and
+    /// [`FootstepLearner`](super::FootstepLearner) for the limit). If the approximator's response to the full step eta G would
     /// exceed it, the step is scaled down and applied again to the approximator as it was.
     /// `None` turns the guard off (eq. 6 as written). Default 0.2. Must be finite and > 0.
     pub max_gain: Option<f64>,

@@ -7,7 +7,7 @@ use crate::approx::{FunctionApproximator, Persist};
 use crate::rules::{LearningRule, StepOutcome};
 use serde::{Deserialize, Serialize};
 
-/// One [`FootstepLearner`] per learned step parameter and plane (see the module docs).
+/// One [`FootstepLearner`] per learned step parameter and plane.
 ///
 /// A [`StepLearner`] learns each parameter of its [`LearnSet`] with a [`FootstepLearner`] of
 /// its own (the uncoupled setting): its own approximator over that parameter's inputs, and its

@@ -1,10 +1,4 @@
-//! Dynamic similarity: how a robot's gait, learner and protocols follow from the paper's
-//! robot. A gait scaled by leg length `l` and by `sqrt(l/g)` in time, and pushes in units of
-//! `m sqrt(g l)`, transfer across body sizes (Alexander's dynamic similarity, Froude scaling).
-//! [`Scale`] holds the factors of one robot against the paper's; it is computed once, from
-//! both descriptions, and every scaled setting is derived from it in one place
-//! ([`crate::control::for_robot`] for the walker and learner, the experiments' config for the
-//! protocols).
+//! Dynamic similarity between a robot and the paper's: [`Scale`].
 
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};

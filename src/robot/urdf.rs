@@ -616,12 +616,13 @@ fn leg_chain(
                     "turns about ({:.3}, {:.3}, {:.3}) in the zero pose; as the {j:?} joint of \
                      the {side:?} leg it must turn about {} (the leg's joints turn about {}; \
                      the supported chain, hip yaw, roll, pitch, knee, ankle pitch, roll, turns \
-                     about z, x, y, y, y, x)",
+                     about {})",
                     a.x,
                     a.y,
                     a.z,
-                    ["x", "y", "z"][want.iamax()],
-                    chain_axes(tree, &chain)
+                    axis_name(&want),
+                    axis_names(chain.iter().map(|&k| tree.axis_world(k))),
+                    axis_names(LegJoint::ALL.iter().map(|j| Vector3::from(j.axis())))
                 ),
             ));
         }
@@ -839,20 +840,20 @@ pub struct ServoReference {
 }
 
 impl Description {
-    /// Reads a biped from a URDF file (see the module docs for what is supported). Servo gains
+    /// Reads a biped from a URDF file (what is supported: below). Servo gains
     /// are scaled from `reference` by the robot's mass and leg length.
     ///
-    /// The supported robot: the root link is the trunk. On each side (left: positive y in the zero
-    /// pose) the lowest leaf link ends a leg (or the link [`Feet`] names, where the lowest leaf is
-    /// not the foot), and its path from the trunk has exactly six revolute
-    /// (or continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
+    /// The supported robot: the root link is the trunk. On each side (left: positive y in the
+    /// zero pose) the lowest leaf link ends a leg (or the link [`Feet`] names, where the lowest
+    /// leaf is not the foot), and its path from the trunk has exactly six revolute (or
+    /// continuous) joints turning, in the zero pose, about z, x, y, y, y and x (hip yaw, roll,
     /// pitch, knee, ankle pitch, roll), each with either sign. Links hanging from a leg link
     /// through fixed joints (a sole frame, a sensor) join that link; every other joint is held,
-    /// those above the link both legs hang from (a waist below a chest that is the root) among them.
-    /// The foot's sole is the bottom face of its lowest collision box, or of the bounds of its
-    /// collision mesh (STL, COLLADA or OBJ). Collision shapes other than boxes, spheres, cylinders
-    /// and capsules (`<capsule radius length>`, an extension) are left out: falls are told by the
-    /// trunk's tilt.
+    /// those above the link both legs hang from (a waist below a chest that is the root) among
+    /// them. The foot's sole is the bottom face of its lowest collision box, or of the bounds of
+    /// its collision mesh (STL, COLLADA or OBJ). Collision shapes other than boxes, spheres,
+    /// cylinders and capsules (`<capsule radius length>`, an extension) are left out: falls are
+    /// told by the trunk's tilt.
     pub fn from_urdf(path: &Path, reference: &ServoReference) -> Result<Self, RobotError> {
         let text = std::fs::read_to_string(path).map_err(|e| RobotError::Io {
             path: path.display().to_string(),
@@ -1144,21 +1145,19 @@ fn build(
     Ok(d)
 }
 
-/// The axes a leg's joints turn about in the zero pose, as letters (`x`, `y`, `z`, or `oblique`).
-fn chain_axes(tree: &Tree, chain: &[usize]) -> String {
-    chain
-        .iter()
-        .map(|&k| {
-            let a = tree.axis_world(k);
-            let i = a.iamax();
-            if a[i].abs() >= AXIS_COS {
-                ["x", "y", "z"][i]
-            } else {
-                "oblique"
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
+/// The name of the coordinate axis `a` turns about (`x`, `y`, `z`), or `oblique`.
+fn axis_name(a: &Vector3<f64>) -> &'static str {
+    let i = a.iamax();
+    if a[i].abs() >= AXIS_COS {
+        ["x", "y", "z"][i]
+    } else {
+        "oblique"
+    }
+}
+
+/// [`axis_name`] of each axis, comma separated.
+fn axis_names(axes: impl Iterator<Item = Vector3<f64>>) -> String {
+    axes.map(|a| axis_name(&a)).collect::<Vec<_>>().join(", ")
 }
 
 /// The stick figure of a trunk: the head on its highest sphere, or above its highest point.
