@@ -61,7 +61,7 @@ fn check_job(job: &str, config: Option<&str>) -> Claims {
         assert!(
             stored == today,
             "{} was made with another config or code than today's: rerun the main job \
-             (docs/reproducing.md, \"The stored main jobs\")",
+             (the job's README in results-archive says how)",
             dir.display()
         );
         summaries.push(Summary::read(&dir.join("summary.json")).unwrap());

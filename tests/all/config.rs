@@ -567,6 +567,7 @@ proptest::proptest! {
             ("tracking", "bin_s"), ("tracking", "duration_s"), ("tracking", "horizon_s"),
             ("disturbance", "impulse"), ("robustness", "impulse"), ("disturbance", "bin_s"),
             ("disturbance", "horizon_s"), ("disturbance", "tolerance_m"), ("disturbance", "f_r"),
+            ("disturbance", "touch_down_share"),
         ]),
         value in proptest::sample::select(vec![
             "0", "1", "-1", "1e-300", "1e300", "nan", "inf", "-inf", "9223372036854775807",

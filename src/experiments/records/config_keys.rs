@@ -520,6 +520,11 @@ pub const PRINTED: &[KeyDoc] = &[
         "B: band around F_R within which the step counts as back",
     ),
     k(
+        "protocols.disturbance.touch_down_share",
+        "(0, 1]",
+        "B: share of the pushes that must reach a touch-down for it to count in the return",
+    ),
+    k(
         "protocols.omnidirectional.gap_s",
         "0 < lo <= hi <= 600 s",
         "omnidirectional: time between pushes",

@@ -58,6 +58,10 @@ pub struct DisturbanceProtocol {
     /// The step size counts as back once the binned mean step error stays within this of its
     /// undisturbed mean (m).
     pub tolerance_m: f64,
+    /// The return between touch-downs counts the k-th touch-down after a push only when at
+    /// least this share of the absorbed pushes reach it within the horizon: a touch-down that
+    /// few pushes reach has the mean step of those few.
+    pub touch_down_share: f64,
     /// Unit push direction (forward by default).
     pub direction: [f64; 3],
 }
@@ -72,6 +76,7 @@ impl Default for DisturbanceProtocol {
             bin_s: 0.5,
             horizon_s: 4.0,
             tolerance_m: 0.03,
+            touch_down_share: 0.5,
             direction: [1.0, 0.0, 0.0],
         }
     }
@@ -95,6 +100,7 @@ impl Protocol for DisturbanceProtocol {
             )
         })?;
         config::in_range("tolerance_m", self.tolerance_m, 1e-6, MAX_STEP_M)?;
+        config::in_range("touch_down_share", self.touch_down_share, 1e-6, 1.0)?;
         config::ensure(self.horizon_s < self.gap_s.0, "gap_s", || {
             format!(
                 "the shortest gap {} s must exceed the horizon {} s",
@@ -133,7 +139,8 @@ pub struct PushResponse {
     /// more than the tolerance never returns.
     pub return_time_s: f64,
     /// Return time resolved between touch-downs: the mean time since the push of the k-th
-    /// touch-down after it, and the step error of its mean step, per k; the last touch-down
+    /// touch-down after it, and the step error of its mean step, per k reached by at least
+    /// [`DisturbanceProtocol::touch_down_share`] of the absorbed pushes; the last touch-down
     /// whose error exceeds the tolerance and the next one bound the return, which is placed
     /// where the error, linearly interpolated between them in time, meets the tolerance. The
     /// first touch-down's time when none exceeds it; the horizon if the last one does or if
@@ -200,9 +207,16 @@ impl PushResponse {
         let return_time_by_step_s = if absorbed.is_empty() {
             p.horizon_s
         } else {
-            return_between_touch_downs(&step_by_index, &time_by_index, p.f_r, p.tolerance_m)
-                .unwrap_or(p.horizon_s)
-                .min(p.horizon_s)
+            let reached = (p.touch_down_share * absorbed.len() as f64).ceil() as usize;
+            return_between_touch_downs(
+                &step_by_index,
+                &time_by_index,
+                p.f_r,
+                p.tolerance_m,
+                reached,
+            )
+            .unwrap_or(p.horizon_s)
+            .min(p.horizon_s)
         };
         let tda_by_index = by_index(|s| s.theta_e)?;
         // Undisturbed: steps not within the horizon after any push.
@@ -288,17 +302,19 @@ impl PushResponse {
 
 /// The return to within `tolerance` of `f_r` resolved between touch-downs
 /// ([`PushResponse::return_time_by_step_s`]): `step` holds the mean step of the k-th
-/// touch-down after a push and `time` its mean time since the push. `None` when the last
-/// populated touch-down is still off (censored at the horizon by the caller) or none is
-/// populated.
+/// touch-down after a push and `time` its mean time since the push; only the touch-downs with
+/// at least `min_count` steps (and one) count. `None` when the last counted touch-down is
+/// still off (censored at the horizon by the caller) or none counts.
 pub fn return_between_touch_downs(
     step: &AlignedStats,
     time: &AlignedStats,
     f_r: f64,
     tolerance: f64,
+    min_count: usize,
 ) -> Option<f64> {
+    let min_count = min_count.max(1);
     let points: Vec<(f64, f64)> = (0..step.mean.len().min(time.mean.len()))
-        .filter(|&k| step.count[k] > 0 && time.count[k] > 0)
+        .filter(|&k| step.count[k] >= min_count && time.count[k] >= min_count)
         .map(|k| (time.mean[k], (step.mean[k] - f_r).abs()))
         .collect();
     let first = points.first()?;
@@ -1168,6 +1184,23 @@ mod tests {
     }
 
     #[test]
+    fn a_touch_down_share_outside_0_to_1_is_refused_by_name() {
+        for bad in [0.0, -0.5, 1.5, f64::NAN, f64::INFINITY] {
+            let p = DisturbanceProtocol {
+                touch_down_share: bad,
+                ..DisturbanceProtocol::default()
+            };
+            let e = p.validate().unwrap_err();
+            assert_eq!(e.field, "touch_down_share", "{bad}: {e}");
+        }
+        let every_push = DisturbanceProtocol {
+            touch_down_share: 1.0,
+            ..DisturbanceProtocol::default()
+        };
+        assert!(every_push.validate().is_ok());
+    }
+
+    #[test]
     fn the_return_between_touch_downs_is_where_the_interpolated_error_meets_the_tolerance() {
         let p = DisturbanceProtocol::default();
         // Touch-downs 0.1, 0.6 and 1.1 s after each push, 8 cm, 4 cm and 0 cm off the
@@ -1202,7 +1235,7 @@ mod tests {
             ..step.clone()
         };
         assert_eq!(
-            return_between_touch_downs(&step, &time, 0.2, 0.03),
+            return_between_touch_downs(&step, &time, 0.2, 0.03, 1),
             Some(0.3)
         );
         // No touch-down at all: no return.
@@ -1210,6 +1243,25 @@ mod tests {
             count: vec![0, 0],
             ..step.clone()
         };
-        assert_eq!(return_between_touch_downs(&empty, &time, 0.2, 0.03), None);
+        assert_eq!(
+            return_between_touch_downs(&empty, &time, 0.2, 0.03, 1),
+            None
+        );
+        // A last touch-down that few pushes reach does not count: with one of its three
+        // steps far off it would censor the return; counted from two steps on, it is left
+        // out and the return is the second touch-down's.
+        let step = AlignedStats {
+            bin_s: 1.0,
+            mean: vec![0.26, 0.2, 0.05],
+            std: vec![0.0; 3],
+            count: vec![3, 3, 1],
+        };
+        let time = AlignedStats {
+            mean: vec![0.3, 0.7, 1.1],
+            ..step.clone()
+        };
+        assert_eq!(return_between_touch_downs(&step, &time, 0.2, 0.03, 1), None);
+        let back = return_between_touch_downs(&step, &time, 0.2, 0.03, 2).unwrap();
+        assert!((back - 0.5).abs() < 1e-12, "{back}");
     }
 }
