@@ -32,6 +32,6 @@ mod runner;
 
 pub use error::BenchError;
 pub use leaderboard::{Combination, Comparison, LEADERBOARD_FILES, Leaderboard, LeaderboardRow};
-pub use registry::{RESULTS_FORMAT, Registry, RegistryRunner};
+pub use registry::{RESULTS_FORMAT, ROBOT_RULES, Registry, RegistryRunner};
 pub use robots::{RobotColumn, RobotLeaderboard};
 pub use runner::{Bench, Report};

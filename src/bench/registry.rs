@@ -408,10 +408,19 @@ fn fingerprint(bytes: &[u8]) -> String {
 /// change of steplearn makes earlier results differ from what it would produce now.
 pub const RESULTS_FORMAT: u32 = 1;
 
+/// The version of the rules that carry the paper robot's settings to another robot
+/// ([`crate::robot::Scale`], [`crate::control::WalkerConfig::for_robot`]), recorded in the
+/// identity of every run on another robot than the built-in one: raised when a change of
+/// them makes such runs differ, so that the paper robot's results stay reusable.
+pub const ROBOT_RULES: u32 = 2;
+
 /// What determines a run's results, recorded as its `run-config.toml`.
 #[derive(serde::Serialize)]
 struct RunIdentity<'a> {
     format: u32,
+    /// [`ROBOT_RULES`] for a run on another robot than the built-in one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    robot_rules: Option<u32>,
     experiment: &'a str,
     approx: &'a str,
     rule: &'a str,
@@ -450,6 +459,7 @@ impl Registry {
             .map_err(invalid)?;
         toml::to_string_pretty(&RunIdentity {
             format: RESULTS_FORMAT,
+            robot_rules: settings.sim.robot.as_ref().map(|_| ROBOT_RULES),
             experiment: &spec.experiment,
             approx: &spec.approx,
             rule: &spec.rule,

@@ -20,13 +20,15 @@ use crate::rules::StepOutcome;
 impl WalkerConfig {
     /// These settings (for the paper's robot) for a robot of `scale`: every length, time, rate
     /// and force scaled; the LIPM constant from the robot's centre-of-mass height; the
-    /// estimator's centre of mass shifted to the robot's. The paper's robot gets them back
-    /// unchanged, bit for bit.
+    /// estimator's centre of mass shifted to the robot's, and the reference point on each
+    /// sole placed where the stance centre of mass lies as on the paper's robot. The paper's
+    /// robot gets them back unchanged, bit for bit.
     pub fn for_robot(&self, s: &Scale) -> WalkerConfig {
         let mut w = *self;
         let l = |x: f64| s.length(x);
         let t = |x: f64| s.time(x);
         w.start_ramp_s = t(w.start_ramp_s);
+        w.sole_reference_x = l(w.sole_reference_x) + s.sole_shift_x;
         let c = &mut w.capture_step;
         c.c = s.lipm_c(c.c);
         c.nominal_step_time = t(c.nominal_step_time);

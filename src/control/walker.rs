@@ -76,6 +76,13 @@ pub struct WalkerConfig {
     /// default 2 s starts it at every reference the experiments use.
     #[serde(default = "default_start_ramp_s")]
     pub start_ramp_s: f64,
+    /// The walker's reference point on each sole, forward of the sole's centre (m): the
+    /// point the estimator measures the centre of mass from and the generator places. The
+    /// sole's centre (0) for the paper's robot; [`WalkerConfig::for_robot`] sets it from the
+    /// robot's [`Scale::sole_shift_x`](crate::robot::Scale). Derived from the robot, so not a
+    /// configuration key.
+    #[serde(skip)]
+    pub sole_reference_x: f64,
 }
 
 /// Where the learned sagittal offset dF enters the Capture Step controller.
@@ -104,6 +111,7 @@ impl WalkerConfig {
             learner_during_fade_in: false,
             offset_target: OffsetTarget::Footstep,
             start_ramp_s: default_start_ramp_s(),
+            sole_reference_x: 0.0,
         }
     }
 
@@ -253,6 +261,10 @@ impl Walker {
     /// A walker for a robot with legs `geometry`.
     pub fn new(config: WalkerConfig, geometry: LegGeometry) -> Result<Self, WalkerError> {
         let motion = config.check()?;
+        let geometry = LegGeometry {
+            sole_offset_x: geometry.sole_offset_x + config.sole_reference_x,
+            ..geometry
+        };
         let mut capture_step = config.capture_step;
         capture_step.analytic_footstep = config.mode != WalkerMode::LearnerOnly;
         Ok(Walker {

@@ -28,6 +28,12 @@ pub struct Scale {
     /// The robot's centre of mass in the trunk frame in the stance, minus `length` times the
     /// paper robot's (m): what the estimator's centre of mass is shifted by.
     pub com_shift: [f64; 3],
+    /// How far the stance centre of mass lies ahead of the soles' centre, minus `length`
+    /// times the paper robot's (m): what the walker's reference point on each sole is moved
+    /// forward by, so that the stance centre of mass lies ahead of it as the paper robot's
+    /// does, scaled.
+    #[serde(default)]
+    pub sole_shift_x: f64,
 }
 
 impl Scale {
@@ -38,6 +44,7 @@ impl Scale {
         width: 1.0,
         com_height: 1.0,
         com_shift: [0.0; 3],
+        sole_shift_x: 0.0,
     };
 
     /// The factors of `robot` against `paper`, both in the joint angles `stance`.
@@ -46,12 +53,23 @@ impl Scale {
         let hip_y =
             |d: &Description| (d.hip_centre(Side::Left).y - d.hip_centre(Side::Right).y) / 2.0;
         let com: Vector3<f64> = robot.com_in_trunk(stance) - paper.com_in_trunk(stance) * length;
+        // The stance centre of mass ahead of the mean of both soles' centres (m).
+        let com_ahead = |d: &Description| {
+            let soles: f64 = Side::BOTH
+                .iter()
+                .flat_map(|s| d.sole_corners_in_trunk(*s, stance))
+                .map(|c| c.x)
+                .sum::<f64>()
+                / 8.0;
+            d.com_in_trunk(stance).x - soles
+        };
         Scale {
             length,
             mass: robot.mass() / paper.mass(),
             width: hip_y(robot) / hip_y(paper),
             com_height: robot.com_height(stance) / paper.com_height(stance),
             com_shift: [com.x, com.y, com.z],
+            sole_shift_x: com_ahead(robot) - com_ahead(paper) * length,
         }
     }
 
@@ -100,5 +118,26 @@ impl Scale {
     /// The LIPM constant `C = sqrt(g/h)` (1/s) from the paper robot's.
     pub fn lipm_c(&self, c: f64) -> f64 {
         c / self.com_height.sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::BodyConfig;
+
+    #[test]
+    fn soles_moved_forward_move_the_reference_point_back_by_as_much() {
+        let body = BodyConfig::default();
+        let paper = body.description();
+        let stance = crate::sim::SimConfig::default().initial_joints;
+        assert_eq!(Scale::between(&paper, &paper, &stance), Scale::ONE);
+        let mut robot = paper.clone();
+        for leg in &mut robot.legs {
+            leg.sole.centre[0] += 0.01;
+        }
+        let s = Scale::between(&robot, &paper, &stance);
+        assert!((s.sole_shift_x + 0.01).abs() < 1e-12, "{}", s.sole_shift_x);
+        assert_eq!(s.length, 1.0);
     }
 }

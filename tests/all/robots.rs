@@ -90,6 +90,41 @@ fn the_igus_like_robot_walks_in_place_for_60_s() {
     assert_eq!(falls_in_place(&root().join("robots/igus_like.urdf")), 0);
 }
 
+/// The model's mean realised step over the last 20 of 30 s walking undisturbed at experiment
+/// B's reference step (the paper robot's 0.2 m, scaled), as a share of that reference.
+fn realised_share_of_b_reference(path: &Path) -> f64 {
+    let mut settings = Settings::default();
+    let mut protocols = ProtocolTables::new();
+    let run = use_robot(path, None, &mut settings, &mut protocols).unwrap();
+    let f_r = run.scale.length(0.2);
+    let setup = settings.trial(
+        WalkerMode::CaptureStep,
+        ReferenceSchedule::constant(f_r),
+        Vec::new(),
+        [1.0, 0.0, 0.0],
+        30.0,
+    );
+    let log = run_trial(&setup, None, &mut []).unwrap();
+    assert!(log.falls.is_empty(), "{} falls", log.falls.len());
+    let late: Vec<f64> = log
+        .steps
+        .iter()
+        .filter(|s| s.time > 10.0)
+        .map(|s| s.f_hat)
+        .collect();
+    late.iter().sum::<f64>() / late.len() as f64 / f_r
+}
+
+/// The walker's reference point on each sole lies where the stance centre of mass puts it on
+/// the paper's robot, scaled (`Scale::sole_shift_x`): on the igus-like robot, whose stance
+/// centre of mass lies far behind its soles' centres, the model steps about a third of its
+/// reference without it.
+#[test]
+fn the_igus_like_model_realises_its_reference_step() {
+    let share = realised_share_of_b_reference(&root().join("robots/igus_like.urdf"));
+    assert!((0.8..1.2).contains(&share), "{share}");
+}
+
 #[test]
 fn talos_as_shipped_walks_in_place_for_60_s() {
     assert_eq!(falls_in_place(&talos()), 0);
@@ -390,6 +425,11 @@ fn a_changed_robot_file_is_never_answered_with_old_results() {
     );
     let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
     assert!(summary.contains("\"sha256\""));
+    // The identity names the version of the rules that carry the settings to the robot, so
+    // a change of them is never answered with a run made under the old ones.
+    let identity = std::fs::read_to_string(out.join("run-config.toml")).unwrap();
+    let rules = format!("robot_rules = {}\n", steplearn::bench::ROBOT_RULES);
+    assert!(identity.contains(&rules), "{identity}");
     // The same file reuses the run; a changed one is a different run, refused in the same
     // directory without --overwrite.
     let text = std::fs::read_to_string(&urdf)
