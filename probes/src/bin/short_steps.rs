@@ -55,8 +55,6 @@ struct Step {
     first_target_vel: f64,
     touch_down_vel: f64,
     com_x: f64,
-    first_time_to_step: f64,
-    first_analytic_time: f64,
     zmp_sum: f64,
     ticks: f64,
     true_vel_sum: f64,
@@ -85,51 +83,48 @@ impl Observer for Trace {
             self.current.touch_down_vel = tick.estimate.com[0].vel;
             self.fresh = true;
         }
-        if let (Some(t0), Some(d)) = (self.trace, &tick.decision) {
-            if time >= t0
-                && time < t0 + 10.0
-                && (self.every_tick || tick.estimate.touch_down.is_some())
-            {
-                let e = &tick.estimate;
-                println!(
-                    "t {time:.3} sup {:?} on {:.3} com {:+.4} {:+.4} zmp {:+.4} T {:.3} target {:+.4} {:+.4} eos {:+.4} {:+.4} step {:+.4} cmd {:+.4} cmdT {:.3} | y com {:+.4} {:+.4} zmp {:+.4} target {:+.4} {:+.4} eos {:+.4} {:+.4} feet y {:+.4} {:+.4} stepy {:+.4} cmdy {:+.4}{}",
-                    e.support,
-                    e.time_on_support,
-                    e.com[0].pos,
-                    e.com[0].vel,
-                    d.zmp[0],
-                    d.time_to_step,
-                    d.target[0].pos,
-                    d.target[0].vel,
-                    d.end_of_step[0].pos,
-                    d.end_of_step[0].vel,
-                    d.step[0],
-                    tick.command.step_x,
-                    tick.command.step_time,
-                    e.com[1].pos,
-                    e.com[1].vel,
-                    d.zmp[1],
-                    d.target[1].pos,
-                    d.target[1].vel,
-                    d.end_of_step[1].pos,
-                    d.end_of_step[1].vel,
-                    e.feet[0][1],
-                    e.feet[1][1],
-                    d.step[1],
-                    tick.command.step_y,
-                    if e.touch_down.is_some() {
-                        " TOUCH-DOWN"
-                    } else {
-                        ""
-                    }
-                );
-            }
+        if let (Some(t0), Some(d)) = (self.trace, &tick.decision)
+            && time >= t0
+            && time < t0 + 10.0
+            && (self.every_tick || tick.estimate.touch_down.is_some())
+        {
+            let e = &tick.estimate;
+            println!(
+                "t {time:.3} sup {:?} on {:.3} com {:+.4} {:+.4} zmp {:+.4} T {:.3} target {:+.4} {:+.4} eos {:+.4} {:+.4} step {:+.4} cmd {:+.4} cmdT {:.3} | y com {:+.4} {:+.4} zmp {:+.4} target {:+.4} {:+.4} eos {:+.4} {:+.4} feet y {:+.4} {:+.4} stepy {:+.4} cmdy {:+.4}{}",
+                e.support,
+                e.time_on_support,
+                e.com[0].pos,
+                e.com[0].vel,
+                d.zmp[0],
+                d.time_to_step,
+                d.target[0].pos,
+                d.target[0].vel,
+                d.end_of_step[0].pos,
+                d.end_of_step[0].vel,
+                d.step[0],
+                tick.command.step_x,
+                tick.command.step_time,
+                e.com[1].pos,
+                e.com[1].vel,
+                d.zmp[1],
+                d.target[1].pos,
+                d.target[1].vel,
+                d.end_of_step[1].pos,
+                d.end_of_step[1].vel,
+                e.feet[0][1],
+                e.feet[1][1],
+                d.step[1],
+                tick.command.step_y,
+                if e.touch_down.is_some() {
+                    " TOUCH-DOWN"
+                } else {
+                    ""
+                }
+            );
         }
         if let Some(d) = &tick.decision {
             if self.fresh {
                 self.current.first_target_vel = d.target[0].vel;
-                self.current.first_time_to_step = d.time_to_step;
-                self.current.first_analytic_time = d.analytic_time_to_step;
                 self.fresh = false;
             }
             self.current.zmp_sum += d.zmp[0];
@@ -240,11 +235,6 @@ fn main() -> Result<(), String> {
     println!(
         "CoM x rel. support, last tick    {:+.4} m",
         m(&|x| x.0.com_x)
-    );
-    println!(
-        "step time at the step's first decision {:.3} s (analytic {:.3} s)",
-        m(&|x| x.0.first_time_to_step),
-        m(&|x| x.0.first_analytic_time)
     );
     println!(
         "CoM x, true - estimated (rel. support sole), mean over the step {:+.4} m",
