@@ -124,13 +124,14 @@ impl Scale {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::BodyConfig;
+    use crate::robot::{STANCE_KNEE, ServoReference, standing_pose};
 
     #[test]
     fn soles_moved_forward_move_the_reference_point_back_by_as_much() {
-        let body = BodyConfig::default();
-        let paper = body.description();
-        let stance = crate::sim::SimConfig::default().initial_joints;
+        let urdf =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/steplearn_humanoid.urdf");
+        let paper = Description::from_urdf(&urdf, &ServoReference::default()).unwrap();
+        let stance = standing_pose(STANCE_KNEE);
         assert_eq!(Scale::between(&paper, &paper, &stance), Scale::ONE);
         let mut robot = paper.clone();
         for leg in &mut robot.legs {
