@@ -52,16 +52,16 @@ impl Scale {
         let length = robot.leg_length() / paper.leg_length();
         let hip_y =
             |d: &Description| (d.hip_centre(Side::Left).y - d.hip_centre(Side::Right).y) / 2.0;
-        let com: Vector3<f64> = robot.com_in_trunk(stance) - paper.com_in_trunk(stance) * length;
-        // The stance centre of mass ahead of the mean of both soles' centres (m).
-        let com_ahead = |d: &Description| {
-            let soles: f64 = Side::BOTH
+        let (robot_com, paper_com) = (robot.com_in_trunk(stance), paper.com_in_trunk(stance));
+        let com: Vector3<f64> = robot_com - paper_com * length;
+        // The mean of both soles' centres, x in the trunk frame (m).
+        let soles_x = |d: &Description| {
+            Side::BOTH
                 .iter()
                 .flat_map(|s| d.sole_corners_in_trunk(*s, stance))
                 .map(|c| c.x)
                 .sum::<f64>()
-                / 8.0;
-            d.com_in_trunk(stance).x - soles
+                / 8.0
         };
         Scale {
             length,
@@ -69,7 +69,7 @@ impl Scale {
             width: hip_y(robot) / hip_y(paper),
             com_height: robot.com_height(stance) / paper.com_height(stance),
             com_shift: [com.x, com.y, com.z],
-            sole_shift_x: com_ahead(robot) - com_ahead(paper) * length,
+            sole_shift_x: (robot_com.x - soles_x(robot)) - (paper_com.x - soles_x(paper)) * length,
         }
     }
 

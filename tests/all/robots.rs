@@ -10,7 +10,7 @@ use steplearn::experiments::protocol::ProtocolTables;
 use steplearn::experiments::robot_setup::{robot_report, use_robot};
 use steplearn::experiments::schedule::ReferenceSchedule;
 use steplearn::experiments::settings::Settings;
-use steplearn::experiments::trial::run_trial;
+use steplearn::experiments::trial::{TrialLog, run_trial};
 use steplearn::robot::Description;
 use steplearn::robot::ServoReference;
 use steplearn::sim::BodyConfig;
@@ -67,19 +67,26 @@ fn the_exported_humanoid_loads_as_the_same_description() {
     );
 }
 
-/// Walks `path` in place for 60 s with the Capture Step walker, undisturbed; the falls.
-fn falls_in_place(path: &Path) -> usize {
+/// Walks `path` with the Capture Step walker for `seconds`, undisturbed, at the reference step
+/// `paper_f_r` of the paper's robot scaled to it; the log and the scaled reference.
+fn walk_undisturbed(path: &Path, paper_f_r: f64, seconds: f64) -> (TrialLog, f64) {
     let mut settings = Settings::default();
     let mut protocols = ProtocolTables::new();
-    use_robot(path, None, &mut settings, &mut protocols).unwrap();
+    let run = use_robot(path, None, &mut settings, &mut protocols).unwrap();
+    let f_r = run.scale.length(paper_f_r);
     let setup = settings.trial(
         WalkerMode::CaptureStep,
-        ReferenceSchedule::constant(0.0),
+        ReferenceSchedule::constant(f_r),
         Vec::new(),
         [1.0, 0.0, 0.0],
-        60.0,
+        seconds,
     );
-    let log = run_trial(&setup, None, &mut []).unwrap();
+    (run_trial(&setup, None, &mut []).unwrap(), f_r)
+}
+
+/// Walks `path` in place for 60 s with the Capture Step walker, undisturbed; the falls.
+fn falls_in_place(path: &Path) -> usize {
+    let (log, _) = walk_undisturbed(path, 0.0, 60.0);
     assert!(log.sim_time_s >= 59.9, "{}", log.sim_time_s);
     assert!(log.steps.len() > 100, "{} steps", log.steps.len());
     log.falls.len()
@@ -93,18 +100,7 @@ fn the_igus_like_robot_walks_in_place_for_60_s() {
 /// The model's mean realised step over the last 20 of 30 s walking undisturbed at experiment
 /// B's reference step (the paper robot's 0.2 m, scaled), as a share of that reference.
 fn realised_share_of_b_reference(path: &Path) -> f64 {
-    let mut settings = Settings::default();
-    let mut protocols = ProtocolTables::new();
-    let run = use_robot(path, None, &mut settings, &mut protocols).unwrap();
-    let f_r = run.scale.length(0.2);
-    let setup = settings.trial(
-        WalkerMode::CaptureStep,
-        ReferenceSchedule::constant(f_r),
-        Vec::new(),
-        [1.0, 0.0, 0.0],
-        30.0,
-    );
-    let log = run_trial(&setup, None, &mut []).unwrap();
+    let (log, f_r) = walk_undisturbed(path, 0.2, 30.0);
     assert!(log.falls.is_empty(), "{} falls", log.falls.len());
     let late: Vec<f64> = log
         .steps

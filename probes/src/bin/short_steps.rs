@@ -137,11 +137,7 @@ impl Observer for Trace {
         self.current.command_x = tick.command.step_x;
         self.current.last_est_vel = tick.estimate.com[0].vel;
         self.current.last_est_pos = tick.estimate.com[0].pos;
-        self.current.last_support = match tick.estimate.support {
-            steplearn::robot::Side::Left => 0,
-            steplearn::robot::Side::Right => 1,
-        };
-        let _ = time;
+        self.current.last_support = tick.estimate.support.index();
     }
     fn wants_truth(&self) -> bool {
         true
